@@ -1,0 +1,33 @@
+// odocal: calibrates a vehicle's wheel-odometry model off-line from a logged drive.
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+
+#include "deadreckon_command.hpp"
+#include "exit_codes.hpp"
+#include "odocal/error.hpp"
+
+int main(int argc, char** argv) {
+  using namespace odocal::cli;
+  CLI::App app{"odocal: off-line calibration of wheel odometry from logged drives"};
+  app.require_subcommand(1);
+  add_deadreckon_command(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int status = app.exit(e);
+    return status == 0 ? kExitOk : kExitBadInput;
+  } catch (const odocal::InputError& e) {
+    fmt::print(stderr, "odocal: error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const odocal::InsufficientDataError& e) {
+    fmt::print(stderr, "odocal: cannot identify: {}\n", e.what());
+    return kExitNotIdentifiable;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "odocal: error: {}\n", e.what());
+    return kExitFailure;
+  }
+  return kExitOk;
+}

@@ -1,0 +1,102 @@
+#pragma once
+// The neutral in-memory log: what every reader/importer produces and every estimator consumes.
+// Streams keep their own time bases (seconds on one shared clock, strictly increasing).
+// Frames: local ENU world (x east, y north), body x forward / y left / z up, yaw CCW from +x.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "odocal/model/odometry_model.hpp"
+
+namespace odocal {
+
+// Nominal vehicle description (vehicle.yaml): the starting guess of the calibration.
+struct VehicleConfig {
+  double track_width_m{};
+  double circumference_rl_m{};
+  double circumference_rr_m{};
+  std::optional<double> ticks_per_rev;
+  std::optional<int> counter_bits;
+  std::optional<double> wheelbase_m;
+  std::optional<double> circumference_fl_m;
+  std::optional<double> circumference_fr_m;
+
+  OdometryParams nominal_params() const {
+    return {circumference_rl_m, circumference_rr_m, track_width_m};
+  }
+};
+
+// How the wheel columns of wheels.csv were given.
+enum class WheelUnit { kTicks, kRadians, kRadiansPerSecond, kMetresPerSecond };
+
+// Wheel revolution increments on the wheel time base (eq. 2): rev_*[k] is the number of
+// revolutions between t_s[k-1] and t_s[k]; rev_*[0] = 0.
+struct WheelStream {
+  std::vector<double> t_s;
+  std::vector<double> rev_rl;
+  std::vector<double> rev_rr;
+  std::vector<double> rev_fl;  // empty when the log has no front wheels
+  std::vector<double> rev_fr;
+  WheelUnit unit_rear{WheelUnit::kTicks};
+
+  std::size_t size() const { return t_s.size(); }
+  WheelIncrement increment(std::size_t k) const { return {rev_rl[k], rev_rr[k]}; }
+};
+
+struct GeodeticOrigin {
+  double latitude_deg{};
+  double longitude_deg{};
+  double altitude_m{};
+};
+
+// GNSS fixes in local ENU metres. Optional columns are empty when absent.
+struct GnssStream {
+  std::vector<double> t_s;
+  std::vector<double> x_m;
+  std::vector<double> y_m;
+  std::vector<double> altitude_m;
+  std::vector<double> sigma_m;           // horizontal 1-sigma
+  std::vector<double> speed_mps;         // Doppler speed over ground
+  std::optional<GeodeticOrigin> origin;  // set when the file was lat/lon
+
+  std::size_t size() const { return t_s.size(); }
+};
+
+// Body-frame IMU: forward/left accelerations and yaw rate (CCW positive).
+struct ImuStream {
+  std::vector<double> t_s;
+  std::vector<double> ax_mps2;
+  std::vector<double> ay_mps2;
+  std::vector<double> wz_radps;
+
+  std::size_t size() const { return t_s.size(); }
+};
+
+// Absolute heading (e.g. magnetic), radians CCW from +x, wrapped to (-pi, pi].
+struct HeadingStream {
+  std::vector<double> t_s;
+  std::vector<double> heading_rad;
+
+  std::size_t size() const { return t_s.size(); }
+};
+
+// Timed poses of the reference point (truth.csv; also trajectories).
+struct PoseStream {
+  std::vector<double> t_s;
+  std::vector<Pose2> pose;
+
+  std::size_t size() const { return t_s.size(); }
+};
+
+struct Log {
+  std::string source;  // directory it was read from, for messages
+  VehicleConfig vehicle;
+  WheelStream wheels;
+  GnssStream gnss;
+  std::optional<ImuStream> imu;
+  std::optional<HeadingStream> heading;
+  std::optional<PoseStream> truth;  // evaluation only: estimators must never read it
+};
+
+}  // namespace odocal

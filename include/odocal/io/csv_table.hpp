@@ -1,0 +1,41 @@
+#pragma once
+// A strict reader for numeric CSV files with a header row: every field must be a finite number,
+// every row must have as many fields as the header. Errors name file, line and column.
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "odocal/error.hpp"
+
+namespace odocal {
+
+struct CsvTable {
+  std::string file;  // label used in error messages
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> columns;  // columns[c][row]
+  std::vector<std::size_t> line_of_row;      // 1-based file line of each data row
+
+  std::size_t rows() const { return line_of_row.size(); }
+  std::optional<std::size_t> find(std::string_view name) const;
+  bool has(std::string_view name) const { return find(name).has_value(); }
+  // Throws InputError naming the file when the column is missing.
+  const std::vector<double>& column(std::string_view name) const;
+  // Location of a value, for messages about its content.
+  InputLocation at(std::size_t row, std::string_view name) const;
+};
+
+struct CsvOptions {
+  // Accept a header written as a comment ("# x_m,y_m,..."), as in the TUMFTM track database.
+  bool header_may_be_comment = false;
+};
+
+CsvTable parse_csv_table(std::string_view text, const std::string& file_label,
+                         const CsvOptions& options = {});
+// Throws InputError when the file is missing or unreadable, or on any malformed content.
+CsvTable read_csv_table(const std::filesystem::path& path, const CsvOptions& options = {});
+
+}  // namespace odocal

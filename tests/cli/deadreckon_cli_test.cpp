@@ -1,0 +1,98 @@
+// `odocal deadreckon` end to end: reports, exports and exit statuses.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "../support/run_cli.hpp"
+#include "../support/temp_log_dir.hpp"
+
+namespace odocal {
+namespace {
+
+using testing::read_text_file;
+using testing::run_cli;
+using testing::TempLogDir;
+
+TEST(DeadreckonCli, ReportsErrorsAgainstGnssOnTheBaselineLog) {
+  const TempLogDir dir;
+  const auto run = run_cli("deadreckon " + dir.path().string() + " --start gnss");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("reference    gnss.csv (4 position samples)"), std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("position     mean 0.000 m, max 0.000 m"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("no heading reference"), std::string::npos) << run.out;
+}
+
+TEST(DeadreckonCli, OverridesCircumferencesAndUsesTruth) {
+  const TempLogDir dir;
+  dir.write("truth.csv", "t,x,y,heading\n0,0,0,0\n3,3,0,0\n");
+  // 10 % larger wheels: 3.3 m instead of 3 m after 3 s.
+  const auto run = run_cli("deadreckon " + dir.path().string() +
+                           " --circumference-rl 2.2 --circumference-rr 2.2");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("from truth"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("max 0.300 m"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("final drift  0.300 m = 9.091 % of 3.3 m"), std::string::npos) << run.out;
+}
+
+TEST(DeadreckonCli, WritesCsvAndTumTrajectories) {
+  const TempLogDir dir;
+  dir.write("gnss.csv", "t,x,y\n0,0,0\n1,0,1\n2,0,2\n3,0,3\n");  // GNSS says: going north
+  const std::string csv = dir.file("traj.csv");
+  const std::string tum = dir.file("traj.tum");
+  const auto run =
+      run_cli("deadreckon " + dir.path().string() + " --start gnss --out " + csv + " --tum " + tum);
+  ASSERT_EQ(run.status, 0) << run.err;
+  const std::string csv_text = read_text_file(csv);
+  EXPECT_EQ(csv_text.substr(0, 14), "t,x,y,heading\n");
+  // The start aligned to GNSS heads north: after 3 s the vehicle is 3 m north of the start.
+  std::istringstream tum_lines(read_text_file(tum));
+  std::string line, last;
+  int count = 0;
+  while (std::getline(tum_lines, line)) {
+    last = line;
+    ++count;
+  }
+  EXPECT_EQ(count, 4);
+  double t, x, y, z, qx, qy, qz, qw;
+  std::istringstream(last) >> t >> x >> y >> z >> qx >> qy >> qz >> qw;
+  EXPECT_DOUBLE_EQ(t, 3.0);
+  EXPECT_NEAR(x, 0.0, 1e-5);
+  EXPECT_NEAR(y, 3.0, 1e-5);
+  EXPECT_NEAR(qz, std::sqrt(0.5), 1e-8);
+  EXPECT_NEAR(qw, std::sqrt(0.5), 1e-8);
+}
+
+TEST(DeadreckonCli, BadInputExitsWithStatusTwoAndOneLine) {
+  const TempLogDir dir;
+  dir.write("wheels.csv", "t,rl_ticks,rr_ticks\n0,0,0\n1,nan,48\n");
+  const auto run = run_cli("deadreckon " + dir.path().string());
+  EXPECT_EQ(run.status, 2);
+  EXPECT_EQ(run.err, "odocal: error: " + dir.file("wheels.csv") +
+                         ":3: 'rl_ticks': expected a finite number, got 'nan'\n");
+}
+
+TEST(DeadreckonCli, MissingLogDirectoryExitsWithStatusTwo) {
+  const auto run = run_cli("deadreckon /nonexistent/odocal-log");
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.err.find("log directory does not exist"), std::string::npos) << run.err;
+}
+
+TEST(DeadreckonCli, NoStartHeadingExitsWithStatusThree) {
+  const TempLogDir dir;
+  dir.write("gnss.csv", "t,x,y\n0,0,0\n3,0,0\n");  // GNSS sees no motion, no heading.csv
+  const auto run = run_cli("deadreckon " + dir.path().string() + " --start gnss");
+  EXPECT_EQ(run.status, 3) << run.err;
+  EXPECT_NE(run.err.find("no start heading"), std::string::npos) << run.err;
+}
+
+TEST(DeadreckonCli, UsageErrorsExitWithStatusTwo) {
+  EXPECT_EQ(run_cli("deadreckon").status, 2);
+  EXPECT_EQ(run_cli("deadreckon some-log --start sideways").status, 2);
+  EXPECT_EQ(run_cli("--help").status, 0);
+}
+
+}  // namespace
+}  // namespace odocal
