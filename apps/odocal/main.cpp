@@ -7,12 +7,14 @@
 #include "deadreckon_command.hpp"
 #include "exit_codes.hpp"
 #include "odocal/error.hpp"
+#include "simulate_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace odocal::cli;
   CLI::App app{"odocal: off-line calibration of wheel odometry from logged drives"};
   app.require_subcommand(1);
   add_deadreckon_command(app);
+  add_simulate_command(app);
 
   try {
     app.parse(argc, argv);

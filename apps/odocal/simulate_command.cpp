@@ -1,0 +1,87 @@
+#include "simulate_command.hpp"
+
+#include <fmt/format.h>
+
+#include <memory>
+#include <optional>
+
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/io/simulation_writer.hpp"
+#include "odocal/sim/simulator.hpp"
+
+namespace odocal::cli {
+namespace {
+
+struct SimulateArgs {
+  std::string scenario = "circuit";
+  std::string out_dir;
+  bool ideal = false;
+  std::optional<int> laps;
+  std::optional<double> wear_rl_mm;
+  std::optional<double> wear_rr_mm;
+  std::optional<std::uint64_t> noise_seed;
+  std::optional<std::uint64_t> trajectory_seed;
+  std::optional<double> gnss_sigma_m;
+  std::optional<std::string> gnss_output;
+  std::optional<std::string> wheel_output;
+};
+
+void run_simulate(const SimulateArgs& args) {
+  sim::Scenario scenario = load_scenario(args.scenario);
+  if (args.ideal) scenario.ideal = true;
+  if (args.laps) scenario.route.laps = *args.laps;
+  if (args.wear_rl_mm) scenario.vehicle.wear_rl_mm = *args.wear_rl_mm;
+  if (args.wear_rr_mm) scenario.vehicle.wear_rr_mm = *args.wear_rr_mm;
+  if (args.noise_seed) scenario.seeds.noise = *args.noise_seed;
+  if (args.trajectory_seed) scenario.seeds.trajectory = *args.trajectory_seed;
+  if (args.gnss_sigma_m) scenario.gnss.sigma_m = *args.gnss_sigma_m;
+  if (args.gnss_output) scenario.gnss.output_latlon = *args.gnss_output == "latlon";
+  if (args.wheel_output) {
+    const std::string& unit = *args.wheel_output;
+    scenario.wheels.output = unit == "ticks"   ? WheelUnit::kTicks
+                             : unit == "rad"   ? WheelUnit::kRadians
+                             : unit == "radps" ? WheelUnit::kRadiansPerSecond
+                                               : WheelUnit::kMetresPerSecond;
+  }
+
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  write_simulated_log(drive, scenario, args.out_dir);
+  fmt::print("simulated    {} ({}), {} lap(s): {:.1f} m in {:.1f} s\n", scenario.name,
+             scenario.ideal ? "ideal" : "realistic", scenario.route.laps, drive.distance_m,
+             drive.wheel_t_s.back());
+  fmt::print("true wheels  c_RL {:.6f} m, c_RR {:.6f} m (nominal {:.6f} m), t_R {:.4f} m\n",
+             drive.true_params.circumference_rl_m, drive.true_params.circumference_rr_m,
+             drive.nominal_vehicle.circumference_rl_m, drive.true_params.track_width_m);
+  fmt::print("written      {} ({} wheel samples, {} GNSS fixes)\n", args.out_dir,
+             drive.wheel_t_s.size(), drive.gnss_t_s.size());
+}
+
+}  // namespace
+
+void add_simulate_command(CLI::App& app) {
+  auto args = std::make_shared<SimulateArgs>();
+  CLI::App* command =
+      app.add_subcommand("simulate", "Simulate a drive and its sensors into a log directory");
+  command
+      ->add_option("--scenario", args->scenario,
+                   "Built-in scenario (circuit, parking, urban) or a scenario YAML file")
+      ->capture_default_str();
+  command->add_option("--out", args->out_dir, "Output log directory")->required();
+  command->add_flag("--ideal", args->ideal,
+                    "Kinematic motion, no slip, constant radius: the paper's model assumptions");
+  command->add_option("--laps", args->laps, "Laps of the route")->check(CLI::Range(1, 1000));
+  command->add_option("--wear-rl", args->wear_rl_mm, "Rear-left tyre wear: radius lost, mm");
+  command->add_option("--wear-rr", args->wear_rr_mm, "Rear-right tyre wear: radius lost, mm");
+  command->add_option("--seed", args->noise_seed, "Noise seed (sensor errors)");
+  command->add_option("--trajectory-seed", args->trajectory_seed,
+                      "Trajectory seed (driver variation)");
+  command->add_option("--gnss-sigma", args->gnss_sigma_m, "GNSS white noise per axis, m")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--gnss-output", args->gnss_output, "GNSS as local x,y or lat,lon")
+      ->check(CLI::IsMember({"local", "latlon"}));
+  command->add_option("--wheel-output", args->wheel_output, "Wheel columns' unit")
+      ->check(CLI::IsMember({"ticks", "rad", "radps", "mps"}));
+  command->callback([args] { run_simulate(*args); });
+}
+
+}  // namespace odocal::cli

@@ -1,0 +1,95 @@
+#pragma once
+// Everything a simulation run needs: route, driver, vehicle, sensors and seeds. Defaults are the
+// paper's section 5 (50 Hz everywhere, sigma_GPS 3 m, sigma_acc 0.2 m/s^2, sigma_yaw-rate
+// 0.02 rad/s, sigma_heading 0.15 rad) and its tyre radius 312.6 mm. Documented knob by knob in
+// config/scenarios/*.yaml and docs/simulator.md.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "odocal/data/log.hpp"
+#include "odocal/sim/path.hpp"
+#include "odocal/sim/speed_profile.hpp"
+
+namespace odocal::sim {
+
+struct RouteSegment {
+  PathSegment geometry;
+  double stop_dwell_s{};  // > 0: stop at the end of this segment for that long
+};
+
+struct Route {
+  std::vector<RouteSegment> segments;
+  int repeat = 1;  // the segment list is driven this many times per lap
+  int laps = 1;
+  Pose2 start = Pose2::Zero();
+};
+
+struct VehicleSimConfig {
+  double track_width_m = 1.6;
+  double wheelbase_m = 2.7;
+  double tyre_radius_m = 0.3126;  // nominal, unloaded (paper section 1)
+  double wear_rl_mm = 0.0;        // radius lost to tyre wear, per rear wheel
+  double wear_rr_mm = 0.0;
+};
+
+struct Outage {
+  double start_s{};  // seconds after the log's first sample
+  double duration_s{};
+};
+
+struct GnssSimConfig {
+  double rate_hz = 50.0;
+  double sigma_m = 3.0;  // white noise per axis
+  double gauss_markov_sigma_m = 0.0;
+  double gauss_markov_tau_s = 60.0;
+  double outlier_rate = 0.0;  // probability per fix
+  double outlier_min_m = 20.0;
+  double outlier_max_m = 50.0;
+  double latency_s = 0.0;  // a fix stamped t reports the position at t - latency
+  std::vector<Outage> outages;
+  bool output_latlon = false;
+  GeodeticOrigin origin{49.3278, 8.5656, 103.0};  // Hockenheimring
+};
+
+struct ImuSimConfig {
+  double rate_hz = 50.0;
+  double acc_sigma_mps2 = 0.2;
+  double yaw_rate_sigma_radps = 0.02;
+  double gyro_bias_radps = 0.0;
+};
+
+struct HeadingSimConfig {
+  double rate_hz = 50.0;
+  double sigma_rad = 0.15;
+  double bias_rad = 0.0;
+};
+
+struct WheelSimConfig {
+  double rate_hz = 50.0;
+  WheelUnit output = WheelUnit::kTicks;
+  int ticks_per_rev = 96;
+  int counter_bits = 16;  // 0: the counter never wraps
+};
+
+struct Seeds {
+  std::uint64_t trajectory = 1;  // driver variation
+  std::uint64_t noise = 1;       // every sensor error
+};
+
+struct Scenario {
+  std::string name;
+  Route route;
+  DriverLimits driver;
+  double speed_variation = 0.0;  // each segment's speed cap scaled by U[1 - v, 1] (trajectory seed)
+  VehicleSimConfig vehicle;
+  bool ideal = true;  // kinematic motion, no slip, constant radius (paper's model assumptions)
+  GnssSimConfig gnss;
+  ImuSimConfig imu;
+  HeadingSimConfig heading;
+  WheelSimConfig wheels;
+  Seeds seeds;
+};
+
+}  // namespace odocal::sim

@@ -1,0 +1,34 @@
+#pragma once
+// Simulates a drive and its sensors. Returns raw sensor columns as a logger would write them
+// (cumulative ticks, lat/lon, ...) plus the truth.
+
+#include <vector>
+
+#include "odocal/data/log.hpp"
+#include "odocal/sim/scenario.hpp"
+
+namespace odocal::sim {
+
+struct SimulatedDrive {
+  VehicleConfig nominal_vehicle;  // what vehicle.yaml says (unworn tyres)
+  OdometryParams true_params;     // circumferences after wear, true track width
+  // wheels.csv: raw values in `wheel_unit` (ticks cumulative and wrapped, rad cumulative, ...)
+  std::vector<double> wheel_t_s, wheel_rl, wheel_rr;
+  WheelUnit wheel_unit{WheelUnit::kTicks};
+  // gnss.csv: x/y in metres, or lat/lon in degrees when `gnss_latlon`
+  std::vector<double> gnss_t_s, gnss_a, gnss_b;
+  bool gnss_latlon{};
+  double gnss_sigma_m{};
+  ImuStream imu;
+  HeadingStream heading;
+  PoseStream truth;  // reference point at the wheel rate
+  double distance_m{};
+};
+
+// The path of the scenario's route (all laps).
+Path route_path(const Scenario& scenario);
+
+// Throws Error for configurations it cannot simulate (e.g. the dynamic model, not yet built).
+SimulatedDrive simulate(const Scenario& scenario);
+
+}  // namespace odocal::sim

@@ -1,0 +1,302 @@
+#include "odocal/io/scenario_io.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "builtin_scenarios.hpp"
+#include "odocal/model/angle.hpp"
+#include "yaml_map.hpp"
+
+namespace odocal {
+namespace {
+
+using detail::YamlMap;
+constexpr double kBig = 1e9;
+
+sim::RouteSegment parse_segment(const YAML::Node& node, const std::string& file,
+                                std::size_t index) {
+  YamlMap map(node, file, fmt::format("route.segments[{}]", index));
+  sim::RouteSegment segment;
+  bool reverse = false;
+  map.read("reverse", reverse);
+  map.read("stop_s", segment.stop_dwell_s, 0.0, kBig);
+  const int direction = reverse ? -1 : 1;
+  segment.geometry.direction = direction;
+  int shapes = 0;
+  if (map.has("straight")) {
+    map.read("straight", segment.geometry.length_m, 1e-3, kBig);
+    ++shapes;
+  }
+  if (auto arc = map.map("arc")) {
+    double radius_m = 0.0, turn_deg = 0.0;
+    arc->read("radius_m", radius_m, 1e-3, kBig);
+    arc->read("turn_deg", turn_deg, -3600.0, 3600.0);
+    arc->reject_unknown_keys();
+    if (radius_m <= 0.0 || turn_deg == 0.0)
+      throw InputError(arc->location(), "an arc needs radius_m > 0 and turn_deg != 0");
+    segment.geometry.length_m = radius_m * std::abs(rad_from_deg(turn_deg));
+    // Curvature is d(yaw)/d(signed distance): reversing flips its sign for the same yaw change.
+    const double curvature = std::copysign(1.0 / radius_m, turn_deg) * direction;
+    segment.geometry.curvature_start_1pm = segment.geometry.curvature_end_1pm = curvature;
+    ++shapes;
+  }
+  if (auto clothoid = map.map("clothoid")) {
+    clothoid->read("length_m", segment.geometry.length_m, 1e-3, kBig);
+    clothoid->read("curvature_start_1pm", segment.geometry.curvature_start_1pm, -10.0, 10.0);
+    clothoid->read("curvature_end_1pm", segment.geometry.curvature_end_1pm, -10.0, 10.0);
+    clothoid->reject_unknown_keys();
+    if (segment.geometry.length_m <= 0.0)
+      throw InputError(clothoid->location(), "length_m is required");
+    ++shapes;
+  }
+  map.reject_unknown_keys();
+  if (shapes != 1) throw InputError(map.location(), "give exactly one of straight, arc, clothoid");
+  return segment;
+}
+
+void parse_route(YamlMap route, sim::Route& out) {
+  route.read("repeat", out.repeat, 1, 1000);
+  route.read("laps", out.laps, 1, 1000);
+  if (auto start = route.map("start")) {
+    double heading_deg = deg_from_rad(out.start.z());
+    start->read("x_m", out.start.x(), -kBig, kBig);
+    start->read("y_m", out.start.y(), -kBig, kBig);
+    start->read("heading_deg", heading_deg, -360.0, 360.0);
+    out.start.z() = rad_from_deg(heading_deg);
+    start->reject_unknown_keys();
+  }
+  const auto segments = route.sequence("segments");
+  if (!segments.empty()) out.segments.clear();
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    out.segments.push_back(parse_segment(segments[i], route.file(), i));
+  route.reject_unknown_keys();
+}
+
+WheelUnit parse_wheel_unit(YamlMap& map, const std::string& key, WheelUnit fallback) {
+  std::string text;
+  map.read(key, text);
+  if (text.empty()) return fallback;
+  if (text == "ticks") return WheelUnit::kTicks;
+  if (text == "rad") return WheelUnit::kRadians;
+  if (text == "radps") return WheelUnit::kRadiansPerSecond;
+  if (text == "mps") return WheelUnit::kMetresPerSecond;
+  throw InputError(map.location(key), "expected one of ticks, rad, radps, mps");
+}
+
+void parse_sensors(YamlMap sensors, sim::Scenario& s) {
+  if (auto gnss = sensors.map("gnss")) {
+    gnss->read("rate_hz", s.gnss.rate_hz, 0.01, 1000.0);
+    gnss->read("sigma_m", s.gnss.sigma_m, 0.0, 1000.0);
+    gnss->read("gauss_markov_sigma_m", s.gnss.gauss_markov_sigma_m, 0.0, 1000.0);
+    gnss->read("gauss_markov_tau_s", s.gnss.gauss_markov_tau_s, 1e-3, kBig);
+    gnss->read("outlier_rate", s.gnss.outlier_rate, 0.0, 1.0);
+    gnss->read("outlier_min_m", s.gnss.outlier_min_m, 0.0, 1e6);
+    gnss->read("outlier_max_m", s.gnss.outlier_max_m, s.gnss.outlier_min_m, 1e6);
+    gnss->read("latency_s", s.gnss.latency_s, 0.0, 10.0);
+    const auto outages = gnss->sequence("outages");
+    if (!outages.empty()) s.gnss.outages.clear();
+    for (std::size_t i = 0; i < outages.size(); ++i) {
+      YamlMap outage(outages[i], gnss->file(), fmt::format("sensors.gnss.outages[{}]", i));
+      sim::Outage parsed;
+      outage.read("start_s", parsed.start_s, 0.0, kBig);
+      outage.read("duration_s", parsed.duration_s, 0.0, kBig);
+      outage.reject_unknown_keys();
+      s.gnss.outages.push_back(parsed);
+    }
+    std::string output = s.gnss.output_latlon ? "latlon" : "local";
+    gnss->read("output", output);
+    if (output != "local" && output != "latlon")
+      throw InputError(gnss->location("output"), "expected local or latlon");
+    s.gnss.output_latlon = output == "latlon";
+    if (auto origin = gnss->map("origin")) {
+      origin->read("lat_deg", s.gnss.origin.latitude_deg, -90.0, 90.0);
+      origin->read("lon_deg", s.gnss.origin.longitude_deg, -180.0, 180.0);
+      origin->read("alt_m", s.gnss.origin.altitude_m, -1e4, 1e5);
+      origin->reject_unknown_keys();
+    }
+    gnss->reject_unknown_keys();
+  }
+  if (auto imu = sensors.map("imu")) {
+    imu->read("rate_hz", s.imu.rate_hz, 0.01, 10000.0);
+    imu->read("acc_sigma_mps2", s.imu.acc_sigma_mps2, 0.0, 100.0);
+    imu->read("yaw_rate_sigma_radps", s.imu.yaw_rate_sigma_radps, 0.0, 10.0);
+    imu->read("gyro_bias_radps", s.imu.gyro_bias_radps, -10.0, 10.0);
+    imu->reject_unknown_keys();
+  }
+  if (auto heading = sensors.map("heading")) {
+    heading->read("rate_hz", s.heading.rate_hz, 0.01, 10000.0);
+    heading->read("sigma_rad", s.heading.sigma_rad, 0.0, 10.0);
+    heading->read("bias_rad", s.heading.bias_rad, -10.0, 10.0);
+    heading->reject_unknown_keys();
+  }
+  if (auto wheels = sensors.map("wheels")) {
+    wheels->read("rate_hz", s.wheels.rate_hz, 0.01, 10000.0);
+    s.wheels.output = parse_wheel_unit(*wheels, "output", s.wheels.output);
+    wheels->read("ticks_per_rev", s.wheels.ticks_per_rev, 1, 1 << 24);
+    wheels->read("counter_bits", s.wheels.counter_bits, 0, 62);
+    if (s.wheels.counter_bits == 1)
+      throw InputError(wheels->location("counter_bits"), "expected 0 (no wrap) or 2..62");
+    wheels->reject_unknown_keys();
+  }
+  sensors.reject_unknown_keys();
+}
+
+}  // namespace
+
+std::vector<std::string> builtin_scenario_names() {
+  std::vector<std::string> names;
+  for (const auto& builtin : detail::builtin_scenarios()) names.emplace_back(builtin.name);
+  return names;
+}
+
+sim::Scenario parse_scenario(const std::string& yaml_text, const std::string& file) {
+  YamlMap root(detail::parse_yaml(yaml_text, file), file, "");
+  sim::Scenario s;
+  root.read("name", s.name);
+  if (auto route = root.map("route")) parse_route(std::move(*route), s.route);
+  if (s.route.segments.empty())
+    throw InputError({file, 0, "route.segments"}, "a scenario needs at least one route segment");
+  if (auto driver = root.map("driver")) {
+    driver->read("max_speed_mps", s.driver.max_speed_mps, 0.1, 150.0);
+    driver->read("max_reverse_speed_mps", s.driver.max_reverse_speed_mps, 0.1, 20.0);
+    driver->read("max_lateral_acc_mps2", s.driver.max_lateral_acc_mps2, 0.1, 30.0);
+    driver->read("max_acc_mps2", s.driver.max_acc_mps2, 0.1, 30.0);
+    driver->read("max_brake_mps2", s.driver.max_brake_mps2, 0.1, 30.0);
+    driver->read("start_dwell_s", s.driver.start_dwell_s, 0.0, 3600.0);
+    driver->read("speed_variation", s.speed_variation, 0.0, 0.5);
+    driver->reject_unknown_keys();
+  }
+  if (auto vehicle = root.map("vehicle")) {
+    vehicle->read("track_width_m", s.vehicle.track_width_m, 0.1, 10.0);
+    vehicle->read("wheelbase_m", s.vehicle.wheelbase_m, 0.1, 20.0);
+    vehicle->read("tyre_radius_m", s.vehicle.tyre_radius_m, 0.05, 2.0);
+    vehicle->read("wear_rl_mm", s.vehicle.wear_rl_mm, -50.0, 50.0);
+    vehicle->read("wear_rr_mm", s.vehicle.wear_rr_mm, -50.0, 50.0);
+    vehicle->read("ideal", s.ideal);
+    vehicle->reject_unknown_keys();
+  }
+  if (auto sensors = root.map("sensors")) parse_sensors(std::move(*sensors), s);
+  if (auto seeds = root.map("seeds")) {
+    seeds->read("trajectory", s.seeds.trajectory);
+    seeds->read("noise", s.seeds.noise);
+    seeds->reject_unknown_keys();
+  }
+  root.reject_unknown_keys();
+  return s;
+}
+
+sim::Scenario load_scenario(const std::string& name_or_file) {
+  for (const auto& builtin : detail::builtin_scenarios()) {
+    if (name_or_file == builtin.name)
+      return parse_scenario(std::string(builtin.yaml), "builtin:" + name_or_file);
+  }
+  std::ifstream stream(name_or_file);
+  if (!stream) {
+    throw InputError({name_or_file, 0, ""},
+                     fmt::format("no such scenario file (built-in scenarios: {})",
+                                 fmt::join(builtin_scenario_names(), ", ")));
+  }
+  std::ostringstream text;
+  text << stream.rdbuf();
+  return parse_scenario(text.str(), name_or_file);
+}
+
+std::string scenario_to_yaml(const sim::Scenario& s) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(10);
+  const auto key = [&](const char* name, const auto& value) {
+    out << YAML::Key << name << YAML::Value << value;
+  };
+  out << YAML::BeginMap;
+  key("name", s.name);
+  out << YAML::Key << "route" << YAML::Value << YAML::BeginMap;
+  key("repeat", s.route.repeat);
+  key("laps", s.route.laps);
+  out << YAML::Key << "start" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  key("x_m", s.route.start.x());
+  key("y_m", s.route.start.y());
+  key("heading_deg", deg_from_rad(s.route.start.z()));
+  out << YAML::EndMap;
+  out << YAML::Key << "segments" << YAML::Value << YAML::BeginSeq;
+  for (const sim::RouteSegment& segment : s.route.segments) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "clothoid" << YAML::Value << YAML::BeginMap;
+    key("length_m", segment.geometry.length_m);
+    key("curvature_start_1pm", segment.geometry.curvature_start_1pm);
+    key("curvature_end_1pm", segment.geometry.curvature_end_1pm);
+    out << YAML::EndMap;
+    if (segment.geometry.direction < 0) key("reverse", true);
+    if (segment.stop_dwell_s > 0) key("stop_s", segment.stop_dwell_s);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+  out << YAML::Key << "driver" << YAML::Value << YAML::BeginMap;
+  key("max_speed_mps", s.driver.max_speed_mps);
+  key("max_reverse_speed_mps", s.driver.max_reverse_speed_mps);
+  key("max_lateral_acc_mps2", s.driver.max_lateral_acc_mps2);
+  key("max_acc_mps2", s.driver.max_acc_mps2);
+  key("max_brake_mps2", s.driver.max_brake_mps2);
+  key("start_dwell_s", s.driver.start_dwell_s);
+  key("speed_variation", s.speed_variation);
+  out << YAML::EndMap;
+  out << YAML::Key << "vehicle" << YAML::Value << YAML::BeginMap;
+  key("track_width_m", s.vehicle.track_width_m);
+  key("wheelbase_m", s.vehicle.wheelbase_m);
+  key("tyre_radius_m", s.vehicle.tyre_radius_m);
+  key("wear_rl_mm", s.vehicle.wear_rl_mm);
+  key("wear_rr_mm", s.vehicle.wear_rr_mm);
+  key("ideal", s.ideal);
+  out << YAML::EndMap;
+  out << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "gnss" << YAML::Value << YAML::BeginMap;
+  key("rate_hz", s.gnss.rate_hz);
+  key("sigma_m", s.gnss.sigma_m);
+  key("gauss_markov_sigma_m", s.gnss.gauss_markov_sigma_m);
+  key("gauss_markov_tau_s", s.gnss.gauss_markov_tau_s);
+  key("outlier_rate", s.gnss.outlier_rate);
+  key("outlier_min_m", s.gnss.outlier_min_m);
+  key("outlier_max_m", s.gnss.outlier_max_m);
+  key("latency_s", s.gnss.latency_s);
+  out << YAML::Key << "outages" << YAML::Value << YAML::BeginSeq;
+  for (const sim::Outage& outage : s.gnss.outages) {
+    out << YAML::Flow << YAML::BeginMap;
+    key("start_s", outage.start_s);
+    key("duration_s", outage.duration_s);
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  key("output", s.gnss.output_latlon ? "latlon" : "local");
+  out << YAML::Key << "origin" << YAML::Value << YAML::Flow << YAML::BeginMap;
+  key("lat_deg", s.gnss.origin.latitude_deg);
+  key("lon_deg", s.gnss.origin.longitude_deg);
+  key("alt_m", s.gnss.origin.altitude_m);
+  out << YAML::EndMap << YAML::EndMap;
+  out << YAML::Key << "imu" << YAML::Value << YAML::BeginMap;
+  key("rate_hz", s.imu.rate_hz);
+  key("acc_sigma_mps2", s.imu.acc_sigma_mps2);
+  key("yaw_rate_sigma_radps", s.imu.yaw_rate_sigma_radps);
+  key("gyro_bias_radps", s.imu.gyro_bias_radps);
+  out << YAML::EndMap;
+  out << YAML::Key << "heading" << YAML::Value << YAML::BeginMap;
+  key("rate_hz", s.heading.rate_hz);
+  key("sigma_rad", s.heading.sigma_rad);
+  key("bias_rad", s.heading.bias_rad);
+  out << YAML::EndMap;
+  static constexpr const char* kUnits[] = {"ticks", "rad", "radps", "mps"};
+  out << YAML::Key << "wheels" << YAML::Value << YAML::BeginMap;
+  key("rate_hz", s.wheels.rate_hz);
+  key("output", kUnits[static_cast<int>(s.wheels.output)]);
+  key("ticks_per_rev", s.wheels.ticks_per_rev);
+  key("counter_bits", s.wheels.counter_bits);
+  out << YAML::EndMap << YAML::EndMap;
+  out << YAML::Key << "seeds" << YAML::Value << YAML::BeginMap;
+  key("trajectory", s.seeds.trajectory);
+  key("noise", s.seeds.noise);
+  out << YAML::EndMap << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace odocal

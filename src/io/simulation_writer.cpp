@@ -1,0 +1,105 @@
+#include "odocal/io/simulation_writer.hpp"
+
+#include <fmt/os.h>
+
+#include <fstream>
+
+#include "odocal/error.hpp"
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/io/trajectory_writer.hpp"
+#include "odocal/io/vehicle_config_io.hpp"
+
+namespace odocal {
+namespace {
+
+const char* wheel_suffix(WheelUnit unit) {
+  switch (unit) {
+    case WheelUnit::kTicks:
+      return "ticks";
+    case WheelUnit::kRadians:
+      return "rad";
+    case WheelUnit::kRadiansPerSecond:
+      return "radps";
+    case WheelUnit::kMetresPerSecond:
+      return "mps";
+  }
+  return "ticks";
+}
+
+template <typename WriteRows>
+void write_file(const std::filesystem::path& path, WriteRows&& write_rows) {
+  try {
+    auto out = fmt::output_file(path.string());
+    write_rows(out);
+    out.close();
+  } catch (const std::system_error& e) {
+    throw Error("cannot write " + path.string() + ": " + e.code().message());
+  }
+}
+
+}  // namespace
+
+void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& scenario,
+                         const std::filesystem::path& directory) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) throw Error("cannot create " + directory.string() + ": " + error.message());
+
+  write_vehicle_config(drive.nominal_vehicle, directory / "vehicle.yaml");
+  write_file(directory / "wheels.csv", [&](fmt::ostream& out) {
+    const char* unit = wheel_suffix(drive.wheel_unit);
+    out.print("t,rl_{0},rr_{0}\n", unit);
+    const bool ticks = drive.wheel_unit == WheelUnit::kTicks;
+    for (std::size_t k = 0; k < drive.wheel_t_s.size(); ++k) {
+      if (ticks) {
+        out.print("{:.4f},{:.0f},{:.0f}\n", drive.wheel_t_s[k], drive.wheel_rl[k],
+                  drive.wheel_rr[k]);
+      } else {
+        out.print("{:.4f},{:.9f},{:.9f}\n", drive.wheel_t_s[k], drive.wheel_rl[k],
+                  drive.wheel_rr[k]);
+      }
+    }
+  });
+  write_file(directory / "gnss.csv", [&](fmt::ostream& out) {
+    // sigma_m must be positive in the log format: error-free fixes leave the column out.
+    const bool has_sigma = drive.gnss_sigma_m > 0.0;
+    out.print("{}{}\n", drive.gnss_latlon ? "t,lat,lon" : "t,x,y", has_sigma ? ",sigma_m" : "");
+    const std::string sigma = has_sigma ? fmt::format(",{:.3f}", drive.gnss_sigma_m) : "";
+    for (std::size_t k = 0; k < drive.gnss_t_s.size(); ++k) {
+      if (drive.gnss_latlon) {
+        out.print("{:.4f},{:.9f},{:.9f}{}\n", drive.gnss_t_s[k], drive.gnss_a[k], drive.gnss_b[k],
+                  sigma);
+      } else {
+        out.print("{:.4f},{:.4f},{:.4f}{}\n", drive.gnss_t_s[k], drive.gnss_a[k], drive.gnss_b[k],
+                  sigma);
+      }
+    }
+  });
+  write_file(directory / "imu.csv", [&](fmt::ostream& out) {
+    out.print("t,ax,ay,wz\n");
+    for (std::size_t k = 0; k < drive.imu.size(); ++k) {
+      out.print("{:.4f},{:.6f},{:.6f},{:.7f}\n", drive.imu.t_s[k], drive.imu.ax_mps2[k],
+                drive.imu.ay_mps2[k], drive.imu.wz_radps[k]);
+    }
+  });
+  write_file(directory / "heading.csv", [&](fmt::ostream& out) {
+    out.print("t,heading\n");
+    for (std::size_t k = 0; k < drive.heading.size(); ++k) {
+      out.print("{:.4f},{:.7f}\n", drive.heading.t_s[k], drive.heading.heading_rad[k]);
+    }
+  });
+  write_trajectory_csv(drive.truth, directory / "truth.csv");
+  write_file(directory / "truth.yaml", [&](fmt::ostream& out) {
+    out.print("# The simulator's true parameters; estimators never read this file.\n");
+    out.print("circumference_rl_m: {:.9f}\ncircumference_rr_m: {:.9f}\ntrack_width_m: {:.9f}\n",
+              drive.true_params.circumference_rl_m, drive.true_params.circumference_rr_m,
+              drive.true_params.track_width_m);
+    out.print("distance_m: {:.3f}\nduration_s: {:.3f}\nideal: {}\n", drive.distance_m,
+              drive.wheel_t_s.empty() ? 0.0 : drive.wheel_t_s.back(), scenario.ideal);
+    out.print("seeds: {{trajectory: {}, noise: {}}}\n", scenario.seeds.trajectory,
+              scenario.seeds.noise);
+  });
+  std::ofstream(directory / "scenario.yaml") << scenario_to_yaml(scenario);
+}
+
+}  // namespace odocal

@@ -1,0 +1,194 @@
+// The simulator end to end: its logs read back through the log reader; ideal mode dead-reckons
+// onto truth within encoder quantisation; sensor noise has its configured sigma; seeds separate.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "../support/temp_log_dir.hpp"
+#include "odocal/error.hpp"
+#include "odocal/estimation/dead_reckoning.hpp"
+#include "odocal/estimation/interpolation.hpp"
+#include "odocal/estimation/trajectory_errors.hpp"
+#include "odocal/io/log_reader.hpp"
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/io/simulation_writer.hpp"
+#include "odocal/model/angle.hpp"
+
+namespace odocal::sim {
+namespace {
+
+using odocal::testing::TempLogDir;
+
+struct Simulated {
+  SimulatedDrive drive;
+  Log log;
+};
+
+Simulated simulate_and_read(const Scenario& scenario, const TempLogDir& dir) {
+  SimulatedDrive drive = simulate(scenario);
+  write_simulated_log(drive, scenario, dir.path());
+  return {std::move(drive), read_log(dir.path())};
+}
+
+TrajectoryErrors errors_with_true_params(const Simulated& run) {
+  const PoseStream trajectory =
+      dead_reckon(run.log.wheels, run.drive.true_params, run.log.truth->pose[0]);
+  return trajectory_errors(trajectory, reference_from_poses(*run.log.truth, "truth.csv"));
+}
+
+double rms(const std::vector<double>& values) {
+  return std::sqrt(std::inner_product(values.begin(), values.end(), values.begin(), 0.0) /
+                   static_cast<double>(values.size()));
+}
+
+TEST(Simulator, IdealCircuitDeadReckonsWithinQuantisation) {
+  const TempLogDir dir;
+  const Scenario scenario = load_scenario("circuit");  // 3 laps, 96 ticks/rev, 16-bit counters
+  const Simulated run = simulate_and_read(scenario, dir);
+  ASSERT_GT(run.drive.distance_m, 13000.0);
+  const TrajectoryErrors errors = errors_with_true_params(run);
+  // Cumulative ticks are floored, never accumulated: heading error stays within one tick of
+  // each wheel over the track width, however long the drive.
+  const double tick_m = run.drive.true_params.circumference_rl_m / scenario.wheels.ticks_per_rev;
+  EXPECT_LT(errors.max_heading_rad, 2.0 * tick_m / scenario.vehicle.track_width_m);
+  // That bounded, zero-mean heading error integrates to well under a metre over 13.5 km.
+  EXPECT_LT(errors.max_position_m, 1.0);
+}
+
+TEST(Simulator, IdealCircuitWithExactWheelAnglesHasOnlyModelDiscretisation) {
+  const TempLogDir dir;
+  Scenario scenario = load_scenario("circuit");
+  scenario.wheels.output = WheelUnit::kRadians;
+  const TrajectoryErrors errors = errors_with_true_params(simulate_and_read(scenario, dir));
+  EXPECT_LT(errors.max_position_m, 0.05);
+  EXPECT_LT(errors.max_heading_rad, 1e-6);
+}
+
+TEST(Simulator, ParkingReversesWithSignedCountsAndFollowsTruth) {
+  const TempLogDir dir;
+  const Simulated run = simulate_and_read(load_scenario("parking"), dir);
+  const auto& rl = run.log.wheels.rev_rl;
+  EXPECT_LT(*std::min_element(rl.begin(), rl.end()), 0.0);
+  EXPECT_GT(run.drive.distance_m, 300.0);
+  EXPECT_LT(run.drive.distance_m, 1000.0);
+  EXPECT_LT(errors_with_true_params(run).max_position_m, 0.1);
+}
+
+TEST(Simulator, WearShrinksTheTrueCircumferences) {
+  Scenario scenario = load_scenario("parking");
+  scenario.vehicle.wear_rl_mm = 3.5;
+  scenario.vehicle.wear_rr_mm = 2.5;
+  const SimulatedDrive drive = simulate(scenario);
+  EXPECT_NEAR(drive.true_params.circumference_rl_m, 2 * M_PI * (0.3126 - 0.0035), 1e-12);
+  EXPECT_NEAR(drive.true_params.circumference_rr_m, 2 * M_PI * (0.3126 - 0.0025), 1e-12);
+  EXPECT_NEAR(drive.nominal_vehicle.circumference_rl_m, 2 * M_PI * 0.3126, 1e-12);
+}
+
+TEST(Simulator, SensorNoiseHasItsConfiguredSigma) {
+  const Scenario scenario = load_scenario("circuit");
+  const SimulatedDrive drive = simulate(scenario);
+  const PoseStream& truth = drive.truth;
+  std::vector<double> gnss_error, heading_error, yaw_rate_error;
+  for (std::size_t k = 0; k < drive.gnss_t_s.size(); ++k) {
+    const Pose2 pose = *interpolate_pose(truth, drive.gnss_t_s[k]);
+    gnss_error.push_back(drive.gnss_a[k] - pose.x());
+    gnss_error.push_back(drive.gnss_b[k] - pose.y());
+  }
+  for (std::size_t k = 0; k < drive.heading.size(); ++k) {
+    heading_error.push_back(angle_difference(drive.heading.heading_rad[k],
+                                             interpolate_pose(truth, drive.heading.t_s[k])->z()));
+  }
+  // Yaw rate truth: the central difference of the true yaw where the yaw rate is locally
+  // constant (straights and steady arcs; at arc entries the difference would blur a step).
+  for (std::size_t k = 1; k + 1 < truth.size(); ++k) {
+    const double before = truth.pose[k].z() - truth.pose[k - 1].z();
+    const double after = truth.pose[k + 1].z() - truth.pose[k].z();
+    if (std::abs(after - before) > 1e-7) continue;
+    yaw_rate_error.push_back(drive.imu.wz_radps[k] -
+                             (before + after) / (truth.t_s[k + 1] - truth.t_s[k - 1]));
+  }
+  ASSERT_GT(yaw_rate_error.size(), 10000u);
+  // ~50 000 samples: the sample sigma is within 2 % of the configured one.
+  EXPECT_NEAR(rms(gnss_error), 3.0, 0.06);
+  EXPECT_NEAR(rms(heading_error), 0.15, 0.003);
+  EXPECT_NEAR(rms(yaw_rate_error), 0.02, 0.001);
+}
+
+TEST(Simulator, NoiseSeedVariesNoiseOverFixedTruth) {
+  Scenario scenario = load_scenario("circuit");  // speed_variation 0.05: the trajectory seed acts
+  scenario.route.laps = 1;
+  const SimulatedDrive a = simulate(scenario);
+  scenario.seeds.noise = 2;
+  const SimulatedDrive b = simulate(scenario);
+  EXPECT_EQ(a.truth.pose.back(), b.truth.pose.back());
+  EXPECT_NE(a.gnss_a[100], b.gnss_a[100]);
+  scenario.seeds.noise = 1;
+  EXPECT_EQ(simulate(scenario).gnss_a, a.gnss_a);  // reproducible
+  scenario.seeds.trajectory = 2;
+  EXPECT_NE(simulate(scenario).truth.pose[5000], a.truth.pose[5000]);  // another driver
+}
+
+TEST(Simulator, GnssOutagesOutliersAndLatLon) {
+  const TempLogDir dir;
+  Scenario scenario = load_scenario("urban");
+  scenario.gnss.outages = {{60.0, 30.0}};
+  scenario.gnss.output_latlon = true;
+  scenario.gnss.sigma_m = 0.0;
+  scenario.gnss.outlier_rate = 0.02;
+  const Simulated run = simulate_and_read(scenario, dir);
+  for (double t : run.log.gnss.t_s) EXPECT_FALSE(t >= 60.0 && t < 90.0) << t;
+  ASSERT_TRUE(run.log.gnss.origin.has_value());
+  // Without white noise every fix is on the path (the reader's ENU origin is the first fix,
+  // which is the path start) except the ~2 % outliers of 20-50 m.
+  std::size_t outliers = 0;
+  for (std::size_t k = 0; k < run.log.gnss.size(); ++k) {
+    const Pose2 pose = *interpolate_pose(*run.log.truth, run.log.gnss.t_s[k]);
+    const double error = std::hypot(run.log.gnss.x_m[k] - pose.x(), run.log.gnss.y_m[k] - pose.y());
+    if (error > 19.9)
+      ++outliers;
+    else
+      EXPECT_LT(error, 0.01);
+  }
+  EXPECT_NEAR(static_cast<double>(outliers) / static_cast<double>(run.log.gnss.size()), 0.02,
+              0.006);
+}
+
+TEST(Simulator, DynamicModelIsRefusedClearly) {
+  Scenario scenario = load_scenario("urban");
+  scenario.ideal = false;
+  EXPECT_THROW(simulate(scenario), Error);
+}
+
+TEST(ScenarioYaml, EffectiveConfigurationRoundTrips) {
+  Scenario scenario = load_scenario("parking");
+  scenario.gnss.outages = {{10.0, 5.0}};
+  scenario.vehicle.wear_rl_mm = 1.5;
+  const Scenario again = parse_scenario(scenario_to_yaml(scenario), "effective.yaml");
+  EXPECT_EQ(scenario_to_yaml(again), scenario_to_yaml(scenario));
+  const SimulatedDrive a = simulate(scenario);
+  const SimulatedDrive b = simulate(again);
+  EXPECT_LT((a.truth.pose.back() - b.truth.pose.back()).norm(), 1e-6);
+}
+
+TEST(ScenarioYaml, ErrorsNameFileLineAndKey) {
+  try {
+    parse_scenario("route:\n  segments:\n    - straight: 10\nsensors:\n  gnss:\n    sigma: 3\n",
+                   "s.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "s.yaml:6: 'sensors.gnss.sigma': unknown key");
+  }
+  try {
+    parse_scenario("route:\n  segments:\n    - arc: {radius_m: -5, turn_deg: 90}\n", "s.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().field, "route.segments[0].arc.radius_m");
+    EXPECT_EQ(e.location().line, 3u);
+  }
+  EXPECT_THROW(load_scenario("no-such-scenario"), InputError);
+}
+
+}  // namespace
+}  // namespace odocal::sim
