@@ -15,6 +15,7 @@ namespace {
 struct SimulateArgs {
   std::string scenario = "circuit";
   std::string out_dir;
+  std::string track_file;
   bool ideal = false;
   std::optional<int> laps;
   std::optional<double> wear_rl_mm;
@@ -29,6 +30,11 @@ struct SimulateArgs {
 void run_simulate(const SimulateArgs& args) {
   sim::Scenario scenario = load_scenario(args.scenario);
   if (args.ideal) scenario.ideal = true;
+  if (!args.track_file.empty()) {
+    const double deviation_m = use_track_file(scenario, args.track_file);
+    fmt::print("track        {}: closed lap within {:.2f} m of the centreline\n", args.track_file,
+               deviation_m);
+  }
   if (args.laps) scenario.route.laps = *args.laps;
   if (args.wear_rl_mm) scenario.vehicle.wear_rl_mm = *args.wear_rl_mm;
   if (args.wear_rr_mm) scenario.vehicle.wear_rr_mm = *args.wear_rr_mm;
@@ -67,6 +73,8 @@ void add_simulate_command(CLI::App& app) {
                    "Built-in scenario (circuit, parking, urban) or a scenario YAML file")
       ->capture_default_str();
   command->add_option("--out", args->out_dir, "Output log directory")->required();
+  command->add_option("--track", args->track_file,
+                      "Closed centreline CSV (TUMFTM format) replacing the scenario's route");
   command->add_flag("--ideal", args->ideal,
                     "Kinematic motion, no slip, constant radius: the paper's model assumptions");
   command->add_option("--laps", args->laps, "Laps of the route")->check(CLI::Range(1, 1000));

@@ -8,7 +8,9 @@
 #include <sstream>
 
 #include "builtin_scenarios.hpp"
+#include "odocal/io/track_reader.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/sim/centreline_route.hpp"
 #include "yaml_map.hpp"
 
 namespace odocal {
@@ -189,6 +191,17 @@ sim::Scenario parse_scenario(const std::string& yaml_text, const std::string& fi
   return s;
 }
 
+double use_track_file(sim::Scenario& scenario, const std::filesystem::path& track_csv) {
+  const sim::CentrelineRoute route =
+      sim::closed_route_from_centreline(read_track_centreline(track_csv));
+  scenario.route.segments.clear();
+  for (const sim::PathSegment& segment : route.segments)
+    scenario.route.segments.push_back({segment, 0.0});
+  scenario.route.repeat = 1;
+  scenario.route.start = route.start;
+  return route.max_deviation_m;
+}
+
 sim::Scenario load_scenario(const std::string& name_or_file) {
   for (const auto& builtin : detail::builtin_scenarios()) {
     if (name_or_file == builtin.name)
@@ -207,7 +220,7 @@ sim::Scenario load_scenario(const std::string& name_or_file) {
 
 std::string scenario_to_yaml(const sim::Scenario& s) {
   YAML::Emitter out;
-  out.SetDoublePrecision(10);
+  out.SetDoublePrecision(17);  // exact round trip: the effective file reproduces the run
   const auto key = [&](const char* name, const auto& value) {
     out << YAML::Key << name << YAML::Value << value;
   };

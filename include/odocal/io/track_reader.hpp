@@ -1,0 +1,13 @@
+#pragma once
+// Track centrelines in the TUMFTM racetrack-database format: "# x_m,y_m,w_tr_right_m,w_tr_left_m".
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <vector>
+
+namespace odocal {
+
+// Reads the x_m, y_m columns (the widths are accepted and ignored). Throws InputError.
+std::vector<Eigen::Vector2d> read_track_centreline(const std::filesystem::path& path);
+
+}  // namespace odocal
