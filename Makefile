@@ -15,9 +15,10 @@ build: deps
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-# The main job on the built-in example log (tools/make_figure_eight_log.py).
+# The main job on a built-in default: simulate the paper's 3-lap circuit with worn rear tyres,
+# calibrate it with the paper's iterative method, compare with the truth.
 demo: build
-	$(ODOCAL) deadreckon examples/figure-eight --start gnss
+	$(ODOCAL) demo --out $(BUILD_DIR)/demo-log
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)

@@ -4,7 +4,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "calibrate_command.hpp"
 #include "deadreckon_command.hpp"
+#include "demo_command.hpp"
 #include "exit_codes.hpp"
 #include "odocal/error.hpp"
 #include "simulate_command.hpp"
@@ -13,7 +15,9 @@ int main(int argc, char** argv) {
   using namespace odocal::cli;
   CLI::App app{"odocal: off-line calibration of wheel odometry from logged drives"};
   app.require_subcommand(1);
+  add_calibrate_command(app);
   add_deadreckon_command(app);
+  add_demo_command(app);
   add_simulate_command(app);
 
   try {

@@ -1,0 +1,52 @@
+#pragma once
+// Layer 1 of the paper (section 3.1): a GNSS/IMU fusion Kalman filter (p'' = a, after Caron et
+// al. 2006) that turns GNSS positions, body accelerations, yaw rate and absolute heading into a
+// reference pose on the wheel time base. No wheel data enters this layer.
+//
+// State [x, y, vx, vy, yaw]. Prediction integrates the body acceleration rotated into the world
+// frame and the yaw rate (zero-order hold of the latest IMU sample); GNSS updates x, y; heading
+// updates yaw (wrapped innovation). Without imu.csv the prediction is constant velocity with
+// acceleration noise. Without heading.csv yaw is corrected by the GNSS course when moving.
+
+#include <string>
+#include <vector>
+
+#include "odocal/data/log.hpp"
+
+namespace odocal {
+
+enum class ReferenceMode { kFilter, kSmoother };  // smoother: Rauch-Tung-Striebel, off-line
+
+struct ReferenceOptions {
+  ReferenceMode mode = ReferenceMode::kFilter;  // the paper's filter
+  double gnss_sigma_m = 3.0;                    // used when gnss.csv has no sigma_m
+  double heading_sigma_rad = 0.15;
+  double acc_sigma_mps2 = 0.2;         // IMU acceleration noise per sample
+  double yaw_rate_sigma_radps = 0.02;  // IMU yaw-rate noise per sample
+  // Extra random walk for what the IMU model misses (vertical dynamics, misalignment, no IMU).
+  double acc_random_walk_mps2 = 0.5;    // m/s^2 per sqrt(s)
+  double yaw_random_walk_radps = 0.01;  // rad/s per sqrt(s)
+  // Without imu.csv: white acceleration and yaw-rate spectral densities of the constant-velocity
+  // model (m^2/s^3, rad^2/s), enough for ~7 m/s^2 and ~0.5 rad/s changing within a second.
+  double no_imu_acc_psd = 25.0;
+  double no_imu_yaw_rate_psd = 0.25;
+  double course_min_speed_mps = 3.0;  // GNSS-course pseudo-heading only above this speed
+  double course_sigma_rad = 0.1;
+  double gnss_gate_chi2 = 0.0;  // > 0: reject GNSS fixes whose NIS exceeds this (2 dof)
+};
+
+// The reference on the wheel time base: pose[i] belongs to wheels.t_s[first_wheel_index + i].
+struct ReferenceTrajectory {
+  std::size_t first_wheel_index{};
+  PoseStream poses;                         // yaw continuous (unwrapped)
+  std::vector<Eigen::Matrix3d> covariance;  // of [x, y, yaw]
+  std::size_t gnss_used{};
+  std::size_t gnss_rejected{};
+  std::string heading_source;  // "heading.csv" or "GNSS course"
+};
+
+// Throws InsufficientDataError when the log cannot give a reference (no GNSS fix inside the wheel
+// span, or no way to find the heading).
+ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& options = {});
+
+}  // namespace odocal

@@ -1,0 +1,296 @@
+#include "odocal/estimation/reference_filter.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+#include "odocal/error.hpp"
+#include "odocal/model/angle.hpp"
+
+namespace odocal {
+namespace {
+
+using State = Eigen::Matrix<double, 5, 1>;
+using Covariance = Eigen::Matrix<double, 5, 5>;
+
+enum class EventKind { kImu, kGnss, kHeading, kWheel };
+struct Event {
+  double t_s;
+  EventKind kind;
+  std::size_t index;
+};
+
+std::vector<Event> merged_events(const Log& log, double begin_s) {
+  std::vector<Event> events;
+  const auto add = [&](const std::vector<double>& t_s, EventKind kind) {
+    for (std::size_t k = 0; k < t_s.size(); ++k) {
+      if (t_s[k] >= begin_s) events.push_back({t_s[k], kind, k});
+    }
+  };
+  if (log.imu) add(log.imu->t_s, EventKind::kImu);
+  add(log.gnss.t_s, EventKind::kGnss);
+  if (log.heading) add(log.heading->t_s, EventKind::kHeading);
+  add(log.wheels.t_s, EventKind::kWheel);
+  // At equal times: new IMU input first, then measurements, then the wheel output.
+  std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) {
+    return a.t_s < b.t_s || (a.t_s == b.t_s && static_cast<int>(a.kind) < static_cast<int>(b.kind));
+  });
+  return events;
+}
+
+class ReferenceEkf {
+ public:
+  ReferenceEkf(const Log& log, const ReferenceOptions& options) : log_(log), options_(options) {}
+
+  void initialise(double t_s, const Eigen::Vector2d& position, double yaw_rad, double yaw_sigma) {
+    t_s_ = t_s;
+    x_ << position, 0.0, 0.0, yaw_rad;
+    P_ = Covariance::Zero();
+    P_.diagonal() << square(gnss_sigma(0)), square(gnss_sigma(0)), 100.0, 100.0, square(yaw_sigma);
+  }
+
+  // Propagates to t_s; returns the transition Jacobian (for the smoother).
+  Covariance predict(double t_s) {
+    const double dt = t_s - t_s_;
+    Covariance F = Covariance::Identity();
+    if (dt <= 0.0) return F;
+    // Rotate by the midpoint heading (as eq. 1 does): the start heading would leak v w^2 dt / 2 of
+    // the centripetal acceleration into the along-track direction in every turn.
+    const double yaw_mid = x_(4) + 0.5 * wz_ * dt;
+    const double c = std::cos(yaw_mid), s = std::sin(yaw_mid);
+    const Eigen::Vector2d a_world(c * ax_ - s * ay_, s * ax_ + c * ay_);
+    const Eigen::Vector2d d_a_d_yaw(-s * ax_ - c * ay_, c * ax_ - s * ay_);
+    F(0, 2) = F(1, 3) = dt;
+    F.block<2, 1>(0, 4) = 0.5 * dt * dt * d_a_d_yaw;
+    F.block<2, 1>(2, 4) = dt * d_a_d_yaw;
+
+    x_.head<2>() += dt * x_.segment<2>(2) + 0.5 * dt * dt * a_world;
+    x_.segment<2>(2) += dt * a_world;
+    x_(4) += dt * wz_;
+
+    // Acceleration noise: the held sample's own noise over dt plus a random walk.
+    // Variance of the acceleration (yaw rate) held over this step: the IMU sample's own noise, or
+    // without an IMU the spectral density over dt; plus the random walk for unmodelled effects.
+    const double acc_var =
+        (log_.imu ? square(options_.acc_sigma_mps2) : options_.no_imu_acc_psd / dt) +
+        square(options_.acc_random_walk_mps2) * dt;
+    const double yaw_rate_var =
+        (log_.imu ? square(options_.yaw_rate_sigma_radps) : options_.no_imu_yaw_rate_psd / dt) +
+        square(options_.yaw_random_walk_radps) * dt;
+    Eigen::Matrix<double, 5, 3> G = Eigen::Matrix<double, 5, 3>::Zero();
+    G.block<2, 2>(0, 0) = 0.5 * dt * dt * Eigen::Matrix2d::Identity();
+    G.block<2, 2>(2, 0) = dt * Eigen::Matrix2d::Identity();
+    G(4, 2) = dt;
+    const Eigen::Vector3d noise(acc_var, acc_var, yaw_rate_var);
+    P_ = F * P_ * F.transpose() + G * noise.asDiagonal() * G.transpose();
+    P_ = 0.5 * (P_ + P_.transpose());
+    t_s_ = t_s;
+    return F;
+  }
+
+  void set_imu(std::size_t k) {
+    ax_ = log_.imu->ax_mps2[k];
+    ay_ = log_.imu->ay_mps2[k];
+    wz_ = log_.imu->wz_radps[k];
+  }
+
+  bool update_gnss(std::size_t k) {
+    const Eigen::Vector2d innovation =
+        Eigen::Vector2d(log_.gnss.x_m[k], log_.gnss.y_m[k]) - x_.head<2>();
+    const Eigen::Matrix2d S =
+        P_.topLeftCorner<2, 2>() + square(gnss_sigma(k)) * Eigen::Matrix2d::Identity();
+    const Eigen::LLT<Eigen::Matrix2d> S_llt(S);
+    if (options_.gnss_gate_chi2 > 0.0 &&
+        innovation.dot(S_llt.solve(innovation)) > options_.gnss_gate_chi2) {
+      return false;
+    }
+    const Eigen::Matrix<double, 5, 2> K = S_llt.solve(P_.topRows<2>()).transpose();
+    x_ += K * innovation;
+    joseph_update<2>(
+        K, [](Eigen::Matrix<double, 2, 5>& H) { H.leftCols<2>().setIdentity(); },
+        square(gnss_sigma(k)) * Eigen::Matrix2d::Identity());
+    return true;
+  }
+
+  void update_yaw(double measured_rad, double sigma_rad) {
+    const double innovation = angle_difference(measured_rad, x_(4));
+    const double S = P_(4, 4) + square(sigma_rad);
+    const Eigen::Matrix<double, 5, 1> K = P_.col(4) / S;
+    x_ += K * innovation;
+    joseph_update<1>(
+        K, [](Eigen::Matrix<double, 1, 5>& H) { H(0, 4) = 1.0; },
+        Eigen::Matrix<double, 1, 1>(square(sigma_rad)));
+  }
+
+  void update_course() {
+    const double speed = x_.segment<2>(2).norm();
+    if (speed < options_.course_min_speed_mps) return;
+    update_yaw(std::atan2(x_(3), x_(2)), options_.course_sigma_rad);
+  }
+
+  const State& state() const { return x_; }
+  const Covariance& covariance() const { return P_; }
+
+ private:
+  static double square(double v) { return v * v; }
+  double gnss_sigma(std::size_t k) const {
+    return log_.gnss.sigma_m.empty() ? options_.gnss_sigma_m : log_.gnss.sigma_m[k];
+  }
+
+  template <int M, typename FillH, typename Noise>
+  void joseph_update(const Eigen::Matrix<double, 5, M>& K, FillH&& fill_h, const Noise& R) {
+    Eigen::Matrix<double, M, 5> H = Eigen::Matrix<double, M, 5>::Zero();
+    fill_h(H);
+    const Covariance I_KH = Covariance::Identity() - K * H;
+    P_ = I_KH * P_ * I_KH.transpose() + K * R * K.transpose();
+    P_ = 0.5 * (P_ + P_.transpose());
+  }
+
+  const Log& log_;
+  const ReferenceOptions& options_;
+  double t_s_{};
+  State x_ = State::Zero();
+  Covariance P_ = Covariance::Identity();
+  double ax_{}, ay_{}, wz_{};
+};
+
+// Initial yaw without wheel data: the first heading sample; else the course of a straight-line
+// fit through a growing window of GNSS fixes, once its displacement is at least 10 m and five
+// times its own standard deviation (so fix noise alone never fakes motion).
+std::pair<double, double> initial_yaw(const Log& log, std::size_t first_fix,
+                                      double default_sigma_m) {
+  if (log.heading) {
+    const auto& h = *log.heading;
+    const auto it = std::lower_bound(h.t_s.begin(), h.t_s.end(), log.gnss.t_s[first_fix]);
+    const std::size_t k =
+        it == h.t_s.end() ? h.size() - 1 : static_cast<std::size_t>(it - h.t_s.begin());
+    return {h.heading_rad[k], 0.3};
+  }
+  const double t0 = log.gnss.t_s[first_fix];
+  double n = 0, st = 0, stt = 0, sx = 0, sy = 0, stx = 0, sty = 0;
+  for (std::size_t k = first_fix; k < log.gnss.size(); ++k) {
+    const double t = log.gnss.t_s[k] - t0;
+    n += 1;
+    st += t;
+    stt += t * t;
+    sx += log.gnss.x_m[k];
+    sy += log.gnss.y_m[k];
+    stx += t * log.gnss.x_m[k];
+    sty += t * log.gnss.y_m[k];
+    const double spread = stt - st * st / n;  // sum of (t - mean t)^2
+    if (n < 5 || spread <= 0.0) continue;
+    const Eigen::Vector2d velocity((stx - st * sx / n) / spread, (sty - st * sy / n) / spread);
+    const double sigma_m = log.gnss.sigma_m.empty() ? default_sigma_m : log.gnss.sigma_m[k];
+    const double span = t;
+    const double displacement = velocity.norm() * span;
+    const double displacement_sigma = sigma_m / std::sqrt(spread) * span;
+    if (displacement >= 10.0 && displacement >= 5.0 * displacement_sigma) {
+      return {std::atan2(velocity.y(), velocity.x()), 0.3};
+    }
+  }
+  throw InsufficientDataError(
+      "no heading reference: the log has no heading.csv and GNSS never shows the vehicle moving "
+      "10 m beyond its noise, so the reference heading cannot be found");
+}
+
+}  // namespace
+
+ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& options) {
+  const double wheel_begin = log.wheels.t_s.front();
+  const auto first_fix_it = std::lower_bound(log.gnss.t_s.begin(), log.gnss.t_s.end(), wheel_begin);
+  if (first_fix_it == log.gnss.t_s.end() || *first_fix_it > log.wheels.t_s.back()) {
+    throw InsufficientDataError(
+        "no GNSS fix inside the wheel time span: no reference can be computed");
+  }
+  const std::size_t first_fix = static_cast<std::size_t>(first_fix_it - log.gnss.t_s.begin());
+  const auto [yaw0, yaw_sigma] = initial_yaw(log, first_fix, options.gnss_sigma_m);
+
+  ReferenceEkf ekf(log, options);
+  ekf.initialise(log.gnss.t_s[first_fix],
+                 Eigen::Vector2d(log.gnss.x_m[first_fix], log.gnss.y_m[first_fix]), yaw0,
+                 yaw_sigma);
+  if (log.imu) {
+    const auto it =
+        std::upper_bound(log.imu->t_s.begin(), log.imu->t_s.end(), log.gnss.t_s[first_fix]);
+    if (it != log.imu->t_s.begin())
+      ekf.set_imu(static_cast<std::size_t>(it - log.imu->t_s.begin()) - 1);
+  }
+
+  ReferenceTrajectory reference;
+  reference.heading_source = log.heading ? "heading.csv" : "GNSS course";
+  const bool smooth = options.mode == ReferenceMode::kSmoother;
+  // Per node of the timeline: filtered and predicted state/covariance and the transition into it.
+  std::vector<Eigen::Matrix<double, 5, 1>> filtered_x, predicted_x;
+  std::vector<Covariance> filtered_P, predicted_P, transition;
+  std::vector<std::size_t> wheel_node;
+
+  bool first_fix_consumed = false;
+  for (const Event& event : merged_events(log, log.gnss.t_s[first_fix])) {
+    const Covariance F = ekf.predict(event.t_s);
+    if (smooth) {
+      predicted_x.push_back(ekf.state());
+      predicted_P.push_back(ekf.covariance());
+      transition.push_back(F);
+    }
+    switch (event.kind) {
+      case EventKind::kImu:
+        ekf.set_imu(event.index);
+        break;
+      case EventKind::kGnss:
+        if (event.index == first_fix && !first_fix_consumed) {
+          first_fix_consumed = true;  // it initialised the filter
+          ++reference.gnss_used;
+        } else if (ekf.update_gnss(event.index)) {
+          ++reference.gnss_used;
+          if (!log.heading) ekf.update_course();
+        } else {
+          ++reference.gnss_rejected;
+        }
+        break;
+      case EventKind::kHeading:
+        ekf.update_yaw(log.heading->heading_rad[event.index], options.heading_sigma_rad);
+        break;
+      case EventKind::kWheel:
+        if (reference.poses.size() == 0) reference.first_wheel_index = event.index;
+        wheel_node.push_back(smooth ? filtered_x.size() : 0);
+        reference.poses.t_s.push_back(event.t_s);
+        reference.poses.pose.emplace_back(ekf.state()(0), ekf.state()(1), ekf.state()(4));
+        reference.covariance.push_back((Eigen::Matrix3d() << ekf.covariance().block<2, 2>(0, 0),
+                                        ekf.covariance().block<2, 1>(0, 4),
+                                        ekf.covariance().block<1, 2>(4, 0), ekf.covariance()(4, 4))
+                                           .finished());
+        break;
+    }
+    if (smooth) {
+      filtered_x.push_back(ekf.state());
+      filtered_P.push_back(ekf.covariance());
+    }
+  }
+  if (reference.poses.size() < 2) {
+    throw InsufficientDataError("the reference covers fewer than 2 wheel samples");
+  }
+  if (!smooth) return reference;
+
+  // Rauch-Tung-Striebel backward pass over every node.
+  std::vector<Eigen::Matrix<double, 5, 1>> smoothed_x = filtered_x;
+  std::vector<Covariance> smoothed_P = filtered_P;
+  for (std::size_t n = filtered_x.size() - 1; n-- > 0;) {
+    const Covariance C =
+        predicted_P[n + 1].ldlt().solve(transition[n + 1] * filtered_P[n]).transpose();
+    Eigen::Matrix<double, 5, 1> difference = smoothed_x[n + 1] - predicted_x[n + 1];
+    smoothed_x[n] = filtered_x[n] + C * difference;
+    smoothed_P[n] = filtered_P[n] + C * (smoothed_P[n + 1] - predicted_P[n + 1]) * C.transpose();
+  }
+  for (std::size_t i = 0; i < wheel_node.size(); ++i) {
+    const auto& x = smoothed_x[wheel_node[i]];
+    const auto& P = smoothed_P[wheel_node[i]];
+    reference.poses.pose[i] = Pose2(x(0), x(1), x(4));
+    reference.covariance[i] << P.block<2, 2>(0, 0), P.block<2, 1>(0, 4), P.block<1, 2>(4, 0),
+        P(4, 4);
+  }
+  return reference;
+}
+
+}  // namespace odocal

@@ -1,0 +1,111 @@
+// `odocal calibrate` and `odocal demo` end to end.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "../support/run_cli.hpp"
+#include "../support/temp_log_dir.hpp"
+
+namespace odocal {
+namespace {
+
+using testing::read_text_file;
+using testing::run_cli;
+using testing::TempLogDir;
+
+class CalibrateCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempLogDir();
+    const auto run =
+        run_cli("simulate --scenario circuit --laps 1 --wear-rl 1.5 --wear-rr 1 --out " + log());
+    ASSERT_EQ(run.status, 0) << run.err;
+  }
+  static void TearDownTestSuite() { delete dir_; }
+  static std::string log() { return dir_->file("circuit"); }
+  static TempLogDir* dir_;
+};
+TempLogDir* CalibrateCli::dir_ = nullptr;
+
+TEST_F(CalibrateCli, PrintsAReportAndWritesJson) {
+  const std::string json_file = dir_->file("result.json");
+  const auto run = run_cli("calibrate " + log() + " --json " + json_file);
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("method       iterative"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("mm from nominal"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("  before     mean"), std::string::npos) << run.out;
+  const auto json = nlohmann::json::parse(read_text_file(json_file));
+  for (const char* key :
+       {"method", "circumference_rl_m", "circumference_rr_m", "chosen_iteration", "iterations",
+        "dead_reckoning_before", "dead_reckoning_after", "configuration"}) {
+    EXPECT_TRUE(json.contains(key)) << key;
+  }
+  EXPECT_EQ(json["method"], "iterative");
+  EXPECT_NEAR(json["circumference_rl_m"].get<double>(), 2 * M_PI * (0.3126 - 0.0015), 0.002);
+  const auto& first = json["iterations"][0];
+  for (const char* key : {"circumference_rl_m", "circumference_rr_m", "errors"})
+    EXPECT_TRUE(first.contains(key));
+  EXPECT_TRUE(first["errors"].contains("mean_position_m"));
+  EXPECT_TRUE(first["errors"].contains("max_heading_deg"));
+  EXPECT_EQ(json["configuration"]["measurement_diagonal"][2], 0.01);
+}
+
+TEST_F(CalibrateCli, OutputIsIdenticalWithoutTheTruthFiles) {
+  const std::string copy = dir_->file("no-truth");
+  std::filesystem::copy(log(), copy, std::filesystem::copy_options::recursive);
+  std::filesystem::remove(copy + "/truth.csv");
+  std::filesystem::remove(copy + "/truth.yaml");
+  for (const char* method : {"iterative", "fixed-p", "augmented"}) {
+    const auto with = run_cli(std::string("calibrate ") + log() + " --method " + method +
+                              " --json " + dir_->file("a.json"));
+    const auto without = run_cli(std::string("calibrate ") + copy + " --method " + method +
+                                 " --json " + dir_->file("b.json"));
+    ASSERT_EQ(with.status, 0) << with.err;
+    EXPECT_TRUE(with.out == without.out) << method;
+    EXPECT_TRUE(read_text_file(dir_->file("a.json")) == read_text_file(dir_->file("b.json")))
+        << method;
+  }
+}
+
+TEST_F(CalibrateCli, ConfigFileOverridesDefaultsAndBadKeysExitTwo) {
+  dir_->write("config.yaml",
+              "method: fixed-p\ndecay_exponent_q: 1.5\nreference: {mode: smoother}\n");
+  const auto run = run_cli("calibrate " + log() + " --config " + dir_->file("config.yaml") +
+                           " --json " + dir_->file("c.json"));
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto json = nlohmann::json::parse(read_text_file(dir_->file("c.json")));
+  EXPECT_EQ(json["method"], "fixed-p");
+  EXPECT_EQ(json["configuration"]["decay_exponent_q"], 1.5);
+  EXPECT_EQ(json["configuration"]["reference"]["mode"], "smoother");
+
+  dir_->write("bad.yaml", "decay_exponent_q: 3\n");
+  const auto bad = run_cli("calibrate " + log() + " --config " + dir_->file("bad.yaml"));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("bad.yaml:1: 'decay_exponent_q': 3 is out of range"), std::string::npos)
+      << bad.err;
+  dir_->write("typo.yaml", "reference:\n  gnss_sigma: 2\n");
+  EXPECT_NE(run_cli("calibrate " + log() + " --config " + dir_->file("typo.yaml"))
+                .err.find("'reference.gnss_sigma': unknown key"),
+            std::string::npos);
+}
+
+TEST_F(CalibrateCli, UnidentifiableLogExitsWithStatusThree) {
+  const TempLogDir tiny;  // 3 m straight: far too short
+  const auto run = run_cli("calibrate " + tiny.path().string());
+  EXPECT_EQ(run.status, 3) << run.err;
+  EXPECT_NE(run.err.find("odocal: cannot identify:"), std::string::npos) << run.err;
+}
+
+TEST(DemoCli, SimulatesCalibratesAndCompares) {
+  const TempLogDir dir;
+  const auto run = run_cli("demo --out " + dir.file("demo"));
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("nominal [m] estimate [m]     true [m] error [mm]"), std::string::npos)
+      << run.out;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("demo") + "/wheels.csv"));
+}
+
+}  // namespace
+}  // namespace odocal

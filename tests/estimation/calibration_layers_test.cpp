@@ -1,0 +1,171 @@
+// The layers of the calibration checked against independent truth: the EKF against a
+// hand-computed two-step case, the least squares against exact synthetic data, the reference
+// filter against simulated truth and its own covariance.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cmath>
+#include <random>
+
+#include "odocal/estimation/circumference_ls.hpp"
+#include "odocal/estimation/odometry_ekf.hpp"
+#include "odocal/estimation/reference_filter.hpp"
+#include "odocal/estimation/trajectory_errors.hpp"
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/model/angle.hpp"
+#include "odocal/sim/simulator.hpp"
+
+namespace odocal {
+namespace {
+
+TEST(OdometryEkf, MatchesTheHandComputedTwoStepCase) {
+  // Straight east, 0.5 rev per step of 2 m wheels: the model moves 1 m per step. P = M = I makes
+  // every gain closed-form: step 1: S- = M + P = 2I, G = 2/3 I; step 2: S- = 2/3 + 1 = 5/3,
+  // G = (5/3) / (8/3) = 5/8.
+  WheelStream wheels;
+  wheels.t_s = {0.0, 1.0, 2.0};
+  wheels.rev_rl = {0.0, 0.5, 0.5};
+  wheels.rev_rr = {0.0, 0.5, 0.5};
+  ReferenceTrajectory reference;
+  reference.poses.t_s = wheels.t_s;
+  reference.poses.pose = {Pose2(0, 0, 0), Pose2(1.3, 0.3, 0.03), Pose2(2.0, 0.0, 0.0)};
+  std::vector<Pose2> x_hat;
+  run_odometry_ekf(wheels, reference, {2.0, 2.0, 1.6},
+                   {Eigen::Vector3d::Ones(), Eigen::Vector3d::Ones()}, x_hat);
+  ASSERT_EQ(x_hat.size(), 3u);
+  // Step 1: prediction (1, 0, 0); update with gain 2/3 toward (1.3, 0.3, 0.03). Heading and y
+  // couple through F, so compute the full matrices by hand in the order of eqs. 5-8.
+  Eigen::Matrix3d F1;  // at yaw 0 with ds = 1: d x / d yaw = 0, d y / d yaw = 1
+  F1 << 1, 0, 0, 0, 1, 1, 0, 0, 1;
+  Eigen::Matrix3d sigma =
+      F1 * Eigen::Matrix3d::Identity() * F1.transpose() + Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d G = sigma * (sigma + Eigen::Matrix3d::Identity()).inverse();
+  Eigen::Vector3d x1 =
+      Eigen::Vector3d(1, 0, 0) + G * (Eigen::Vector3d(1.3, 0.3, 0.03) - Eigen::Vector3d(1, 0, 0));
+  EXPECT_LT((x_hat[1] - x1).norm(), 1e-12);
+  sigma = (Eigen::Matrix3d::Identity() - G) * sigma;
+  Eigen::Matrix3d F2;
+  const double yaw = x1.z();
+  F2 << 1, 0, -std::sin(yaw), 0, 1, std::cos(yaw), 0, 0, 1;
+  const Eigen::Vector3d predicted(x1.x() + std::cos(yaw), x1.y() + std::sin(yaw), yaw);
+  sigma = F2 * sigma * F2.transpose() + Eigen::Matrix3d::Identity();
+  G = sigma * (sigma + Eigen::Matrix3d::Identity()).inverse();
+  const Eigen::Vector3d x2 = predicted + G * (Eigen::Vector3d(2, 0, 0) - predicted);
+  EXPECT_LT((x_hat[2] - x2).norm(), 1e-12);
+}
+
+TEST(OdometryEkf, DecayingProcessCovarianceIsEquationThirteen) {
+  EXPECT_TRUE(decaying_process_diagonal(1, 1.5).isApprox(Eigen::Vector3d(150, 150, 15)));
+  EXPECT_TRUE(decaying_process_diagonal(4, 2.0).isApprox(Eigen::Vector3d(150, 150, 15) / 16));
+  EXPECT_TRUE(decaying_process_diagonal(9, 1.0).isApprox(Eigen::Vector3d(150, 150, 15) / 9));
+}
+
+// Reference poses built to satisfy eq. 12 exactly: x~_k = x^_{k-1} + phi_k c for arbitrary x^.
+TEST(CircumferenceLs, RecoversExactParametersFromNoiseFreeRows) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const Eigen::Vector2d c_true(1.9547, 1.9578);
+  const double track = 1.6;
+  WheelStream wheels;
+  ReferenceTrajectory reference;
+  std::vector<Pose2> x_hat;
+  for (int k = 0; k < 500; ++k) {
+    wheels.t_s.push_back(0.02 * k);
+    wheels.rev_rl.push_back(k == 0 ? 0.0 : 0.4 + 0.1 * unit(rng));
+    wheels.rev_rr.push_back(k == 0 ? 0.0 : 0.4 + 0.1 * unit(rng));
+    x_hat.emplace_back(10 * unit(rng), 10 * unit(rng), 3 * unit(rng));
+    Pose2 target = x_hat.back();
+    if (k > 0) {
+      const Pose2& previous = x_hat[static_cast<std::size_t>(k) - 1];
+      const double n_l = wheels.rev_rl.back(), n_r = wheels.rev_rr.back();
+      target = previous +
+               Eigen::Vector3d((n_l * c_true(0) + n_r * c_true(1)) / 2 * std::cos(previous.z()),
+                               (n_l * c_true(0) + n_r * c_true(1)) / 2 * std::sin(previous.z()),
+                               (n_r * c_true(1) - n_l * c_true(0)) / track);
+    }
+    reference.poses.t_s.push_back(wheels.t_s.back());
+    reference.poses.pose.push_back(target);
+  }
+  for (int window : {1, 7, 10, 1000}) {
+    const CircumferenceFit fit =
+        fit_circumferences(wheels, reference, x_hat, track, Eigen::Vector3d(1, 1, 10), window);
+    EXPECT_LT((fit.circumference_m - c_true).norm(), 1e-12) << window;
+    EXPECT_LT(fit.residual_rms, 1e-12);
+    EXPECT_GT(fit.condition_number, 1.0);
+  }
+}
+
+TEST(CircumferenceLs, ReportsRankDeficiencyInsteadOfANumber) {
+  WheelStream wheels{{0, 1, 2}, {0, 0, 0}, {0, 0, 0}, {}, {}, WheelUnit::kTicks};
+  ReferenceTrajectory reference;
+  reference.poses.t_s = wheels.t_s;
+  reference.poses.pose = {Pose2::Zero(), Pose2::Zero(), Pose2::Zero()};
+  const CircumferenceFit fit =
+      fit_circumferences(wheels, reference, reference.poses.pose, 1.6, Eigen::Vector3d(1, 1, 10));
+  EXPECT_FALSE(std::isfinite(fit.condition_number));
+  EXPECT_FALSE(fit.circumference_m.allFinite());
+}
+
+double consistent_fraction(const Log& log, const ReferenceTrajectory& reference) {
+  int inside = 0;
+  for (std::size_t i = 0; i < reference.poses.size(); ++i) {
+    Eigen::Vector3d error =
+        reference.poses.pose[i] - log.truth->pose[reference.first_wheel_index + i];
+    error.z() = wrap_angle(error.z());
+    // chi-square with 3 degrees of freedom: 99.7 % below 14.16
+    if (error.dot(reference.covariance[i].ldlt().solve(error)) < 14.16) ++inside;
+  }
+  return static_cast<double>(inside) / static_cast<double>(reference.poses.size());
+}
+
+Log circuit_log() {
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.route.laps = 1;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  Log log;
+  log.vehicle = drive.nominal_vehicle;
+  log.wheels.t_s = drive.wheel_t_s;
+  log.gnss.t_s = drive.gnss_t_s;
+  log.gnss.x_m = drive.gnss_a;
+  log.gnss.y_m = drive.gnss_b;
+  log.imu = drive.imu;
+  log.heading = drive.heading;
+  log.truth = drive.truth;
+  log.wheels.rev_rl.assign(drive.wheel_t_s.size(), 0.0);  // the reference never reads wheels
+  log.wheels.rev_rr = log.wheels.rev_rl;
+  return log;
+}
+
+TEST(ReferenceFilter, FusesToWellBelowTheGnssNoiseAndIsConsistent) {
+  const Log log = circuit_log();
+  ReferenceOptions options;
+  const ReferenceTrajectory filter = compute_reference(log, options);
+  options.mode = ReferenceMode::kSmoother;
+  const ReferenceTrajectory smoother = compute_reference(log, options);
+  const ReferencePath truth = reference_from_poses(*log.truth, "truth");
+  const TrajectoryErrors filter_errors = trajectory_errors(filter.poses, truth);
+  const TrajectoryErrors smoother_errors = trajectory_errors(smoother.poses, truth);
+  EXPECT_LT(filter_errors.mean_position_m, 0.6);  // GNSS alone: 3 m per axis
+  EXPECT_LT(filter_errors.mean_heading_rad, rad_from_deg(0.6));
+  EXPECT_LT(smoother_errors.mean_position_m, 0.6 * filter_errors.mean_position_m);
+  EXPECT_GT(consistent_fraction(log, filter), 0.98);
+  EXPECT_GT(consistent_fraction(log, smoother), 0.98);
+  EXPECT_EQ(filter.heading_source, "heading.csv");
+}
+
+TEST(ReferenceFilter, WorksWithoutImuAndHeadingFromTheGnssCourse) {
+  Log log = circuit_log();
+  log.imu.reset();
+  log.heading.reset();
+  const ReferenceTrajectory reference = compute_reference(log);
+  EXPECT_EQ(reference.heading_source, "GNSS course");
+  const TrajectoryErrors errors =
+      trajectory_errors(reference.poses, reference_from_poses(*log.truth, "truth"));
+  EXPECT_LT(errors.mean_position_m, 2.0);
+  EXPECT_LT(errors.mean_heading_rad, rad_from_deg(8.0));  // a coarse fallback: docs/calibration.md
+}
+
+}  // namespace
+}  // namespace odocal
