@@ -11,77 +11,83 @@
 
 #include "odocal/error.hpp"
 #include "odocal/estimation/circumference_ls.hpp"
-#include "odocal/estimation/dead_reckoning.hpp"
 #include "odocal/estimation/odometry_ekf.hpp"
-#include "odocal/estimation/trajectory_errors.hpp"
 #include "odocal/model/angle.hpp"
 
 namespace odocal {
 namespace {
 
-// The whole wheel stream from the first reference sample on.
-WheelStream wheels_from(const WheelStream& wheels, std::size_t first) {
-  WheelStream tail;
-  tail.t_s.assign(wheels.t_s.begin() + static_cast<std::ptrdiff_t>(first), wheels.t_s.end());
-  tail.rev_rl.assign(wheels.rev_rl.begin() + static_cast<std::ptrdiff_t>(first),
-                     wheels.rev_rl.end());
-  tail.rev_rr.assign(wheels.rev_rr.begin() + static_cast<std::ptrdiff_t>(first),
-                     wheels.rev_rr.end());
-  tail.rev_rl[0] = tail.rev_rr[0] = 0.0;
-  return tail;
-}
-
 // Dead reckoning of the whole log with given parameters, compared with the reference
 // (section 4: "the two-wheel vehicle model with the new parameters is simulated on the whole
-// dataset"). The start pose follows options.dr_start.
+// dataset"). The start pose follows options.dr_start. Both live on the wheel time base, so the
+// comparison is index by index; the buffers are allocated once.
 class WholeLogEvaluator {
  public:
   WholeLogEvaluator(const WheelStream& wheels, const ReferenceTrajectory& reference,
                     const CalibrationOptions& options)
-      : wheels_(wheels_from(wheels, reference.first_wheel_index)),
-        reference_poses_(reference.poses),
-        reference_(reference_from_poses(reference.poses, "reference")),
-        options_(options) {
+      : wheels_(wheels), reference_(reference), options_(options), path_(reference.poses.size()) {
     const double window_end = reference.poses.t_s.front() + options.dr_align_window_s;
-    align_count_ =
-        options.dr_start == DeadReckoningStart::kAlignedWhole
-            ? reference.poses.size()
-            : static_cast<std::size_t>(std::upper_bound(reference.poses.t_s.begin(),
-                                                        reference.poses.t_s.end(), window_end) -
-                                       reference.poses.t_s.begin());
+    align_count_ = options.dr_start == DeadReckoningStart::kAlignedWhole
+                       ? reference.poses.size()
+                       : static_cast<std::size_t>(std::upper_bound(reference.poses.t_s.begin(),
+                                                                   reference.poses.t_s.end(), window_end) -
+                                                  reference.poses.t_s.begin());
+    source_.resize(2, static_cast<Eigen::Index>(align_count_));
+    target_.resize(2, static_cast<Eigen::Index>(align_count_));
+    for (std::size_t i = 0; i < align_count_; ++i) {
+      target_.col(static_cast<Eigen::Index>(i)) = reference.poses.pose[i].head<2>();
+    }
   }
 
-  DeadReckoningSummary evaluate(const OdometryParams& params) const {
-    const TrajectoryErrors errors = trajectory_errors(trajectory(params), reference_);
-    return {errors.mean_position_m, errors.max_position_m, errors.mean_heading_rad,
-            errors.max_heading_rad};
+  DeadReckoningSummary evaluate(const OdometryParams& params) {
+    dead_reckon_into(params, reference_.poses.pose[0]);
+    if (options_.dr_start != DeadReckoningStart::kFirstReference && align_count_ >= 2) align_start();
+    DeadReckoningSummary summary;
+    for (std::size_t i = 0; i < path_.size(); ++i) {
+      const Pose2& reference = reference_.poses.pose[i];
+      const double position_m = (path_[i].head<2>() - reference.head<2>()).norm();
+      const double heading_rad = std::abs(angle_difference(path_[i].z(), reference.z()));
+      summary.mean_position_m += position_m;
+      summary.mean_heading_rad += heading_rad;
+      summary.max_position_m = std::max(summary.max_position_m, position_m);
+      summary.max_heading_rad = std::max(summary.max_heading_rad, heading_rad);
+    }
+    summary.mean_position_m /= static_cast<double>(path_.size());
+    summary.mean_heading_rad /= static_cast<double>(path_.size());
+    return summary;
   }
-  double distance_m(const OdometryParams& params) const {
-    return path_length_m(dead_reckon(wheels_, params, Pose2::Zero()));
+
+  double distance_m(const OdometryParams& params) {
+    dead_reckon_into(params, Pose2::Zero());
+    double length_m = 0.0;
+    for (std::size_t i = 1; i < path_.size(); ++i) length_m += (path_[i].head<2>() - path_[i - 1].head<2>()).norm();
+    return length_m;
   }
 
  private:
-  PoseStream trajectory(const OdometryParams& params) const {
-    PoseStream path = dead_reckon(wheels_, params, reference_poses_.pose[0]);
-    if (options_.dr_start == DeadReckoningStart::kFirstReference || align_count_ < 2) return path;
-    Eigen::Matrix2Xd source(2, align_count_), target(2, align_count_);
-    for (std::size_t i = 0; i < align_count_; ++i) {
-      source.col(static_cast<Eigen::Index>(i)) = path.pose[i].head<2>();
-      target.col(static_cast<Eigen::Index>(i)) = reference_poses_.pose[i].head<2>();
+  void dead_reckon_into(const OdometryParams& params, const Pose2& start) {
+    path_[0] = start;
+    for (std::size_t i = 1; i < path_.size(); ++i) {
+      path_[i] = predict_pose(path_[i - 1], wheels_.increment(reference_.first_wheel_index + i), params);
     }
-    const Eigen::Matrix3d T = Eigen::umeyama(source, target, false);
+  }
+
+  // Moves the whole path rigidly so that its first align_count_ positions best fit the reference.
+  void align_start() {
+    for (std::size_t i = 0; i < align_count_; ++i) source_.col(static_cast<Eigen::Index>(i)) = path_[i].head<2>();
+    const Eigen::Matrix3d T = Eigen::umeyama(source_, target_, false);
     const double rotation = std::atan2(T(1, 0), T(0, 0));
-    for (Pose2& pose : path.pose) {
+    for (Pose2& pose : path_) {
       pose.head<2>() = T.topLeftCorner<2, 2>() * pose.head<2>() + T.topRightCorner<2, 1>();
       pose.z() += rotation;
     }
-    return path;
   }
 
-  WheelStream wheels_;
-  PoseStream reference_poses_;
-  ReferencePath reference_;
+  const WheelStream& wheels_;
+  const ReferenceTrajectory& reference_;
   const CalibrationOptions& options_;
+  std::vector<Pose2> path_;
+  Eigen::Matrix2Xd source_, target_;
   std::size_t align_count_{};
 };
 
@@ -97,7 +103,7 @@ void require_identifiable_fit(const CircumferenceFit& fit, const CalibrationOpti
 }
 
 void run_iterative(const Log& log, const ReferenceTrajectory& reference,
-                   const WholeLogEvaluator& evaluator, const CalibrationOptions& options,
+                   WholeLogEvaluator& evaluator, const CalibrationOptions& options,
                    CalibrationResult& result) {
   OdometryParams params = result.nominal;
   std::vector<Pose2> x_hat;
@@ -182,7 +188,9 @@ void run_augmented(const Log& log, const ReferenceTrajectory& reference,
     Eigen::Vector3d innovation = reference.poses.pose[i] - predicted;
     innovation.z() = angle_difference(reference.poses.pose[i].z(), predicted.z());
     const Eigen::Matrix3d S = sigma.topLeftCorner<3, 3>() + M;
-    const Eigen::Matrix<double, 5, 3> K = S.ldlt().solve(sigma.topRows<3>()).transpose();
+    const Eigen::LLT<Eigen::Matrix3d> S_llt(S);
+    Eigen::Matrix<double, 5, 3> K;  // sigma H^T S^-1, row by row (see odometry_ekf.cpp)
+    for (int r = 0; r < 5; ++r) K.row(r) = S_llt.solve(sigma.block<3, 1>(0, r)).transpose();
     x += K * innovation;
     Matrix5 I_KH = Matrix5::Identity();
     I_KH.leftCols<3>() -= K;
@@ -247,7 +255,7 @@ CalibrationResult calibrate(const Log& log, const CalibrationOptions& options) {
   result.estimate = result.nominal;
   result.reference_samples = reference.poses.size();
   result.reference_heading_source = reference.heading_source;
-  const WholeLogEvaluator evaluator(log.wheels, reference, options);
+  WholeLogEvaluator evaluator(log.wheels, reference, options);
   result.distance_m = evaluator.distance_m(result.nominal);
   if (result.distance_m < options.min_distance_m) {
     throw InsufficientDataError(fmt::format(

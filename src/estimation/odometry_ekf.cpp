@@ -31,7 +31,7 @@ void run_odometry_ekf(const WheelStream& wheels, const ReferenceTrajectory& refe
     innovation.z() = angle_difference(reference.poses.pose[i].z(), x.z());
     const Eigen::Matrix3d S = sigma + M;
     const Eigen::Matrix3d G =
-        S.ldlt().solve(sigma).transpose();  // eq. 8: sigma S^-1 (S, sigma symmetric)
+        S.llt().solve(sigma).transpose();  // eq. 8: sigma S^-1 (S, sigma symmetric)
     x += G * innovation;
     const Eigen::Matrix3d I_G = Eigen::Matrix3d::Identity() - G;  // Joseph form of eq. 7b
     sigma = I_G * sigma * I_G.transpose() + G * M * G.transpose();

@@ -106,7 +106,8 @@ class ReferenceEkf {
         innovation.dot(S_llt.solve(innovation)) > options_.gnss_gate_chi2) {
       return false;
     }
-    const Eigen::Matrix<double, 5, 2> K = S_llt.solve(P_.topRows<2>()).transpose();
+    Eigen::Matrix<double, 5, 2> K;  // P H^T S^-1, row by row (see odometry_ekf.cpp)
+    for (int r = 0; r < 5; ++r) K.row(r) = S_llt.solve(P_.block<2, 1>(0, r)).transpose();
     x_ += K * innovation;
     joseph_update<2>(
         K, [](Eigen::Matrix<double, 2, 5>& H) { H.leftCols<2>().setIdentity(); },

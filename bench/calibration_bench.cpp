@@ -1,0 +1,90 @@
+// Speed of the calibration's pieces on a 3-lap, 50 Hz log of the built-in circuit (25 775
+// samples): one EKF pass (layer 2), one least-squares solve (layer 3), the layer-1 reference,
+// and a whole calibration per method.
+
+#include <benchmark/benchmark.h>
+
+#include "odocal/estimation/calibration.hpp"
+#include "odocal/estimation/circumference_ls.hpp"
+#include "odocal/estimation/odometry_ekf.hpp"
+#include "odocal/estimation/reference_filter.hpp"
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/sim/simulator.hpp"
+
+namespace {
+
+using namespace odocal;
+
+const Log& three_lap_log() {
+  static const Log log = [] {
+    sim::Scenario scenario = load_scenario("circuit");
+    scenario.vehicle.wear_rl_mm = 1.5;
+    scenario.vehicle.wear_rr_mm = 1.0;
+    scenario.wheels.output = WheelUnit::kRadians;
+    const sim::SimulatedDrive drive = sim::simulate(scenario);
+    Log out;
+    out.vehicle = drive.nominal_vehicle;
+    out.wheels.t_s = drive.wheel_t_s;
+    out.wheels.rev_rl.assign(drive.wheel_t_s.size(), 0.0);
+    out.wheels.rev_rr.assign(drive.wheel_t_s.size(), 0.0);
+    for (std::size_t k = 1; k < drive.wheel_t_s.size(); ++k) {
+      out.wheels.rev_rl[k] = (drive.wheel_rl[k] - drive.wheel_rl[k - 1]) / (2 * M_PI);
+      out.wheels.rev_rr[k] = (drive.wheel_rr[k] - drive.wheel_rr[k - 1]) / (2 * M_PI);
+    }
+    out.gnss.t_s = drive.gnss_t_s;
+    out.gnss.x_m = drive.gnss_a;
+    out.gnss.y_m = drive.gnss_b;
+    out.imu = drive.imu;
+    out.heading = drive.heading;
+    return out;
+  }();
+  return log;
+}
+
+void BM_ReferenceFilter(benchmark::State& state) {
+  ReferenceOptions options;
+  options.mode = state.range(0) == 0 ? ReferenceMode::kFilter : ReferenceMode::kSmoother;
+  for (auto _ : state) benchmark::DoNotOptimize(compute_reference(three_lap_log(), options).poses.pose.back());
+  state.SetLabel(state.range(0) == 0 ? "filter" : "smoother");
+}
+BENCHMARK(BM_ReferenceFilter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+void BM_OdometryEkfPass(benchmark::State& state) {
+  const ReferenceTrajectory reference = compute_reference(three_lap_log());
+  std::vector<Pose2> x_hat;
+  for (auto _ : state) {
+    run_odometry_ekf(three_lap_log().wheels, reference, three_lap_log().vehicle.nominal_params(),
+                     {decaying_process_diagonal(3, 2.0), Eigen::Vector3d(1, 1, 0.01)}, x_hat);
+    benchmark::DoNotOptimize(x_hat.back());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(reference.poses.size()));
+}
+BENCHMARK(BM_OdometryEkfPass)->Unit(benchmark::kMillisecond);
+
+void BM_LeastSquaresSolve(benchmark::State& state) {
+  const ReferenceTrajectory reference = compute_reference(three_lap_log());
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        fit_circumferences(three_lap_log().wheels, reference, reference.poses.pose, 1.6, Eigen::Vector3d(1, 1, 10), 10));
+  }
+}
+BENCHMARK(BM_LeastSquaresSolve)->Unit(benchmark::kMillisecond);
+
+void BM_Calibrate(benchmark::State& state) {
+  CalibrationOptions options;
+  options.method = static_cast<CalibrationMethod>(state.range(0));
+  int iterations = 0;
+  for (auto _ : state) iterations = static_cast<int>(calibrate(three_lap_log(), options).iterations.size());
+  state.SetLabel(std::string(method_name(options.method)) + ", " + std::to_string(iterations) + " iterations");
+}
+BENCHMARK(BM_Calibrate)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+
+// The iterative method forced through all 30 iterations (no early stop).
+void BM_CalibrateThirtyIterations(benchmark::State& state) {
+  CalibrationOptions options;
+  options.max_iterations = options.patience = 30;
+  for (auto _ : state) benchmark::DoNotOptimize(calibrate(three_lap_log(), options).iterations.size());
+}
+BENCHMARK(BM_CalibrateThirtyIterations)->Unit(benchmark::kMillisecond);
+
+}  // namespace
