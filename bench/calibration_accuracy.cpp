@@ -6,9 +6,9 @@
 //   build/bench/odocal_calibration_accuracy [--seeds 10] [--q 2] [--window 10]
 //       [--start aligned-window] [--reference filter] [--wheels ticks] [--track FILE|builtin]
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -30,7 +30,9 @@ Log log_from(const sim::SimulatedDrive& drive) {
   log.wheels.rev_rr.assign(drive.wheel_t_s.size(), 0.0);
   const bool ticks = drive.wheel_unit == WheelUnit::kTicks;
   const double per_rev = ticks ? *drive.nominal_vehicle.ticks_per_rev : 2 * M_PI;
-  const double modulus = ticks && drive.nominal_vehicle.counter_bits ? std::ldexp(1.0, *drive.nominal_vehicle.counter_bits) : 0;
+  const double modulus = ticks && drive.nominal_vehicle.counter_bits
+                             ? std::ldexp(1.0, *drive.nominal_vehicle.counter_bits)
+                             : 0;
   const auto delta = [&](const std::vector<double>& v, std::size_t k) {
     double d = v[k] - v[k - 1];
     if (modulus > 0) d -= modulus * std::round(d / modulus);
@@ -53,7 +55,9 @@ struct Stats {
   std::vector<double> mean_position_m, mean_heading_deg, milliseconds;
 };
 
-double mean(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()); }
+double mean(const std::vector<double>& v) {
+  return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+}
 double max_of(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
 
 }  // namespace
@@ -64,12 +68,14 @@ int main(int argc, char** argv) {
   double q = CalibrationOptions{}.decay_exponent_q;
   int window = CalibrationOptions{}.ls_window_samples;
   std::string start = "aligned-window", reference = "filter", wheels = "ticks";
-  std::string track = std::string(ODOCAL_SOURCE_DIR) + "/../shared/data/tracks/hockenheim/track.csv";
+  std::string track =
+      std::string(ODOCAL_SOURCE_DIR) + "/../shared/data/tracks/hockenheim/track.csv";
   double wear_rl = 1.5, wear_rr = 1.0;
   app.add_option("--seeds", seeds);
   app.add_option("--q", q);
   app.add_option("--window", window);
-  app.add_option("--start", start)->check(CLI::IsMember({"first-reference", "aligned-window", "aligned-whole"}));
+  app.add_option("--start", start)
+      ->check(CLI::IsMember({"first-reference", "aligned-window", "aligned-whole"}));
   app.add_option("--reference", reference)->check(CLI::IsMember({"filter", "smoother"}));
   app.add_option("--wheels", wheels)->check(CLI::IsMember({"ticks", "rad"}));
   app.add_option("--track", track, "TUMFTM centreline, or 'builtin' for the built-in circuit");
@@ -78,6 +84,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   sim::Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;
   std::string where = "built-in circuit";
   if (track != "builtin" && std::filesystem::exists(track)) {
     use_track_file(scenario, track);
@@ -90,14 +97,18 @@ int main(int argc, char** argv) {
   CalibrationOptions options;
   options.decay_exponent_q = q;
   options.ls_window_samples = window;
-  options.dr_start = start == "first-reference" ? DeadReckoningStart::kFirstReference
+  options.dr_start = start == "first-reference"  ? DeadReckoningStart::kFirstReference
                      : start == "aligned-window" ? DeadReckoningStart::kAlignedWindow
-                                                  : DeadReckoningStart::kAlignedWhole;
-  options.reference.mode = reference == "filter" ? ReferenceMode::kFilter : ReferenceMode::kSmoother;
+                                                 : DeadReckoningStart::kAlignedWhole;
+  options.reference.mode =
+      reference == "filter" ? ReferenceMode::kFilter : ReferenceMode::kSmoother;
 
-  fmt::print("{}, {} laps, --ideal, wear {}/{} mm, wheels {}, {} seeds; q {}, LS window {}, start {}, reference {}\n",
-             where, scenario.route.laps, wear_rl, wear_rr, wheels, seeds, q, window, start, reference);
-  const CalibrationMethod methods[] = {CalibrationMethod::kIterative, CalibrationMethod::kFixedP, CalibrationMethod::kAugmented};
+  fmt::print(
+      "{}, {} laps, --ideal, wear {}/{} mm, wheels {}, {} seeds; q {}, LS window {}, start {}, "
+      "reference {}\n",
+      where, scenario.route.laps, wear_rl, wear_rr, wheels, seeds, q, window, start, reference);
+  const CalibrationMethod methods[] = {CalibrationMethod::kIterative, CalibrationMethod::kFixedP,
+                                       CalibrationMethod::kAugmented};
   Stats stats[3];
   for (int seed = 1; seed <= seeds; ++seed) {
     scenario.seeds.noise = static_cast<std::uint64_t>(seed);
@@ -107,18 +118,23 @@ int main(int argc, char** argv) {
       options.method = methods[m];
       const auto begin = std::chrono::steady_clock::now();
       const CalibrationResult result = calibrate(log, options);
-      stats[m].milliseconds.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count());
-      stats[m].abs_error_mm.push_back(1e3 * std::abs(result.estimate.circumference_rl_m - drive.true_params.circumference_rl_m));
-      stats[m].abs_error_mm.push_back(1e3 * std::abs(result.estimate.circumference_rr_m - drive.true_params.circumference_rr_m));
+      stats[m].milliseconds.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin)
+              .count());
+      stats[m].abs_error_mm.push_back(1e3 * std::abs(result.estimate.circumference_rl_m -
+                                                     drive.true_params.circumference_rl_m));
+      stats[m].abs_error_mm.push_back(1e3 * std::abs(result.estimate.circumference_rr_m -
+                                                     drive.true_params.circumference_rr_m));
       stats[m].mean_position_m.push_back(result.after.mean_position_m);
       stats[m].mean_heading_deg.push_back(result.after.mean_heading_rad * 180 / M_PI);
     }
   }
-  fmt::print("{:<10} {:>14} {:>13} {:>17} {:>18} {:>12}\n", "method", "mean |err| mm", "max |err| mm",
-             "mean DR pos err m", "mean DR head err °", "time ms");
+  fmt::print("{:<10} {:>14} {:>13} {:>17} {:>18} {:>12}\n", "method", "mean |err| mm",
+             "max |err| mm", "mean DR pos err m", "mean DR head err °", "time ms");
   for (int m = 0; m < 3; ++m) {
-    fmt::print("{:<10} {:>14.3f} {:>13.3f} {:>17.2f} {:>18.3f} {:>12.1f}\n", method_name(methods[m]), mean(stats[m].abs_error_mm),
-               max_of(stats[m].abs_error_mm), mean(stats[m].mean_position_m), mean(stats[m].mean_heading_deg),
+    fmt::print("{:<10} {:>14.3f} {:>13.3f} {:>17.2f} {:>18.3f} {:>12.1f}\n",
+               method_name(methods[m]), mean(stats[m].abs_error_mm), max_of(stats[m].abs_error_mm),
+               mean(stats[m].mean_position_m), mean(stats[m].mean_heading_deg),
                mean(stats[m].milliseconds));
   }
   return 0;

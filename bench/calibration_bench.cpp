@@ -18,6 +18,7 @@ using namespace odocal;
 const Log& three_lap_log() {
   static const Log log = [] {
     sim::Scenario scenario = load_scenario("circuit");
+    scenario.ideal = true;
     scenario.vehicle.wear_rl_mm = 1.5;
     scenario.vehicle.wear_rr_mm = 1.0;
     scenario.wheels.output = WheelUnit::kRadians;
@@ -44,7 +45,8 @@ const Log& three_lap_log() {
 void BM_ReferenceFilter(benchmark::State& state) {
   ReferenceOptions options;
   options.mode = state.range(0) == 0 ? ReferenceMode::kFilter : ReferenceMode::kSmoother;
-  for (auto _ : state) benchmark::DoNotOptimize(compute_reference(three_lap_log(), options).poses.pose.back());
+  for (auto _ : state)
+    benchmark::DoNotOptimize(compute_reference(three_lap_log(), options).poses.pose.back());
   state.SetLabel(state.range(0) == 0 ? "filter" : "smoother");
 }
 BENCHMARK(BM_ReferenceFilter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
@@ -64,8 +66,9 @@ BENCHMARK(BM_OdometryEkfPass)->Unit(benchmark::kMillisecond);
 void BM_LeastSquaresSolve(benchmark::State& state) {
   const ReferenceTrajectory reference = compute_reference(three_lap_log());
   for (auto _ : state) {
-    benchmark::DoNotOptimize(
-        fit_circumferences(three_lap_log().wheels, reference, reference.poses.pose, 1.6, Eigen::Vector3d(1, 1, 10), 10));
+    benchmark::DoNotOptimize(fit_circumferences(three_lap_log().wheels, reference,
+                                                reference.poses.pose, 1.6,
+                                                Eigen::Vector3d(1, 1, 10), 10));
   }
 }
 BENCHMARK(BM_LeastSquaresSolve)->Unit(benchmark::kMillisecond);
@@ -74,8 +77,10 @@ void BM_Calibrate(benchmark::State& state) {
   CalibrationOptions options;
   options.method = static_cast<CalibrationMethod>(state.range(0));
   int iterations = 0;
-  for (auto _ : state) iterations = static_cast<int>(calibrate(three_lap_log(), options).iterations.size());
-  state.SetLabel(std::string(method_name(options.method)) + ", " + std::to_string(iterations) + " iterations");
+  for (auto _ : state)
+    iterations = static_cast<int>(calibrate(three_lap_log(), options).iterations.size());
+  state.SetLabel(std::string(method_name(options.method)) + ", " + std::to_string(iterations) +
+                 " iterations");
 }
 BENCHMARK(BM_Calibrate)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 
@@ -83,7 +88,8 @@ BENCHMARK(BM_Calibrate)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 void BM_CalibrateThirtyIterations(benchmark::State& state) {
   CalibrationOptions options;
   options.max_iterations = options.patience = 30;
-  for (auto _ : state) benchmark::DoNotOptimize(calibrate(three_lap_log(), options).iterations.size());
+  for (auto _ : state)
+    benchmark::DoNotOptimize(calibrate(three_lap_log(), options).iterations.size());
 }
 BENCHMARK(BM_CalibrateThirtyIterations)->Unit(benchmark::kMillisecond);
 

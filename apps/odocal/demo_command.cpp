@@ -23,6 +23,7 @@ struct DemoArgs {
 
 void run_demo(const DemoArgs& args) {
   sim::Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;  // the paper's model assumptions
   scenario.vehicle.wear_rl_mm = args.wear_rl_mm;
   scenario.vehicle.wear_rr_mm = args.wear_rr_mm;
   scenario.seeds.noise = args.seed;

@@ -179,6 +179,40 @@ sim::Scenario parse_scenario(const std::string& yaml_text, const std::string& fi
     vehicle->read("wear_rl_mm", s.vehicle.wear_rl_mm, -50.0, 50.0);
     vehicle->read("wear_rr_mm", s.vehicle.wear_rr_mm, -50.0, 50.0);
     vehicle->read("ideal", s.ideal);
+    if (auto dynamics = vehicle->map("dynamics")) {
+      sim::VehicleDynamicsConfig& d = s.dynamics;
+      dynamics->read("dynamic_lateral", d.dynamic_lateral);
+      dynamics->read("longitudinal_slip", d.longitudinal_slip);
+      dynamics->read("load_dependent_radius", d.load_dependent_radius);
+      dynamics->read("load_transfer", d.load_transfer);
+      dynamics->read("mass_kg", d.mass_kg, 100.0, 1e5);
+      dynamics->read("yaw_inertia_kgm2", d.yaw_inertia_kgm2, 10.0, 1e6);
+      dynamics->read("cg_to_front_axle_m", d.cg_to_front_axle_m, 0.1, s.vehicle.wheelbase_m - 0.1);
+      dynamics->read("cg_height_m", d.cg_height_m, 0.0, 5.0);
+      dynamics->read("front_roll_share", d.front_roll_share, 0.0, 1.0);
+      dynamics->read("friction", d.friction, 0.1, 3.0);
+      dynamics->read("cornering_stiffness_per_load_front", d.cornering_stiffness_per_load_front,
+                     1.0, 100.0);
+      dynamics->read("cornering_stiffness_per_load_rear", d.cornering_stiffness_per_load_rear, 1.0,
+                     100.0);
+      dynamics->read("lateral_shape", d.lateral_shape, 1.0, 2.0);
+      dynamics->read("slip_stiffness_per_load", d.slip_stiffness_per_load, 1.0, 100.0);
+      dynamics->read("longitudinal_shape", d.longitudinal_shape, 1.0, 2.0);
+      dynamics->read("drag_area_m2", d.drag_area_m2, 0.0, 20.0);
+      dynamics->read("air_density_kgpm3", d.air_density_kgpm3, 0.0, 2.0);
+      dynamics->read("rolling_resistance", d.rolling_resistance, 0.0, 0.1);
+      dynamics->read("brake_front_share", d.brake_front_share, 0.0, 1.0);
+      dynamics->read("radius_load_sensitivity_m_per_n", d.radius_load_sensitivity_m_per_n, 0.0,
+                     1e-4);
+      dynamics->read("max_steer_rad", d.max_steer_rad, 0.05, 1.2);
+      dynamics->read("preview_distance_m", d.preview_distance_m, 0.5, 100.0);
+      dynamics->read("speed_gain_1ps", d.speed_gain_1ps, 0.0, 100.0);
+      dynamics->read("position_gain_1ps2", d.position_gain_1ps2, 0.0, 100.0);
+      dynamics->read("kinematic_below_mps", d.kinematic_below_mps, 0.5, 20.0);
+      dynamics->read("step_hz", d.step_hz, 1000.0, 1e5);
+      dynamics->read("control_hz", d.control_hz, 1.0, 1e4);
+      dynamics->reject_unknown_keys();
+    }
     vehicle->reject_unknown_keys();
   }
   if (auto sensors = root.map("sensors")) parse_sensors(std::move(*sensors), s);
@@ -262,7 +296,36 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("wear_rl_mm", s.vehicle.wear_rl_mm);
   key("wear_rr_mm", s.vehicle.wear_rr_mm);
   key("ideal", s.ideal);
-  out << YAML::EndMap;
+  const sim::VehicleDynamicsConfig& d = s.dynamics;
+  out << YAML::Key << "dynamics" << YAML::Value << YAML::BeginMap;
+  key("dynamic_lateral", d.dynamic_lateral);
+  key("longitudinal_slip", d.longitudinal_slip);
+  key("load_dependent_radius", d.load_dependent_radius);
+  key("load_transfer", d.load_transfer);
+  key("mass_kg", d.mass_kg);
+  key("yaw_inertia_kgm2", d.yaw_inertia_kgm2);
+  key("cg_to_front_axle_m", d.cg_to_front_axle_m);
+  key("cg_height_m", d.cg_height_m);
+  key("front_roll_share", d.front_roll_share);
+  key("friction", d.friction);
+  key("cornering_stiffness_per_load_front", d.cornering_stiffness_per_load_front);
+  key("cornering_stiffness_per_load_rear", d.cornering_stiffness_per_load_rear);
+  key("lateral_shape", d.lateral_shape);
+  key("slip_stiffness_per_load", d.slip_stiffness_per_load);
+  key("longitudinal_shape", d.longitudinal_shape);
+  key("drag_area_m2", d.drag_area_m2);
+  key("air_density_kgpm3", d.air_density_kgpm3);
+  key("rolling_resistance", d.rolling_resistance);
+  key("brake_front_share", d.brake_front_share);
+  key("radius_load_sensitivity_m_per_n", d.radius_load_sensitivity_m_per_n);
+  key("max_steer_rad", d.max_steer_rad);
+  key("preview_distance_m", d.preview_distance_m);
+  key("speed_gain_1ps", d.speed_gain_1ps);
+  key("position_gain_1ps2", d.position_gain_1ps2);
+  key("kinematic_below_mps", d.kinematic_below_mps);
+  key("step_hz", d.step_hz);
+  key("control_hz", d.control_hz);
+  out << YAML::EndMap << YAML::EndMap;
   out << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "gnss" << YAML::Value << YAML::BeginMap;
   key("rate_hz", s.gnss.rate_hz);

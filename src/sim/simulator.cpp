@@ -23,79 +23,89 @@ std::vector<double> sample_times(double duration_s, double rate_hz) {
   return t;
 }
 
-// Kinematic truth of the reference point at time t.
-struct KinematicState {
-  PathPoint point;
-  double signed_speed_mps;
-  double signed_acc_mps2;
-};
-
-class KinematicDrive {
+// The ideal vehicle: exactly on the path at the profile's progress, rolling without slip on
+// constant radii. Each rear wheel's signed arc is D -+ (t_R / 2) (yaw - yaw_0), exact for any path.
+class IdealMotion : public MotionTruth {
  public:
-  KinematicDrive(const Path& path, const SpeedProfile& profile) : path_(path), profile_(profile) {}
-  KinematicState at(double t_s) const {
+  IdealMotion(const Path& path, const SpeedProfile& profile, double track_width_m,
+              const OdometryParams& truth)
+      : path_(path),
+        profile_(profile),
+        half_track_(0.5 * track_width_m),
+        truth_(truth),
+        start_yaw_(path.at(0.0).pose.z()) {}
+  double duration_s() const override { return profile_.duration_s(); }
+  TruthSample at(double t_s) const override {
     const MotionState motion = profile_.at(t_s);
     const PathPoint point = path_.at(motion.s_m);
-    return {point, point.direction * motion.speed_mps, point.direction * motion.acc_mps2};
+    const double speed = point.direction * motion.speed_mps;
+    const double yaw_rate = point.curvature_1pm * speed;
+    const double yaw = point.pose.z() - start_yaw_;
+    TruthSample sample;
+    sample.pose = point.pose;
+    sample.ax_mps2 = point.direction * motion.acc_mps2;
+    sample.ay_mps2 = speed * yaw_rate;
+    sample.yaw_rate_radps = yaw_rate;
+    sample.wheel_angle_rl_rad =
+        kTwoPi * (point.signed_distance_m - half_track_ * yaw) / truth_.circumference_rl_m;
+    sample.wheel_angle_rr_rad =
+        kTwoPi * (point.signed_distance_m + half_track_ * yaw) / truth_.circumference_rr_m;
+    sample.wheel_rate_rl_radps =
+        kTwoPi * (speed - half_track_ * yaw_rate) / truth_.circumference_rl_m;
+    sample.wheel_rate_rr_radps =
+        kTwoPi * (speed + half_track_ * yaw_rate) / truth_.circumference_rr_m;
+    return sample;
   }
 
  private:
   const Path& path_;
   const SpeedProfile& profile_;
+  double half_track_;
+  OdometryParams truth_;
+  double start_yaw_;
 };
 
-void simulate_wheels(const Scenario& scenario, const KinematicDrive& drive, double duration_s,
-                     std::mt19937_64& rng, SimulatedDrive& out) {
+void simulate_wheels(const Scenario& scenario, const MotionTruth& truth, std::mt19937_64& rng,
+                     SimulatedDrive& out) {
   const WheelSimConfig& config = scenario.wheels;
-  const double half_track = 0.5 * scenario.vehicle.track_width_m;
-  const double nominal_c = out.nominal_vehicle.circumference_rl_m;
+  const double nominal_radius_m = scenario.vehicle.tyre_radius_m;
   const double modulus = config.counter_bits > 0 ? std::ldexp(1.0, config.counter_bits) : 0.0;
   std::uniform_real_distribution<double> start_count(0.0, modulus > 0 ? modulus : 1.0);
   const double offset_rl = std::floor(start_count(rng));
   const double offset_rr = std::floor(start_count(rng));
-  const Pose2 start = drive.at(0.0).point.pose;
+  const auto ticks = [&](double angle_rad, double offset) {
+    double count = offset + std::floor(angle_rad / kTwoPi * config.ticks_per_rev);
+    if (modulus > 0) count -= modulus * std::floor(count / modulus);
+    return count;
+  };
 
   out.wheel_unit = config.output;
-  for (double t : sample_times(duration_s, config.rate_hz)) {
-    const KinematicState state = drive.at(t);
-    const double yaw = state.point.pose.z() - start.z();
-    // Rolling without slip: each wheel's signed arc is D -+ (t_R / 2) yaw.
-    const double arc_rl = state.point.signed_distance_m - half_track * yaw;
-    const double arc_rr = state.point.signed_distance_m + half_track * yaw;
-    const double yaw_rate = state.point.curvature_1pm * state.signed_speed_mps;
-    const double speed_rl = state.signed_speed_mps - half_track * yaw_rate;
-    const double speed_rr = state.signed_speed_mps + half_track * yaw_rate;
-    const double c_rl = out.true_params.circumference_rl_m;
-    const double c_rr = out.true_params.circumference_rr_m;
+  for (double t : sample_times(truth.duration_s(), config.rate_hz)) {
+    const TruthSample sample = truth.at(t);
     double rl = 0.0, rr = 0.0;
     switch (config.output) {
-      case WheelUnit::kTicks: {
-        rl = offset_rl + std::floor(arc_rl / c_rl * config.ticks_per_rev);
-        rr = offset_rr + std::floor(arc_rr / c_rr * config.ticks_per_rev);
-        if (modulus > 0) {
-          rl = rl - modulus * std::floor(rl / modulus);
-          rr = rr - modulus * std::floor(rr / modulus);
-        }
+      case WheelUnit::kTicks:
+        rl = ticks(sample.wheel_angle_rl_rad, offset_rl);
+        rr = ticks(sample.wheel_angle_rr_rad, offset_rr);
         break;
-      }
       case WheelUnit::kRadians:
-        rl = arc_rl / c_rl * kTwoPi;
-        rr = arc_rr / c_rr * kTwoPi;
+        rl = sample.wheel_angle_rl_rad;
+        rr = sample.wheel_angle_rr_rad;
         break;
       case WheelUnit::kRadiansPerSecond:
-        rl = speed_rl / c_rl * kTwoPi;
-        rr = speed_rr / c_rr * kTwoPi;
+        rl = sample.wheel_rate_rl_radps;
+        rr = sample.wheel_rate_rr_radps;
         break;
-      case WheelUnit::kMetresPerSecond:  // the vehicle converts with its nominal circumference
-        rl = speed_rl / c_rl * nominal_c;
-        rr = speed_rr / c_rr * nominal_c;
+      case WheelUnit::kMetresPerSecond:  // the vehicle converts with its nominal radius
+        rl = sample.wheel_rate_rl_radps * nominal_radius_m;
+        rr = sample.wheel_rate_rr_radps * nominal_radius_m;
         break;
     }
     out.wheel_t_s.push_back(t);
     out.wheel_rl.push_back(rl);
     out.wheel_rr.push_back(rr);
     out.truth.t_s.push_back(t);
-    out.truth.pose.push_back(state.point.pose);
+    out.truth.pose.push_back(sample.pose);
   }
   out.distance_m = 0.0;
   for (std::size_t k = 1; k < out.truth.size(); ++k) {
@@ -103,8 +113,8 @@ void simulate_wheels(const Scenario& scenario, const KinematicDrive& drive, doub
   }
 }
 
-void simulate_gnss(const GnssSimConfig& config, const KinematicDrive& drive, double duration_s,
-                   std::mt19937_64& rng, SimulatedDrive& out) {
+void simulate_gnss(const GnssSimConfig& config, const MotionTruth& truth, std::mt19937_64& rng,
+                   SimulatedDrive& out) {
   std::normal_distribution<double> unit(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   const GeographicLib::LocalCartesian enu(config.origin.latitude_deg, config.origin.longitude_deg,
@@ -117,7 +127,7 @@ void simulate_gnss(const GnssSimConfig& config, const KinematicDrive& drive, dou
                            config.gauss_markov_sigma_m * unit(rng));
   out.gnss_latlon = config.output_latlon;
   out.gnss_sigma_m = std::hypot(config.sigma_m, config.gauss_markov_sigma_m);
-  for (double t : sample_times(duration_s, config.rate_hz)) {
+  for (double t : sample_times(truth.duration_s(), config.rate_hz)) {
     // Every draw happens for every epoch, so an outage does not shift later noise.
     coloured = decay * coloured + drive_sigma * Eigen::Vector2d(unit(rng), unit(rng));
     Eigen::Vector2d error = coloured + config.sigma_m * Eigen::Vector2d(unit(rng), unit(rng));
@@ -133,7 +143,7 @@ void simulate_gnss(const GnssSimConfig& config, const KinematicDrive& drive, dou
       in_outage = in_outage || (t >= outage.start_s && t < outage.start_s + outage.duration_s);
     }
     if (in_outage || t < config.latency_s) continue;
-    const Pose2 pose = drive.at(t - config.latency_s).point.pose;
+    const Pose2 pose = truth.at(t - config.latency_s).pose;
     const double x = pose.x() + error.x();
     const double y = pose.y() + error.y();
     out.gnss_t_s.push_back(t);
@@ -149,24 +159,21 @@ void simulate_gnss(const GnssSimConfig& config, const KinematicDrive& drive, dou
   }
 }
 
-void simulate_imu_and_heading(const Scenario& scenario, const KinematicDrive& drive,
-                              double duration_s, std::mt19937_64& rng, SimulatedDrive& out) {
+void simulate_imu_and_heading(const Scenario& scenario, const MotionTruth& truth,
+                              std::mt19937_64& rng, SimulatedDrive& out) {
   std::normal_distribution<double> unit(0.0, 1.0);
-  for (double t : sample_times(duration_s, scenario.imu.rate_hz)) {
-    const KinematicState state = drive.at(t);
-    const double yaw_rate = state.point.curvature_1pm * state.signed_speed_mps;
+  for (double t : sample_times(truth.duration_s(), scenario.imu.rate_hz)) {
+    const TruthSample sample = truth.at(t);
     out.imu.t_s.push_back(t);
-    out.imu.ax_mps2.push_back(state.signed_acc_mps2 + scenario.imu.acc_sigma_mps2 * unit(rng));
-    out.imu.ay_mps2.push_back(state.signed_speed_mps * yaw_rate +
-                              scenario.imu.acc_sigma_mps2 * unit(rng));
-    out.imu.wz_radps.push_back(yaw_rate + scenario.imu.gyro_bias_radps +
+    out.imu.ax_mps2.push_back(sample.ax_mps2 + scenario.imu.acc_sigma_mps2 * unit(rng));
+    out.imu.ay_mps2.push_back(sample.ay_mps2 + scenario.imu.acc_sigma_mps2 * unit(rng));
+    out.imu.wz_radps.push_back(sample.yaw_rate_radps + scenario.imu.gyro_bias_radps +
                                scenario.imu.yaw_rate_sigma_radps * unit(rng));
   }
-  for (double t : sample_times(duration_s, scenario.heading.rate_hz)) {
-    const double yaw = drive.at(t).point.pose.z();
+  for (double t : sample_times(truth.duration_s(), scenario.heading.rate_hz)) {
     out.heading.t_s.push_back(t);
-    out.heading.heading_rad.push_back(
-        wrap_angle(yaw + scenario.heading.bias_rad + scenario.heading.sigma_rad * unit(rng)));
+    out.heading.heading_rad.push_back(wrap_angle(truth.at(t).pose.z() + scenario.heading.bias_rad +
+                                                 scenario.heading.sigma_rad * unit(rng)));
   }
 }
 
@@ -182,11 +189,6 @@ Path route_path(const Scenario& scenario) {
 }
 
 SimulatedDrive simulate(const Scenario& scenario) {
-  if (!scenario.ideal) {
-    throw Error(
-        "the dynamic vehicle model (slip, load-dependent radius) is not built yet: "
-        "simulate with --ideal");
-  }
   const Path path = route_path(scenario);
   std::vector<Stop> stops;
   double s = 0.0;
@@ -200,7 +202,6 @@ SimulatedDrive simulate(const Scenario& scenario) {
   std::vector<double> speed_scale(path.segments().size());
   for (double& scale : speed_scale) scale = variation(trajectory_rng);
   const SpeedProfile profile(path, scenario.driver, stops, speed_scale);
-  const KinematicDrive drive(path, profile);
 
   SimulatedDrive out;
   const double nominal_c = kTwoPi * scenario.vehicle.tyre_radius_m;
@@ -223,10 +224,19 @@ SimulatedDrive simulate(const Scenario& scenario) {
   std::array<std::uint64_t, 4> sensor_seeds{};
   seeds.generate(sensor_seeds.begin(), sensor_seeds.end());
   std::mt19937_64 wheel_rng(sensor_seeds[0]), gnss_rng(sensor_seeds[1]), imu_rng(sensor_seeds[2]);
-  const double duration_s = profile.duration_s();
-  simulate_wheels(scenario, drive, duration_s, wheel_rng, out);
-  simulate_gnss(scenario.gnss, drive, duration_s, gnss_rng, out);
-  simulate_imu_and_heading(scenario, drive, duration_s, imu_rng, out);
+  std::unique_ptr<MotionTruth> truth;
+  if (scenario.ideal) {
+    truth = std::make_unique<IdealMotion>(path, profile, scenario.vehicle.track_width_m,
+                                          out.true_params);
+  } else {
+    truth = simulate_vehicle_dynamics(
+        path, profile, scenario.dynamics, scenario.vehicle.wheelbase_m,
+        scenario.vehicle.track_width_m,
+        {out.true_params.circumference_rl_m / kTwoPi, out.true_params.circumference_rr_m / kTwoPi});
+  }
+  simulate_wheels(scenario, *truth, wheel_rng, out);
+  simulate_gnss(scenario.gnss, *truth, gnss_rng, out);
+  simulate_imu_and_heading(scenario, *truth, imu_rng, out);
   return out;
 }
 

@@ -19,8 +19,8 @@ class CalibrateCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new TempLogDir();
-    const auto run =
-        run_cli("simulate --scenario circuit --laps 1 --wear-rl 1.5 --wear-rr 1 --out " + log());
+    const auto run = run_cli(
+        "simulate --scenario circuit --ideal --laps 1 --wear-rl 1.5 --wear-rr 1 --out " + log());
     ASSERT_EQ(run.status, 0) << run.err;
   }
   static void TearDownTestSuite() { delete dir_; }

@@ -122,6 +122,7 @@ double consistent_fraction(const Log& log, const ReferenceTrajectory& reference)
 
 Log circuit_log() {
   sim::Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;
   scenario.route.laps = 1;
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   Log log;

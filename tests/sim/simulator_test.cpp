@@ -45,7 +45,8 @@ double rms(const std::vector<double>& values) {
 
 TEST(Simulator, IdealCircuitDeadReckonsWithinQuantisation) {
   const TempLogDir dir;
-  const Scenario scenario = load_scenario("circuit");  // 3 laps, 96 ticks/rev, 16-bit counters
+  Scenario scenario = load_scenario("circuit");  // 3 laps, 96 ticks/rev, 16-bit counters
+  scenario.ideal = true;
   const Simulated run = simulate_and_read(scenario, dir);
   ASSERT_GT(run.drive.distance_m, 13000.0);
   const TrajectoryErrors errors = errors_with_true_params(run);
@@ -60,6 +61,7 @@ TEST(Simulator, IdealCircuitDeadReckonsWithinQuantisation) {
 TEST(Simulator, IdealCircuitWithExactWheelAnglesHasOnlyModelDiscretisation) {
   const TempLogDir dir;
   Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;
   scenario.wheels.output = WheelUnit::kRadians;
   const TrajectoryErrors errors = errors_with_true_params(simulate_and_read(scenario, dir));
   EXPECT_LT(errors.max_position_m, 0.05);
@@ -68,7 +70,9 @@ TEST(Simulator, IdealCircuitWithExactWheelAnglesHasOnlyModelDiscretisation) {
 
 TEST(Simulator, ParkingReversesWithSignedCountsAndFollowsTruth) {
   const TempLogDir dir;
-  const Simulated run = simulate_and_read(load_scenario("parking"), dir);
+  Scenario scenario = load_scenario("parking");
+  scenario.ideal = true;
+  const Simulated run = simulate_and_read(scenario, dir);
   const auto& rl = run.log.wheels.rev_rl;
   EXPECT_LT(*std::min_element(rl.begin(), rl.end()), 0.0);
   EXPECT_GT(run.drive.distance_m, 300.0);
@@ -87,7 +91,8 @@ TEST(Simulator, WearShrinksTheTrueCircumferences) {
 }
 
 TEST(Simulator, SensorNoiseHasItsConfiguredSigma) {
-  const Scenario scenario = load_scenario("circuit");
+  Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;
   const SimulatedDrive drive = simulate(scenario);
   const PoseStream& truth = drive.truth;
   std::vector<double> gnss_error, heading_error, yaw_rate_error;
@@ -155,10 +160,61 @@ TEST(Simulator, GnssOutagesOutliersAndLatLon) {
               0.006);
 }
 
-TEST(Simulator, DynamicModelIsRefusedClearly) {
+// The realistic vehicle with one set of effects on; exact wheel angles, one lap.
+TrajectoryErrors realistic_errors(const std::string& name, bool lateral, bool slip, bool radius,
+                                  bool transfer) {
+  const TempLogDir dir;
+  Scenario scenario = load_scenario(name);
+  scenario.route.laps = 1;
+  scenario.wheels.output = WheelUnit::kRadians;
+  scenario.dynamics.dynamic_lateral = lateral;
+  scenario.dynamics.longitudinal_slip = slip;
+  scenario.dynamics.load_dependent_radius = radius;
+  scenario.dynamics.load_transfer = transfer;
+  return errors_with_true_params(simulate_and_read(scenario, dir));
+}
+
+TEST(RealisticSimulator, EveryEffectOffDeadReckonsExactly) {
+  // Controller-driven kinematic bicycle, no slip, constant radius: the odometry model holds.
+  const TrajectoryErrors errors = realistic_errors("circuit", false, false, false, false);
+  EXPECT_LT(errors.max_position_m, 0.01);
+  EXPECT_LT(errors.max_heading_rad, 1e-6);
+}
+
+TEST(RealisticSimulator, EachEffectAloneMovesDeadReckoningOffTruth) {
+  // Side slip: the rear axle slides sideways in corners; the heading stays exact.
+  const TrajectoryErrors side_slip = realistic_errors("circuit", true, false, false, false);
+  EXPECT_GT(side_slip.mean_position_m, 0.3);
+  EXPECT_LT(side_slip.max_heading_rad, 1e-6);
+  // Drive and brake slip: wheels turn faster/slower than they roll.
+  const TrajectoryErrors slip = realistic_errors("circuit", false, true, false, false);
+  EXPECT_GT(slip.max_heading_rad, rad_from_deg(0.1));
+  // Load-dependent radius alone changes nothing at static load; with lateral load transfer the
+  // outer wheel's smaller radius makes odometry over-estimate every turn.
+  EXPECT_LT(realistic_errors("circuit", false, false, true, false).max_position_m, 0.01);
+  EXPECT_GT(realistic_errors("circuit", false, false, true, true).max_heading_rad,
+            rad_from_deg(1.0));
+}
+
+TEST(RealisticSimulator, ParkingFollowsItsRouteAndReverses) {
+  const TempLogDir dir;
+  Scenario ideal = load_scenario("parking");
+  ideal.ideal = true;
+  const double ideal_distance_m = simulate(ideal).distance_m;
+  const Simulated run = simulate_and_read(load_scenario("parking"), dir);
+  EXPECT_NEAR(run.drive.distance_m, ideal_distance_m, 0.02 * ideal_distance_m);
+  const auto& rl = run.log.wheels.rev_rl;
+  EXPECT_LT(*std::min_element(rl.begin(), rl.end()), 0.0);
+}
+
+TEST(RealisticSimulator, EffectiveScenarioCarriesTheDynamics) {
   Scenario scenario = load_scenario("urban");
-  scenario.ideal = false;
-  EXPECT_THROW(simulate(scenario), Error);
+  scenario.dynamics.longitudinal_slip = false;
+  scenario.dynamics.mass_kg = 1234.5;
+  const Scenario again = parse_scenario(scenario_to_yaml(scenario), "effective.yaml");
+  EXPECT_FALSE(again.ideal);
+  EXPECT_FALSE(again.dynamics.longitudinal_slip);
+  EXPECT_EQ(again.dynamics.mass_kg, 1234.5);
 }
 
 TEST(ScenarioYaml, EffectiveConfigurationRoundTrips) {

@@ -11,6 +11,7 @@
 #include "odocal/data/log.hpp"
 #include "odocal/sim/path.hpp"
 #include "odocal/sim/speed_profile.hpp"
+#include "odocal/sim/vehicle_dynamics.hpp"
 
 namespace odocal::sim {
 
@@ -84,7 +85,8 @@ struct Scenario {
   DriverLimits driver;
   double speed_variation = 0.0;  // each segment's speed cap scaled by U[1 - v, 1] (trajectory seed)
   VehicleSimConfig vehicle;
-  bool ideal = true;  // kinematic motion, no slip, constant radius (paper's model assumptions)
+  bool ideal = false;  // true: exact path, no slip, constant radius (the paper's model assumptions)
+  VehicleDynamicsConfig dynamics;  // the realistic vehicle (ideal = false)
   GnssSimConfig gnss;
   ImuSimConfig imu;
   HeadingSimConfig heading;

@@ -21,14 +21,14 @@ struct SimulatedDrive {
   double gnss_sigma_m{};
   ImuStream imu;
   HeadingStream heading;
-  PoseStream truth;  // reference point at the wheel rate
-  double distance_m{};
+  PoseStream truth;     // reference point at the wheel rate
+  double distance_m{};  // of the rear-axle midpoint
 };
 
 // The path of the scenario's route (all laps).
 Path route_path(const Scenario& scenario);
 
-// Throws Error for configurations it cannot simulate (e.g. the dynamic model, not yet built).
+// Ideal mode: the exact path and the paper's model assumptions; otherwise the dynamic vehicle.
 SimulatedDrive simulate(const Scenario& scenario);
 
 }  // namespace odocal::sim

@@ -1,0 +1,61 @@
+#pragma once
+// The realistic vehicle: a single-track (bicycle) model with magic-formula lateral tyre forces,
+// longitudinal and lateral load transfer, rear-wheel drive and a front/rear brake split,
+// aerodynamic drag and rolling resistance, integrated by RK4 at a fixed step, steered along the
+// path and driven along the speed profile by controllers. Each rear wheel turns at its own
+// contact-point speed (vx -+ r t_R / 2) times (1 + longitudinal slip) over an effective rolling
+// radius that depends on its vertical load. docs/simulator.md has the equations and defaults.
+
+#include <memory>
+
+#include "odocal/sim/motion_truth.hpp"
+#include "odocal/sim/path.hpp"
+#include "odocal/sim/speed_profile.hpp"
+
+namespace odocal::sim {
+
+struct VehicleDynamicsConfig {
+  // Effects, each switchable alone (docs/simulator.md measures each one's drift).
+  bool dynamic_lateral = true;        // tyre side slip; false: kinematic bicycle (no side slip)
+  bool longitudinal_slip = true;      // drive/brake slip of the rear wheels
+  bool load_dependent_radius = true;  // rolling radius shrinks with vertical load
+  bool load_transfer = true;          // longitudinal and lateral load transfer
+
+  double mass_kg = 1500.0;
+  double yaw_inertia_kgm2 = 2600.0;
+  double cg_to_front_axle_m = 1.25;  // a; b = wheelbase - a
+  double cg_height_m = 0.55;
+  double front_roll_share = 0.55;  // share of the lateral load transfer taken by the front axle
+  double friction = 1.0;           // mu
+  double cornering_stiffness_per_load_front = 16.0;  // C_alpha / F_z, 1/rad
+  double cornering_stiffness_per_load_rear = 19.0;
+  double lateral_shape = 1.3;             // magic formula C (lateral)
+  double slip_stiffness_per_load = 20.0;  // C_kappa / F_z (longitudinal)
+  double longitudinal_shape = 1.65;       // magic formula C (longitudinal)
+  double drag_area_m2 = 0.7;              // c_d A
+  double air_density_kgpm3 = 1.2;
+  double rolling_resistance = 0.012;
+  double brake_front_share = 0.65;
+  double radius_load_sensitivity_m_per_n = 1.3e-6;  // effective rolling radius change per N
+  double max_steer_rad = 0.6;
+  double preview_distance_m = 6.0;   // path-following gains: critically damped over this distance
+  double speed_gain_1ps = 1.5;       // speed-error feedback
+  double position_gain_1ps2 = 0.5;   // progress-error feedback
+  double kinematic_below_mps = 3.0;  // slip angles are singular at standstill
+  double step_hz = 1000.0;
+  double control_hz = 100.0;
+};
+
+struct StaticRearRadii {
+  double rl_m;  // effective rolling radius under static load (what truth.yaml calls true)
+  double rr_m;
+};
+
+// Simulates the drive; the wheel radii at static load are given (nominal minus wear).
+std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
+                                                       const SpeedProfile& profile,
+                                                       const VehicleDynamicsConfig& config,
+                                                       double wheelbase_m, double track_width_m,
+                                                       const StaticRearRadii& radii);
+
+}  // namespace odocal::sim
