@@ -8,13 +8,16 @@
 
 namespace {
 
+// Arg 0: --ideal (exact path); 1: the realistic vehicle (RK4 at 1 kHz, controllers at 100 Hz).
 void BM_SimulateCircuitThreeLaps(benchmark::State& state) {
-  const odocal::sim::Scenario scenario = odocal::load_scenario("circuit");
+  odocal::sim::Scenario scenario = odocal::load_scenario("circuit");
+  scenario.ideal = state.range(0) == 0;
+  state.SetLabel(scenario.ideal ? "ideal" : "realistic");
   for (auto _ : state) {
     odocal::sim::SimulatedDrive drive = odocal::sim::simulate(scenario);
     benchmark::DoNotOptimize(drive.truth.pose.back());
   }
 }
-BENCHMARK(BM_SimulateCircuitThreeLaps)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SimulateCircuitThreeLaps)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -36,7 +36,9 @@ struct VehicleDynamicsConfig {
   double air_density_kgpm3 = 1.2;
   double rolling_resistance = 0.012;
   double brake_front_share = 0.65;
-  double radius_load_sensitivity_m_per_n = 1.3e-6;  // effective rolling radius change per N
+  // Effective rolling radius change per N of load: radial tyres keep it nearly load-independent
+  // (stiff belt), ~0.4 mm per kN; a third of the deflection (1.3e-6) would be a bias-ply tyre.
+  double radius_load_sensitivity_m_per_n = 4e-7;
   double max_steer_rad = 0.6;
   double preview_distance_m = 6.0;   // path-following gains: critically damped over this distance
   double speed_gain_1ps = 1.5;       // speed-error feedback
