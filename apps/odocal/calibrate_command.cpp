@@ -62,6 +62,7 @@ void print_calibration_report(const CalibrationResult& r) {
        std::sqrt(r.covariance(0, 0)));
   line("c_RR", r.estimate.circumference_rr_m, r.nominal.circumference_rr_m,
        std::sqrt(r.covariance(1, 1)));
+  if (!r.difference_identifiable) fmt::print("note         {}\n", r.identifiability);
   if (r.method != CalibrationMethod::kAugmented) {
     fmt::print("iteration    {} of {}: {}\n", r.chosen_iteration, r.iterations.size(),
                r.termination);

@@ -27,11 +27,12 @@ class WholeLogEvaluator {
                     const CalibrationOptions& options)
       : wheels_(wheels), reference_(reference), options_(options), path_(reference.poses.size()) {
     const double window_end = reference.poses.t_s.front() + options.dr_align_window_s;
-    align_count_ = options.dr_start == DeadReckoningStart::kAlignedWhole
-                       ? reference.poses.size()
-                       : static_cast<std::size_t>(std::upper_bound(reference.poses.t_s.begin(),
-                                                                   reference.poses.t_s.end(), window_end) -
-                                                  reference.poses.t_s.begin());
+    align_count_ =
+        options.dr_start == DeadReckoningStart::kAlignedWhole
+            ? reference.poses.size()
+            : static_cast<std::size_t>(std::upper_bound(reference.poses.t_s.begin(),
+                                                        reference.poses.t_s.end(), window_end) -
+                                       reference.poses.t_s.begin());
     source_.resize(2, static_cast<Eigen::Index>(align_count_));
     target_.resize(2, static_cast<Eigen::Index>(align_count_));
     for (std::size_t i = 0; i < align_count_; ++i) {
@@ -41,7 +42,8 @@ class WholeLogEvaluator {
 
   DeadReckoningSummary evaluate(const OdometryParams& params) {
     dead_reckon_into(params, reference_.poses.pose[0]);
-    if (options_.dr_start != DeadReckoningStart::kFirstReference && align_count_ >= 2) align_start();
+    if (options_.dr_start != DeadReckoningStart::kFirstReference && align_count_ >= 2)
+      align_start();
     DeadReckoningSummary summary;
     for (std::size_t i = 0; i < path_.size(); ++i) {
       const Pose2& reference = reference_.poses.pose[i];
@@ -60,7 +62,8 @@ class WholeLogEvaluator {
   double distance_m(const OdometryParams& params) {
     dead_reckon_into(params, Pose2::Zero());
     double length_m = 0.0;
-    for (std::size_t i = 1; i < path_.size(); ++i) length_m += (path_[i].head<2>() - path_[i - 1].head<2>()).norm();
+    for (std::size_t i = 1; i < path_.size(); ++i)
+      length_m += (path_[i].head<2>() - path_[i - 1].head<2>()).norm();
     return length_m;
   }
 
@@ -68,13 +71,15 @@ class WholeLogEvaluator {
   void dead_reckon_into(const OdometryParams& params, const Pose2& start) {
     path_[0] = start;
     for (std::size_t i = 1; i < path_.size(); ++i) {
-      path_[i] = predict_pose(path_[i - 1], wheels_.increment(reference_.first_wheel_index + i), params);
+      path_[i] =
+          predict_pose(path_[i - 1], wheels_.increment(reference_.first_wheel_index + i), params);
     }
   }
 
   // Moves the whole path rigidly so that its first align_count_ positions best fit the reference.
   void align_start() {
-    for (std::size_t i = 0; i < align_count_; ++i) source_.col(static_cast<Eigen::Index>(i)) = path_[i].head<2>();
+    for (std::size_t i = 0; i < align_count_; ++i)
+      source_.col(static_cast<Eigen::Index>(i)) = path_[i].head<2>();
     const Eigen::Matrix3d T = Eigen::umeyama(source_, target_, false);
     const double rotation = std::atan2(T(1, 0), T(0, 0));
     for (Pose2& pose : path_) {
@@ -117,8 +122,13 @@ void run_iterative(const Log& log, const ReferenceTrajectory& reference,
                                  options.measurement_diagonal};
     run_odometry_ekf(log.wheels, reference, params, noise, x_hat);
     const CircumferenceFit fit =
-        fit_circumferences(log.wheels, reference, x_hat, params.track_width_m, options.ls_weights,
-                           options.ls_window_samples);
+        result.difference_identifiable
+            ? fit_circumferences(log.wheels, reference, x_hat, params.track_width_m,
+                                 options.ls_weights, options.ls_window_samples)
+            : fit_common_scale(log.wheels, reference, x_hat, params.track_width_m,
+                               options.ls_weights, options.ls_window_samples,
+                               Eigen::Vector2d(result.nominal.circumference_rl_m,
+                                               result.nominal.circumference_rr_m));
     require_identifiable_fit(fit, options);
     params.circumference_rl_m = fit.circumference_m(0);
     params.circumference_rr_m = fit.circumference_m(1);
@@ -203,6 +213,15 @@ void run_augmented(const Log& log, const ReferenceTrajectory& reference,
   result.estimate.circumference_rl_m = x(3);
   result.estimate.circumference_rr_m = x(4);
   result.covariance = sigma.bottomRightCorner<2, 2>();
+  if (!result.difference_identifiable) {  // keep only the common scale of the two estimates
+    const Eigen::Vector2d nominal(result.nominal.circumference_rl_m,
+                                  result.nominal.circumference_rr_m);
+    const Eigen::Vector2d weights = nominal.cwiseInverse() / 2.0;
+    const double scale = weights.dot(x.tail<2>());
+    result.estimate.circumference_rl_m = scale * nominal(0);
+    result.estimate.circumference_rr_m = scale * nominal(1);
+    result.covariance = weights.dot(result.covariance * weights) * nominal * nominal.transpose();
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(result.covariance);
   result.condition_number = std::sqrt(eigen.eigenvalues()(1) / eigen.eigenvalues()(0));
   result.termination = "augmented Kalman filter: final estimate after the last sample";
@@ -231,6 +250,8 @@ std::string CalibrationOptions::validate() const {
   if ((ls_weights.array() <= 0).any()) return "least-squares weights W must be positive";
   if (max_iterations < 1) return "max_iterations must be at least 1";
   if (ls_window_samples < 1) return "ls_window_samples must be at least 1";
+  if (min_heading_range_for_difference_rad < 0)
+    return "min_heading_range_for_difference_rad must not be negative";
   if (patience < 1) return "patience must be at least 1";
   if (heading_weight_m_per_rad < 0) return "heading_weight_m_per_rad must not be negative";
   if ((augmented_pose_process_diagonal.array() <= 0).any() ||
@@ -262,6 +283,24 @@ CalibrationResult calibrate(const Log& log, const CalibrationOptions& options) {
         "the vehicle barely moves: {:.1f} m of wheel odometry, at least {} m are needed",
         result.distance_m, options.min_distance_m));
   }
+  double lowest = reference.poses.pose[0].z(), highest = lowest;
+  for (const Pose2& pose : reference.poses.pose) {
+    lowest = std::min(lowest, pose.z());
+    highest = std::max(highest, pose.z());
+  }
+  result.difference_identifiable = highest - lowest >= options.min_heading_range_for_difference_rad;
+  result.identifiability =
+      result.difference_identifiable
+          ? fmt::format("c_RL and c_RR identified separately (heading range {:.0f} deg)",
+                        deg_from_rad(highest - lowest))
+          : fmt::format(
+                "the left/right difference is not identifiable: the heading only spans {:.1f} deg "
+                "(needs {:.0f} "
+                "deg of turning to tell it from a gyro or heading bias); only the common scale of "
+                "the nominal "
+                "circumferences was estimated",
+                deg_from_rad(highest - lowest),
+                deg_from_rad(options.min_heading_range_for_difference_rad));
   result.before = evaluator.evaluate(result.nominal);
   if (options.method == CalibrationMethod::kAugmented) {
     run_augmented(log, reference, options, result);

@@ -39,17 +39,20 @@ class GivensLeastSquares {
 
 }  // namespace
 
-CircumferenceFit fit_circumferences(const WheelStream& wheels, const ReferenceTrajectory& reference,
-                                    const std::vector<Pose2>& x_hat, double track_width_m,
-                                    const Eigen::Vector3d& weights, int window_samples) {
-  GivensLeastSquares ls;
+namespace {
+
+// Feeds the (windowed) rows of eq. 12 to add_row(a_rl, a_rr, z).
+template <typename AddRow>
+void for_each_row(const WheelStream& wheels, const ReferenceTrajectory& reference,
+                  const std::vector<Pose2>& x_hat, double track_width_m,
+                  const Eigen::Vector3d& weights, int window_samples, AddRow&& add_row) {
   const Eigen::Vector3d sqrt_w = weights.cwiseSqrt();
   // Sum of the window's rows: [phi_x | z_x], [phi_y | z_y], [phi_yaw | z_yaw].
   Eigen::Matrix3d window = Eigen::Matrix3d::Zero();
   int in_window = 0;
   const auto flush = [&] {
     for (int r = 0; r < 3; ++r)
-      ls.add_row(sqrt_w(r) * window(r, 0), sqrt_w(r) * window(r, 1), sqrt_w(r) * window(r, 2));
+      add_row(sqrt_w(r) * window(r, 0), sqrt_w(r) * window(r, 1), sqrt_w(r) * window(r, 2));
     window.setZero();
     in_window = 0;
   };
@@ -67,6 +70,16 @@ CircumferenceFit fit_circumferences(const WheelStream& wheels, const ReferenceTr
     if (++in_window == window_samples) flush();
   }
   if (in_window > 0) flush();
+}
+
+}  // namespace
+
+CircumferenceFit fit_circumferences(const WheelStream& wheels, const ReferenceTrajectory& reference,
+                                    const std::vector<Pose2>& x_hat, double track_width_m,
+                                    const Eigen::Vector3d& weights, int window_samples) {
+  GivensLeastSquares ls;
+  for_each_row(wheels, reference, x_hat, track_width_m, weights, window_samples,
+               [&](double a0, double a1, double b) { ls.add_row(a0, a1, b); });
   CircumferenceFit fit;
   fit.rows = ls.rows();
   const Eigen::Matrix2d R = ls.R();
@@ -84,6 +97,39 @@ CircumferenceFit fit_circumferences(const WheelStream& wheels, const ReferenceTr
   fit.residual_rms = std::sqrt(ls.residual_ss() / static_cast<double>(fit.rows));
   const Eigen::Matrix2d R_inv = R.triangularView<Eigen::Upper>().solve(Eigen::Matrix2d::Identity());
   fit.covariance = variance * R_inv * R_inv.transpose();
+  return fit;
+}
+
+CircumferenceFit fit_common_scale(const WheelStream& wheels, const ReferenceTrajectory& reference,
+                                  const std::vector<Pose2>& x_hat, double track_width_m,
+                                  const Eigen::Vector3d& weights, int window_samples,
+                                  const Eigen::Vector2d& c_ratio) {
+  // One unknown: the normal equation is a scalar division, exact to rounding.
+  double aa = 0.0, ab = 0.0, bb = 0.0;
+  std::size_t rows = 0;
+  for_each_row(wheels, reference, x_hat, track_width_m, weights, window_samples,
+               [&](double a0, double a1, double b) {
+                 const double a = a0 * c_ratio(0) + a1 * c_ratio(1);
+                 aa += a * a;
+                 ab += a * b;
+                 bb += b * b;
+                 ++rows;
+               });
+  CircumferenceFit fit;
+  fit.rows = rows;
+  if (!(aa > 0.0)) {
+    fit.circumference_m.setConstant(NAN);
+    fit.covariance.setConstant(NAN);
+    fit.condition_number = INFINITY;
+    return fit;
+  }
+  const double k = ab / aa;
+  const double residual_ss = std::max(0.0, bb - k * ab);
+  const double variance = rows > 1 ? residual_ss / static_cast<double>(rows - 1) : NAN;
+  fit.circumference_m = k * c_ratio;
+  fit.covariance = variance / aa * c_ratio * c_ratio.transpose();
+  fit.condition_number = 1.0;
+  fit.residual_rms = std::sqrt(residual_ss / static_cast<double>(rows));
   return fit;
 }
 

@@ -12,8 +12,11 @@
 namespace odocal {
 namespace {
 
-using State = Eigen::Matrix<double, 5, 1>;
-using Covariance = Eigen::Matrix<double, 5, 5>;
+// [x, y, vx, vy, yaw, accelerometer bias x, y, gyro bias]: the biases absorb a mounted (e.g.
+// tilted phone) IMU's misalignment and drift; GNSS and Doppler make them observable.
+constexpr int kStates = 8;
+using State = Eigen::Matrix<double, kStates, 1>;
+using Covariance = Eigen::Matrix<double, kStates, kStates>;
 
 enum class EventKind { kImu, kGnss, kHeading, kWheel };
 struct Event {
@@ -46,9 +49,12 @@ class ReferenceEkf {
 
   void initialise(double t_s, const Eigen::Vector2d& position, double yaw_rad, double yaw_sigma) {
     t_s_ = t_s;
-    x_ << position, 0.0, 0.0, yaw_rad;
+    x_ << position, 0.0, 0.0, yaw_rad, 0.0, 0.0, 0.0;
     P_ = Covariance::Zero();
-    P_.diagonal() << square(gnss_sigma(0)), square(gnss_sigma(0)), 100.0, 100.0, square(yaw_sigma);
+    const double acc_bias = log_.imu ? square(options_.acc_bias_sigma_mps2) : 0.0;
+    const double gyro_bias = log_.imu ? square(options_.gyro_bias_sigma_radps) : 0.0;
+    P_.diagonal() << square(gnss_sigma(0)), square(gnss_sigma(0)), 100.0, 100.0, square(yaw_sigma),
+        acc_bias, acc_bias, gyro_bias;
   }
 
   // Propagates to t_s; returns the transition Jacobian (for the smoother).
@@ -58,17 +64,25 @@ class ReferenceEkf {
     if (dt <= 0.0) return F;
     // Rotate by the midpoint heading (as eq. 1 does): the start heading would leak v w^2 dt / 2 of
     // the centripetal acceleration into the along-track direction in every turn.
-    const double yaw_mid = x_(4) + 0.5 * wz_ * dt;
+    const double ax = ax_ - x_(5), ay = ay_ - x_(6), wz = wz_ - x_(7);
+    const double yaw_mid = x_(4) + 0.5 * wz * dt;
     const double c = std::cos(yaw_mid), s = std::sin(yaw_mid);
-    const Eigen::Vector2d a_world(c * ax_ - s * ay_, s * ax_ + c * ay_);
-    const Eigen::Vector2d d_a_d_yaw(-s * ax_ - c * ay_, c * ax_ - s * ay_);
+    const Eigen::Vector2d a_world(c * ax - s * ay, s * ax + c * ay);
+    const Eigen::Vector2d d_a_d_yaw(-s * ax - c * ay, c * ax - s * ay);
+    Eigen::Matrix2d rotation;
+    rotation << c, -s, s, c;
     F(0, 2) = F(1, 3) = dt;
     F.block<2, 1>(0, 4) = 0.5 * dt * dt * d_a_d_yaw;
     F.block<2, 1>(2, 4) = dt * d_a_d_yaw;
+    if (log_.imu) {
+      F.block<2, 2>(0, 5) = -0.5 * dt * dt * rotation;
+      F.block<2, 2>(2, 5) = -dt * rotation;
+      F(4, 7) = -dt;
+    }
 
     x_.head<2>() += dt * x_.segment<2>(2) + 0.5 * dt * dt * a_world;
     x_.segment<2>(2) += dt * a_world;
-    x_(4) += dt * wz_;
+    x_(4) += dt * wz;
 
     // Acceleration noise: the held sample's own noise over dt plus a random walk.
     // Variance of the acceleration (yaw rate) held over this step: the IMU sample's own noise, or
@@ -79,12 +93,17 @@ class ReferenceEkf {
     const double yaw_rate_var =
         (log_.imu ? square(options_.yaw_rate_sigma_radps) : options_.no_imu_yaw_rate_psd / dt) +
         square(options_.yaw_random_walk_radps) * dt;
-    Eigen::Matrix<double, 5, 3> G = Eigen::Matrix<double, 5, 3>::Zero();
+    Eigen::Matrix<double, kStates, 3> G = Eigen::Matrix<double, kStates, 3>::Zero();
     G.block<2, 2>(0, 0) = 0.5 * dt * dt * Eigen::Matrix2d::Identity();
     G.block<2, 2>(2, 0) = dt * Eigen::Matrix2d::Identity();
     G(4, 2) = dt;
     const Eigen::Vector3d noise(acc_var, acc_var, yaw_rate_var);
     P_ = F * P_ * F.transpose() + G * noise.asDiagonal() * G.transpose();
+    if (log_.imu) {  // slow bias drift
+      P_(5, 5) += square(options_.acc_bias_random_walk_mps2) * dt;
+      P_(6, 6) += square(options_.acc_bias_random_walk_mps2) * dt;
+      P_(7, 7) += square(options_.gyro_bias_random_walk_radps) * dt;
+    }
     P_ = 0.5 * (P_ + P_.transpose());
     t_s_ = t_s;
     return F;
@@ -106,22 +125,38 @@ class ReferenceEkf {
         innovation.dot(S_llt.solve(innovation)) > options_.gnss_gate_chi2) {
       return false;
     }
-    Eigen::Matrix<double, 5, 2> K;  // P H^T S^-1, row by row (see odometry_ekf.cpp)
-    for (int r = 0; r < 5; ++r) K.row(r) = S_llt.solve(P_.block<2, 1>(0, r)).transpose();
+    Eigen::Matrix<double, kStates, 2> K;  // P H^T S^-1, row by row (see odometry_ekf.cpp)
+    for (int r = 0; r < kStates; ++r) K.row(r) = S_llt.solve(P_.block<2, 1>(0, r)).transpose();
     x_ += K * innovation;
     joseph_update<2>(
-        K, [](Eigen::Matrix<double, 2, 5>& H) { H.leftCols<2>().setIdentity(); },
+        K, [](Eigen::Matrix<double, 2, kStates>& H) { H.leftCols<2>().setIdentity(); },
         square(gnss_sigma(k)) * Eigen::Matrix2d::Identity());
     return true;
+  }
+
+  // Doppler speed over ground: h(x) = |v|.
+  void update_speed(double measured_mps) {
+    const double speed = x_.segment<2>(2).norm();
+    if (speed < options_.gnss_speed_min_mps || measured_mps < options_.gnss_speed_min_mps) return;
+    Eigen::Matrix<double, 1, kStates> H = Eigen::Matrix<double, 1, kStates>::Zero();
+    H(0, 2) = x_(2) / speed;
+    H(0, 3) = x_(3) / speed;
+    const double R = square(options_.gnss_speed_sigma_mps);
+    const double S = (H * P_ * H.transpose())(0, 0) + R;
+    const State K = P_ * H.transpose() / S;
+    x_ += K * (measured_mps - speed);
+    const Covariance I_KH = Covariance::Identity() - K * H;
+    P_ = I_KH * P_ * I_KH.transpose() + K * R * K.transpose();
+    P_ = 0.5 * (P_ + P_.transpose());
   }
 
   void update_yaw(double measured_rad, double sigma_rad) {
     const double innovation = angle_difference(measured_rad, x_(4));
     const double S = P_(4, 4) + square(sigma_rad);
-    const Eigen::Matrix<double, 5, 1> K = P_.col(4) / S;
+    const State K = P_.col(4) / S;
     x_ += K * innovation;
     joseph_update<1>(
-        K, [](Eigen::Matrix<double, 1, 5>& H) { H(0, 4) = 1.0; },
+        K, [](Eigen::Matrix<double, 1, kStates>& H) { H(0, 4) = 1.0; },
         Eigen::Matrix<double, 1, 1>(square(sigma_rad)));
   }
 
@@ -141,8 +176,8 @@ class ReferenceEkf {
   }
 
   template <int M, typename FillH, typename Noise>
-  void joseph_update(const Eigen::Matrix<double, 5, M>& K, FillH&& fill_h, const Noise& R) {
-    Eigen::Matrix<double, M, 5> H = Eigen::Matrix<double, M, 5>::Zero();
+  void joseph_update(const Eigen::Matrix<double, kStates, M>& K, FillH&& fill_h, const Noise& R) {
+    Eigen::Matrix<double, M, kStates> H = Eigen::Matrix<double, M, kStates>::Zero();
     fill_h(H);
     const Covariance I_KH = Covariance::Identity() - K * H;
     P_ = I_KH * P_ * I_KH.transpose() + K * R * K.transpose();
@@ -223,7 +258,7 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
   reference.heading_source = log.heading ? "heading.csv" : "GNSS course";
   const bool smooth = options.mode == ReferenceMode::kSmoother;
   // Per node of the timeline: filtered and predicted state/covariance and the transition into it.
-  std::vector<Eigen::Matrix<double, 5, 1>> filtered_x, predicted_x;
+  std::vector<State> filtered_x, predicted_x;
   std::vector<Covariance> filtered_P, predicted_P, transition;
   std::vector<std::size_t> wheel_node;
 
@@ -245,6 +280,8 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
           ++reference.gnss_used;
         } else if (ekf.update_gnss(event.index)) {
           ++reference.gnss_used;
+          if (options.use_gnss_speed && !log.gnss.speed_mps.empty())
+            ekf.update_speed(log.gnss.speed_mps[event.index]);
           if (!log.heading) ekf.update_course();
         } else {
           ++reference.gnss_rejected;
@@ -275,12 +312,12 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
   if (!smooth) return reference;
 
   // Rauch-Tung-Striebel backward pass over every node.
-  std::vector<Eigen::Matrix<double, 5, 1>> smoothed_x = filtered_x;
+  std::vector<State> smoothed_x = filtered_x;
   std::vector<Covariance> smoothed_P = filtered_P;
   for (std::size_t n = filtered_x.size() - 1; n-- > 0;) {
     const Covariance C =
         predicted_P[n + 1].ldlt().solve(transition[n + 1] * filtered_P[n]).transpose();
-    Eigen::Matrix<double, 5, 1> difference = smoothed_x[n + 1] - predicted_x[n + 1];
+    State difference = smoothed_x[n + 1] - predicted_x[n + 1];
     smoothed_x[n] = filtered_x[n] + C * difference;
     smoothed_P[n] = filtered_P[n] + C * (smoothed_P[n + 1] - predicted_P[n + 1]) * C.transpose();
   }

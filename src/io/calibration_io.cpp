@@ -77,6 +77,9 @@ CalibrationOptions parse_calibration_options(const std::string& yaml_text, const
     reference->read("course_min_speed_mps", o.reference.course_min_speed_mps, 0.0, 100.0);
     reference->read("course_sigma_rad", o.reference.course_sigma_rad, 1e-6, 10.0);
     reference->read("gnss_gate_chi2", o.reference.gnss_gate_chi2, 0.0, 1e6);
+    reference->read("use_gnss_speed", o.reference.use_gnss_speed);
+    reference->read("gnss_speed_sigma_mps", o.reference.gnss_speed_sigma_mps, 1e-6, 100.0);
+    reference->read("gnss_speed_min_mps", o.reference.gnss_speed_min_mps, 0.0, 100.0);
     reference->reject_unknown_keys();
   }
   read_diagonal(root, "measurement_diagonal", o.measurement_diagonal);
@@ -112,6 +115,8 @@ CalibrationOptions parse_calibration_options(const std::string& yaml_text, const
   root.read("min_reference_samples", min_samples, 2.0, 1e9);
   o.min_reference_samples = static_cast<std::size_t>(min_samples);
   root.read("max_condition_number", o.max_condition_number, 1.0, 1e300);
+  root.read("min_heading_range_for_difference_rad", o.min_heading_range_for_difference_rad, 0.0,
+            1e3);
   root.reject_unknown_keys();
   return o;
 }
@@ -138,7 +143,10 @@ json options_to_json(const CalibrationOptions& o) {
             {"no_imu_yaw_rate_psd", o.reference.no_imu_yaw_rate_psd},
             {"course_min_speed_mps", o.reference.course_min_speed_mps},
             {"course_sigma_rad", o.reference.course_sigma_rad},
-            {"gnss_gate_chi2", o.reference.gnss_gate_chi2}}},
+            {"gnss_gate_chi2", o.reference.gnss_gate_chi2},
+            {"use_gnss_speed", o.reference.use_gnss_speed},
+            {"gnss_speed_sigma_mps", o.reference.gnss_speed_sigma_mps},
+            {"gnss_speed_min_mps", o.reference.gnss_speed_min_mps}}},
           {"measurement_diagonal", vector_json(o.measurement_diagonal)},
           {"decay_exponent_q", o.decay_exponent_q},
           {"fixed_process_diagonal", vector_json(o.fixed_process_diagonal)},
@@ -157,7 +165,8 @@ json options_to_json(const CalibrationOptions& o) {
             {"initial_param_sigma_m", o.augmented_initial_param_sigma_m}}},
           {"min_distance_m", o.min_distance_m},
           {"min_reference_samples", o.min_reference_samples},
-          {"max_condition_number", o.max_condition_number}};
+          {"max_condition_number", o.max_condition_number},
+          {"min_heading_range_for_difference_rad", o.min_heading_range_for_difference_rad}};
 }
 
 json result_to_json(const CalibrationResult& r, const CalibrationOptions& options) {

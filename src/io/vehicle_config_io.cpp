@@ -6,101 +6,57 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <string_view>
 
 #include "odocal/error.hpp"
+#include "vehicle_config_parse.hpp"
 
 namespace odocal {
-namespace {
+namespace detail {
 
-constexpr std::array<std::string_view, 8> kKnownKeys = {
-    "track_width_m", "circumference_rl_m", "circumference_rr_m", "ticks_per_rev",
-    "counter_bits",  "wheelbase_m",        "circumference_fl_m", "circumference_fr_m"};
-
-class VehicleYaml {
- public:
-  explicit VehicleYaml(const std::filesystem::path& path) : file_(path.string()) {
-    try {
-      root_ = YAML::LoadFile(file_);
-    } catch (const YAML::BadFile&) {
-      throw InputError({file_, 0, ""}, "cannot open file");
-    } catch (const YAML::Exception& e) {
-      throw InputError({file_, static_cast<std::size_t>(e.mark.line + 1), ""},
-                       "not valid YAML: " + e.msg);
-    }
-    if (!root_.IsMap()) throw InputError({file_, 1, ""}, "expected a mapping of key: value");
-    for (const auto& entry : root_) {
-      const std::string key = entry.first.as<std::string>();
-      if (std::find(kKnownKeys.begin(), kKnownKeys.end(), key) == kKnownKeys.end()) {
-        throw InputError(location(entry.first, key),
-                         "unknown key (expected one of track_width_m, circumference_rl_m, "
-                         "circumference_rr_m, ticks_per_rev, counter_bits, wheelbase_m, "
-                         "circumference_fl_m, circumference_fr_m)");
-      }
-    }
+VehicleConfig parse_vehicle_config(YamlMap& map) {
+  VehicleConfig vehicle;
+  const auto required = [&](const std::string& key, double& value) {
+    if (!map.has(key))
+      throw InputError({map.file(), 0, map.key_path(key)}, "required key is missing");
+    map.read(key, value, 1e-9, 1e9);
+  };
+  const auto optional = [&](const std::string& key, std::optional<double>& value) {
+    if (!map.has(key)) return;
+    double read = 0.0;
+    map.read(key, read, 1e-9, 1e9);
+    value = read;
+  };
+  required("track_width_m", vehicle.track_width_m);
+  required("circumference_rl_m", vehicle.circumference_rl_m);
+  required("circumference_rr_m", vehicle.circumference_rr_m);
+  if (map.has("ticks_per_rev")) {
+    int ticks = 0;
+    map.read("ticks_per_rev", ticks, 1, 1 << 24);
+    vehicle.ticks_per_rev = ticks;
   }
-
-  double required_positive(const std::string& key) const {
-    const auto value = optional_positive(key);
-    if (!value) throw InputError({file_, 0, key}, "required key is missing");
-    return *value;
+  if (map.has("counter_bits")) {
+    int bits = 0;
+    map.read("counter_bits", bits, 2, 62);
+    vehicle.counter_bits = bits;
   }
+  optional("wheelbase_m", vehicle.wheelbase_m);
+  optional("circumference_fl_m", vehicle.circumference_fl_m);
+  optional("circumference_fr_m", vehicle.circumference_fr_m);
+  map.reject_unknown_keys();
+  return vehicle;
+}
 
-  std::optional<double> optional_positive(const std::string& key) const {
-    const YAML::Node node = root_[key];
-    if (!node) return std::nullopt;
-    double value = 0.0;
-    try {
-      value = node.as<double>();
-    } catch (const YAML::Exception&) {
-      throw InputError(location(node, key), "expected a number, got '" + scalar(node) + "'");
-    }
-    if (!std::isfinite(value) || value <= 0.0) {
-      throw InputError(location(node, key),
-                       "expected a finite positive number, got '" + scalar(node) + "'");
-    }
-    return value;
-  }
-
-  std::optional<int> optional_integer(const std::string& key, int min, int max) const {
-    const auto value = optional_positive(key);
-    if (!value) return std::nullopt;
-    if (*value != std::round(*value) || *value < min || *value > max) {
-      throw InputError(
-          location(root_[key], key),
-          "expected an integer from " + std::to_string(min) + " to " + std::to_string(max));
-    }
-    return static_cast<int>(*value);
-  }
-
-  InputLocation location(const YAML::Node& node, const std::string& key) const {
-    return {file_, static_cast<std::size_t>(node.Mark().line + 1), key};
-  }
-
- private:
-  static std::string scalar(const YAML::Node& node) {
-    return node.IsScalar() ? node.Scalar() : std::string("<not a scalar>");
-  }
-
-  std::string file_;
-  YAML::Node root_;
-};
-
-}  // namespace
+}  // namespace detail
 
 VehicleConfig read_vehicle_config(const std::filesystem::path& path) {
-  const VehicleYaml yaml(path);
-  VehicleConfig vehicle;
-  vehicle.track_width_m = yaml.required_positive("track_width_m");
-  vehicle.circumference_rl_m = yaml.required_positive("circumference_rl_m");
-  vehicle.circumference_rr_m = yaml.required_positive("circumference_rr_m");
-  const auto ticks = yaml.optional_integer("ticks_per_rev", 1, 1 << 24);
-  if (ticks) vehicle.ticks_per_rev = *ticks;
-  vehicle.counter_bits = yaml.optional_integer("counter_bits", 2, 62);
-  vehicle.wheelbase_m = yaml.optional_positive("wheelbase_m");
-  vehicle.circumference_fl_m = yaml.optional_positive("circumference_fl_m");
-  vehicle.circumference_fr_m = yaml.optional_positive("circumference_fr_m");
-  return vehicle;
+  std::ifstream stream(path);
+  if (!stream) throw InputError({path.string(), 0, ""}, "cannot open file");
+  std::ostringstream text;
+  text << stream.rdbuf();
+  detail::YamlMap map(detail::parse_yaml(text.str(), path.string()), path.string(), "");
+  return detail::parse_vehicle_config(map);
 }
 
 void write_vehicle_config(const VehicleConfig& vehicle, const std::filesystem::path& path) {

@@ -109,3 +109,39 @@ TEST(DemoCli, SimulatesCalibratesAndCompares) {
 
 }  // namespace
 }  // namespace odocal
+
+namespace odocal {
+namespace {
+
+TEST(ImportCli, ImportsAndSummarisesOrExitsTwoOnABadMap) {
+  const TempLogDir dir;
+  dir.write("wheels_raw.csv", "time_ms,l,r\n0,0,0\n1000,48,48\n2000,96,96\n3000,144,144\n");
+  dir.write("gps_raw.csv", "time_ms,e,n\n0,0,0\n1000,1,0\n2000,2,0\n3000,3,0\n");
+  dir.write("map.yaml",
+            "vehicle: {track_width_m: 1.6, circumference_rl_m: 2, circumference_rr_m: 2, "
+            "ticks_per_rev: 96}\n"
+            "streams:\n"
+            "  wheels: {file: wheels_raw.csv, time: {column: time_ms, unit: ms}, rl: {column: l, "
+            "unit: ticks},"
+            " rr: {column: r, unit: ticks}}\n"
+            "  gnss: {file: gps_raw.csv, time: {column: time_ms, unit: ms}, position: local,"
+            " x: {column: e, unit: m}, y: {column: n, unit: m}}\n");
+  const auto run =
+      run_cli("import csv --map " + dir.file("map.yaml") + " --out " + dir.file("log"));
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("wheels          4          3.0"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("distance     3.0 m"), std::string::npos) << run.out;
+  EXPECT_EQ(run_cli("deadreckon " + dir.file("log") + " --start gnss").status, 0);
+
+  dir.write(
+      "bad.yaml",
+      "vehicle: {track_width_m: 1.6, circumference_rl_m: 2, circumference_rr_m: 2}\nstreams: {}\n");
+  const auto bad =
+      run_cli("import csv --map " + dir.file("bad.yaml") + " --out " + dir.file("log2"));
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("'streams.wheels': required stream is missing"), std::string::npos)
+      << bad.err;
+}
+
+}  // namespace
+}  // namespace odocal

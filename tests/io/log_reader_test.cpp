@@ -2,7 +2,6 @@
 // naming file, line and column. Each case starts from a valid tiny log and breaks one thing.
 
 #include "odocal/io/log_reader.hpp"
-#include "odocal/io/vehicle_config_io.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +10,7 @@
 
 #include "../support/temp_log_dir.hpp"
 #include "odocal/error.hpp"
+#include "odocal/io/vehicle_config_io.hpp"
 
 namespace odocal {
 namespace {
@@ -227,7 +227,7 @@ TEST(LogReaderRejects, NegativeTicksPerRev) {
   dir.write("vehicle.yaml",
             "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\n"
             "ticks_per_rev: -96\n");
-  expect_input_error(dir, {"vehicle.yaml", 4, "ticks_per_rev", "positive"});
+  expect_input_error(dir, {"vehicle.yaml", 4, "ticks_per_rev", "-96 is out of range"});
 }
 
 TEST(LogReaderRejects, NonNumericVehicleValue) {

@@ -44,6 +44,10 @@ struct CalibrationOptions {
   double min_distance_m = 100.0;
   std::size_t min_reference_samples = 100;
   double max_condition_number = 1e6;
+  // Below this range of the reference heading (max - min), a left/right circumference difference
+  // cannot be told from a gyro or heading bias: only a common scale of the nominal
+  // circumferences is estimated, and the result says so.
+  double min_heading_range_for_difference_rad = 0.785;  // 45 deg
 
   // Empty when valid, else what is wrong.
   std::string validate() const;
@@ -79,7 +83,9 @@ struct CalibrationResult {
   std::size_t reference_samples{};
   std::string reference_heading_source;
   double distance_m{};
-  std::string termination;  // why it stopped, in words
+  std::string termination;              // why it stopped, in words
+  bool difference_identifiable = true;  // false: c_RL / c_RR kept at the nominal ratio
+  std::string identifiability;          // in words, for the user
 };
 
 // Throws InsufficientDataError when the log cannot identify the circumferences, and Error for

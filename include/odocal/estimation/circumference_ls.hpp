@@ -22,8 +22,8 @@ namespace odocal {
 struct CircumferenceFit {
   Eigen::Vector2d circumference_m = Eigen::Vector2d::Zero();  // [c_RL, c_RR]
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();  // residual variance times (Phi^T W Phi)^-1
-  double condition_number{};        // of sqrt(W) Phi
-  double residual_rms{};            // weighted
+  double condition_number{};                             // of sqrt(W) Phi
+  double residual_rms{};                                 // weighted
   std::size_t rows{};
 };
 
@@ -31,5 +31,12 @@ struct CircumferenceFit {
 CircumferenceFit fit_circumferences(const WheelStream& wheels, const ReferenceTrajectory& reference,
                                     const std::vector<Pose2>& x_hat, double track_width_m,
                                     const Eigen::Vector3d& weights, int window_samples = 1);
+
+// The same rows with one unknown, a common scale k of the given circumferences: c = k c_ratio.
+// For logs that cannot separate the left and right wheels.
+CircumferenceFit fit_common_scale(const WheelStream& wheels, const ReferenceTrajectory& reference,
+                                  const std::vector<Pose2>& x_hat, double track_width_m,
+                                  const Eigen::Vector3d& weights, int window_samples,
+                                  const Eigen::Vector2d& c_ratio);
 
 }  // namespace odocal

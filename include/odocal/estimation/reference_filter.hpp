@@ -3,10 +3,13 @@
 // al. 2006) that turns GNSS positions, body accelerations, yaw rate and absolute heading into a
 // reference pose on the wheel time base. No wheel data enters this layer.
 //
-// State [x, y, vx, vy, yaw]. Prediction integrates the body acceleration rotated into the world
-// frame and the yaw rate (zero-order hold of the latest IMU sample); GNSS updates x, y; heading
-// updates yaw (wrapped innovation). Without imu.csv the prediction is constant velocity with
-// acceleration noise. Without heading.csv yaw is corrected by the GNSS course when moving.
+// State [x, y, vx, vy, yaw, accelerometer biases x and y, gyro bias]. Prediction integrates the
+// body acceleration rotated into the world frame and the yaw rate (zero-order hold of the latest
+// IMU sample); GNSS updates x, y; heading updates yaw (wrapped innovation). Without imu.csv the
+// prediction is constant velocity with acceleration noise. Without heading.csv yaw is corrected by
+// the GNSS course when moving. GNSS Doppler speed (speed_mps), when the file has it, updates the
+// speed |v|: it fixes the along-track scale of the reference far better than position differences
+// of noisy fixes.
 
 #include <string>
 #include <vector>
@@ -32,7 +35,14 @@ struct ReferenceOptions {
   double no_imu_yaw_rate_psd = 0.25;
   double course_min_speed_mps = 3.0;  // GNSS-course pseudo-heading only above this speed
   double course_sigma_rad = 0.1;
-  double gnss_gate_chi2 = 0.0;  // > 0: reject GNSS fixes whose NIS exceeds this (2 dof)
+  double gnss_gate_chi2 = 0.0;              // > 0: reject GNSS fixes whose NIS exceeds this (2 dof)
+  double acc_bias_sigma_mps2 = 0.5;         // initial accelerometer bias (x, y) 1-sigma
+  double gyro_bias_sigma_radps = 0.01;      // initial gyro bias 1-sigma
+  double acc_bias_random_walk_mps2 = 0.01;  // per sqrt(s)
+  double gyro_bias_random_walk_radps = 1e-4;  // per sqrt(s)
+  bool use_gnss_speed = true;  // gnss.csv speed_mps (Doppler) updates |v| when present
+  double gnss_speed_sigma_mps = 0.1;
+  double gnss_speed_min_mps = 1.0;  // below this the speed direction is undefined
 };
 
 // The reference on the wheel time base: pose[i] belongs to wheels.t_s[first_wheel_index + i].

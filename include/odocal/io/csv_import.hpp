@@ -1,0 +1,31 @@
+#pragma once
+// Importing any CSV logger through a YAML column map (docs/importing.md): which file and column
+// holds each value, in which unit, time unit and offset, IMU frame, heading convention, and
+// position kind. Writes a log directory in odocal's format and validates it by reading it back.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace odocal {
+
+struct ImportedStreamSummary {
+  std::string name;  // wheels, gnss, imu, heading, truth
+  std::size_t rows{};
+  double duration_s{};
+  double median_rate_hz{};
+  double largest_gap_s{};
+};
+
+struct ImportSummary {
+  std::vector<ImportedStreamSummary> streams;
+  double wheel_distance_m{};  // rear wheels with the nominal circumferences
+};
+
+// `source_dir` holds the logger's files (relative paths in the map are resolved against it).
+// Throws InputError naming the map key, or the file, line and column, for every problem.
+ImportSummary import_csv(const std::filesystem::path& map_file,
+                         const std::filesystem::path& source_dir,
+                         const std::filesystem::path& out_dir);
+
+}  // namespace odocal
