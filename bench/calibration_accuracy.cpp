@@ -16,39 +16,12 @@
 
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/io/scenario_io.hpp"
+#include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
 
 using namespace odocal;
 
 namespace {
-
-Log log_from(const sim::SimulatedDrive& drive) {
-  Log log;
-  log.vehicle = drive.nominal_vehicle;
-  log.wheels.t_s = drive.wheel_t_s;
-  log.wheels.rev_rl.assign(drive.wheel_t_s.size(), 0.0);
-  log.wheels.rev_rr.assign(drive.wheel_t_s.size(), 0.0);
-  const bool ticks = drive.wheel_unit == WheelUnit::kTicks;
-  const double per_rev = ticks ? *drive.nominal_vehicle.ticks_per_rev : 2 * M_PI;
-  const double modulus = ticks && drive.nominal_vehicle.counter_bits
-                             ? std::ldexp(1.0, *drive.nominal_vehicle.counter_bits)
-                             : 0;
-  const auto delta = [&](const std::vector<double>& v, std::size_t k) {
-    double d = v[k] - v[k - 1];
-    if (modulus > 0) d -= modulus * std::round(d / modulus);
-    return d / per_rev;
-  };
-  for (std::size_t k = 1; k < drive.wheel_t_s.size(); ++k) {
-    log.wheels.rev_rl[k] = delta(drive.wheel_rl, k);
-    log.wheels.rev_rr[k] = delta(drive.wheel_rr, k);
-  }
-  log.gnss.t_s = drive.gnss_t_s;
-  log.gnss.x_m = drive.gnss_a;
-  log.gnss.y_m = drive.gnss_b;
-  log.imu = drive.imu;
-  log.heading = drive.heading;
-  return log;
-}
 
 struct Stats {
   std::vector<double> abs_error_mm;  // both wheels, every seed
@@ -113,7 +86,7 @@ int main(int argc, char** argv) {
   for (int seed = 1; seed <= seeds; ++seed) {
     scenario.seeds.noise = static_cast<std::uint64_t>(seed);
     const sim::SimulatedDrive drive = sim::simulate(scenario);
-    const Log log = log_from(drive);
+    const Log log = simulated_log(drive);
     for (int m = 0; m < 3; ++m) {
       options.method = methods[m];
       const auto begin = std::chrono::steady_clock::now();

@@ -9,6 +9,7 @@
 #include "odocal/estimation/odometry_ekf.hpp"
 #include "odocal/estimation/reference_filter.hpp"
 #include "odocal/io/scenario_io.hpp"
+#include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
 
 namespace {
@@ -21,23 +22,7 @@ const Log& three_lap_log() {
     scenario.ideal = true;
     scenario.vehicle.wear_rl_mm = 1.5;
     scenario.vehicle.wear_rr_mm = 1.0;
-    scenario.wheels.output = WheelUnit::kRadians;
-    const sim::SimulatedDrive drive = sim::simulate(scenario);
-    Log out;
-    out.vehicle = drive.nominal_vehicle;
-    out.wheels.t_s = drive.wheel_t_s;
-    out.wheels.rev_rl.assign(drive.wheel_t_s.size(), 0.0);
-    out.wheels.rev_rr.assign(drive.wheel_t_s.size(), 0.0);
-    for (std::size_t k = 1; k < drive.wheel_t_s.size(); ++k) {
-      out.wheels.rev_rl[k] = (drive.wheel_rl[k] - drive.wheel_rl[k - 1]) / (2 * M_PI);
-      out.wheels.rev_rr[k] = (drive.wheel_rr[k] - drive.wheel_rr[k - 1]) / (2 * M_PI);
-    }
-    out.gnss.t_s = drive.gnss_t_s;
-    out.gnss.x_m = drive.gnss_a;
-    out.gnss.y_m = drive.gnss_b;
-    out.imu = drive.imu;
-    out.heading = drive.heading;
-    return out;
+    return simulated_log(sim::simulate(scenario));
   }();
   return log;
 }

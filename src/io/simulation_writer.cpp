@@ -5,9 +5,12 @@
 #include <fstream>
 
 #include "odocal/error.hpp"
+#include "odocal/io/csv_table.hpp"
 #include "odocal/io/scenario_io.hpp"
+#include "odocal/io/stream_readers.hpp"
 #include "odocal/io/trajectory_writer.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
+#include "text_file_writer.hpp"
 
 namespace odocal {
 namespace {
@@ -26,17 +29,6 @@ const char* wheel_suffix(WheelUnit unit) {
   return "ticks";
 }
 
-template <typename WriteRows>
-void write_file(const std::filesystem::path& path, WriteRows&& write_rows) {
-  try {
-    auto out = fmt::output_file(path.string());
-    write_rows(out);
-    out.close();
-  } catch (const std::system_error& e) {
-    throw Error("cannot write " + path.string() + ": " + e.code().message());
-  }
-}
-
 }  // namespace
 
 void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& scenario,
@@ -46,7 +38,7 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
   if (error) throw Error("cannot create " + directory.string() + ": " + error.message());
 
   write_vehicle_config(drive.nominal_vehicle, directory / "vehicle.yaml");
-  write_file(directory / "wheels.csv", [&](fmt::ostream& out) {
+  detail::write_text_file(directory / "wheels.csv", [&](fmt::ostream& out) {
     const char* unit = wheel_suffix(drive.wheel_unit);
     out.print("t,rl_{0},rr_{0}\n", unit);
     const bool ticks = drive.wheel_unit == WheelUnit::kTicks;
@@ -60,7 +52,7 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
       }
     }
   });
-  write_file(directory / "gnss.csv", [&](fmt::ostream& out) {
+  detail::write_text_file(directory / "gnss.csv", [&](fmt::ostream& out) {
     // sigma_m must be positive in the log format: error-free fixes leave the column out.
     const bool has_sigma = drive.gnss_sigma_m > 0.0;
     out.print("{}{}\n", drive.gnss_latlon ? "t,lat,lon" : "t,x,y", has_sigma ? ",sigma_m" : "");
@@ -75,21 +67,21 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
       }
     }
   });
-  write_file(directory / "imu.csv", [&](fmt::ostream& out) {
+  detail::write_text_file(directory / "imu.csv", [&](fmt::ostream& out) {
     out.print("t,ax,ay,wz\n");
     for (std::size_t k = 0; k < drive.imu.size(); ++k) {
       out.print("{:.4f},{:.6f},{:.6f},{:.7f}\n", drive.imu.t_s[k], drive.imu.ax_mps2[k],
                 drive.imu.ay_mps2[k], drive.imu.wz_radps[k]);
     }
   });
-  write_file(directory / "heading.csv", [&](fmt::ostream& out) {
+  detail::write_text_file(directory / "heading.csv", [&](fmt::ostream& out) {
     out.print("t,heading\n");
     for (std::size_t k = 0; k < drive.heading.size(); ++k) {
       out.print("{:.4f},{:.7f}\n", drive.heading.t_s[k], drive.heading.heading_rad[k]);
     }
   });
   write_trajectory_csv(drive.truth, directory / "truth.csv");
-  write_file(directory / "truth.yaml", [&](fmt::ostream& out) {
+  detail::write_text_file(directory / "truth.yaml", [&](fmt::ostream& out) {
     out.print("# The simulator's true parameters; estimators never read this file.\n");
     out.print("circumference_rl_m: {:.9f}\ncircumference_rr_m: {:.9f}\ntrack_width_m: {:.9f}\n",
               drive.true_params.circumference_rl_m, drive.true_params.circumference_rr_m,
@@ -100,6 +92,34 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
               scenario.seeds.noise);
   });
   std::ofstream(directory / "scenario.yaml") << scenario_to_yaml(scenario);
+}
+
+Log simulated_log(const sim::SimulatedDrive& drive, bool with_truth) {
+  const auto table = [](const char* file, std::vector<std::string> header,
+                        std::vector<std::vector<double>> columns) {
+    CsvTable out;
+    out.file = file;
+    out.header = std::move(header);
+    out.columns = std::move(columns);
+    out.line_of_row.resize(out.columns.front().size());
+    for (std::size_t k = 0; k < out.line_of_row.size(); ++k) out.line_of_row[k] = k + 2;
+    return out;
+  };
+  Log log;
+  log.source = "simulation";
+  log.vehicle = drive.nominal_vehicle;
+  const std::string unit = wheel_suffix(drive.wheel_unit);
+  log.wheels = wheel_stream_from_table(table("wheels.csv", {"t", "rl_" + unit, "rr_" + unit},
+                                             {drive.wheel_t_s, drive.wheel_rl, drive.wheel_rr}),
+                                       log.vehicle);
+  log.gnss = gnss_stream_from_table(
+      table("gnss.csv", {"t", drive.gnss_latlon ? "lat" : "x", drive.gnss_latlon ? "lon" : "y"},
+            {drive.gnss_t_s, drive.gnss_a, drive.gnss_b}));
+  if (drive.gnss_sigma_m > 0.0) log.gnss.sigma_m.assign(log.gnss.size(), drive.gnss_sigma_m);
+  log.imu = drive.imu;
+  log.heading = drive.heading;
+  if (with_truth) log.truth = drive.truth;
+  return log;
 }
 
 }  // namespace odocal

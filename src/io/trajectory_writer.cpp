@@ -6,26 +6,11 @@
 
 #include "odocal/error.hpp"
 #include "odocal/model/angle.hpp"
+#include "text_file_writer.hpp"
 
 namespace odocal {
-namespace {
-
-// fmt::output_file throws std::system_error; report it as odocal::Error naming the file.
-template <typename WriteRows>
-void write_text_file(const std::filesystem::path& path, WriteRows&& write_rows) {
-  try {
-    auto out = fmt::output_file(path.string());
-    write_rows(out);
-    out.close();
-  } catch (const std::system_error& e) {
-    throw Error("cannot write " + path.string() + ": " + e.code().message());
-  }
-}
-
-}  // namespace
-
 void write_trajectory_csv(const PoseStream& trajectory, const std::filesystem::path& path) {
-  write_text_file(path, [&](fmt::ostream& out) {
+  detail::write_text_file(path, [&](fmt::ostream& out) {
     out.print("t,x,y,heading\n");
     for (std::size_t k = 0; k < trajectory.size(); ++k) {
       const Pose2& pose = trajectory.pose[k];
@@ -36,7 +21,7 @@ void write_trajectory_csv(const PoseStream& trajectory, const std::filesystem::p
 }
 
 void write_trajectory_tum(const PoseStream& trajectory, const std::filesystem::path& path) {
-  write_text_file(path, [&](fmt::ostream& out) {
+  detail::write_text_file(path, [&](fmt::ostream& out) {
     for (std::size_t k = 0; k < trajectory.size(); ++k) {
       const Pose2& pose = trajectory.pose[k];
       const double half_yaw = 0.5 * wrap_angle(pose.z());

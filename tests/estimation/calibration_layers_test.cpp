@@ -14,6 +14,7 @@
 #include "odocal/estimation/reference_filter.hpp"
 #include "odocal/estimation/trajectory_errors.hpp"
 #include "odocal/io/scenario_io.hpp"
+#include "odocal/io/simulation_writer.hpp"
 #include "odocal/model/angle.hpp"
 #include "odocal/sim/simulator.hpp"
 
@@ -124,19 +125,7 @@ Log circuit_log() {
   sim::Scenario scenario = load_scenario("circuit");
   scenario.ideal = true;
   scenario.route.laps = 1;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
-  Log log;
-  log.vehicle = drive.nominal_vehicle;
-  log.wheels.t_s = drive.wheel_t_s;
-  log.gnss.t_s = drive.gnss_t_s;
-  log.gnss.x_m = drive.gnss_a;
-  log.gnss.y_m = drive.gnss_b;
-  log.imu = drive.imu;
-  log.heading = drive.heading;
-  log.truth = drive.truth;
-  log.wheels.rev_rl.assign(drive.wheel_t_s.size(), 0.0);  // the reference never reads wheels
-  log.wheels.rev_rr = log.wheels.rev_rl;
-  return log;
+  return simulated_log(sim::simulate(scenario), /*with_truth=*/true);
 }
 
 TEST(ReferenceFilter, FusesToWellBelowTheGnssNoiseAndIsConsistent) {

@@ -8,6 +8,7 @@
 
 #include "odocal/error.hpp"
 #include "odocal/io/scenario_io.hpp"
+#include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
 
 namespace odocal {
@@ -20,26 +21,9 @@ struct Simulated {
 
 Simulated simulated_log(sim::Scenario scenario) {
   scenario.ideal = true;
-  scenario.wheels.output = WheelUnit::kRadians;
+  scenario.wheels.output = WheelUnit::kRadians;  // exact wheel angles
   const sim::SimulatedDrive drive = sim::simulate(scenario);
-  Simulated out;
-  out.truth = drive.true_params;
-  Log& log = out.log;
-  log.vehicle = drive.nominal_vehicle;
-  log.wheels.t_s = drive.wheel_t_s;
-  log.wheels.rev_rl.assign(drive.wheel_t_s.size(), 0.0);
-  log.wheels.rev_rr.assign(drive.wheel_t_s.size(), 0.0);
-  // Exact wheel angles (rad output) become increments directly.
-  for (std::size_t k = 1; k < drive.wheel_t_s.size(); ++k) {
-    log.wheels.rev_rl[k] = (drive.wheel_rl[k] - drive.wheel_rl[k - 1]) / (2 * M_PI);
-    log.wheels.rev_rr[k] = (drive.wheel_rr[k] - drive.wheel_rr[k - 1]) / (2 * M_PI);
-  }
-  log.gnss.t_s = drive.gnss_t_s;
-  log.gnss.x_m = drive.gnss_a;
-  log.gnss.y_m = drive.gnss_b;
-  log.imu = drive.imu;
-  log.heading = drive.heading;
-  return out;
+  return {odocal::simulated_log(drive), drive.true_params};
 }
 
 sim::Scenario worn_circuit(int laps) {

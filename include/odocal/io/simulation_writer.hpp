@@ -4,11 +4,17 @@
 
 #include <filesystem>
 
+#include "odocal/data/log.hpp"
 #include "odocal/sim/simulator.hpp"
 
 namespace odocal {
 
 void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& scenario,
                          const std::filesystem::path& directory);
+
+// The log read_log would return for the written directory (up to CSV rounding), without the
+// disk: the raw columns go through the reader's own stream conversions. Truth is left out
+// unless asked for.
+Log simulated_log(const sim::SimulatedDrive& drive, bool with_truth = false);
 
 }  // namespace odocal
