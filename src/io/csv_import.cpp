@@ -47,7 +47,9 @@ class TableCache {
 // One mapped stream: the main file's time base and value columns resampled onto it.
 class StreamReader {
  public:
-  StreamReader(YamlMap map, TableCache& cache) : map_(std::move(map)), cache_(cache) {
+  // `node` is the stream's raw YAML (the map's view of it tracks which keys were read).
+  StreamReader(YamlMap map, YAML::Node node, TableCache& cache)
+      : node_(std::move(node)), map_(std::move(map)), cache_(cache) {
     map_.read("file", file_);
     if (file_.empty())
       throw InputError(map_.location(), "'file' is required: the CSV that holds this stream");
@@ -79,6 +81,7 @@ class StreamReader {
   }
 
   bool has(const std::string& key) const { return map_.has(key); }
+  bool is_text(const std::string& key) const { return node_[key].IsScalar(); }
   YamlMap& map() { return map_; }
   const std::vector<double>& t_s() const { return t_s_; }
 
@@ -116,7 +119,10 @@ class StreamReader {
     if (file == file_) return {std::move(out), unit->quantity};
     // Another file of the same sensor: interpolate onto this stream's time base via its own
     // time column, which must have the same name and unit (the stream's `time` applies).
-    StreamReader other_time(time_map_for(file), cache_);
+    YAML::Node other;
+    other["file"] = file;
+    other["time"] = node_["time"];
+    StreamReader other_time(YamlMap(other, map_.file(), map_.key_path("time")), other, cache_);
     std::vector<double> resampled(t_s_.size(), NAN);
     for (std::size_t k = 0; k < t_s_.size(); ++k) {
       if (const auto v = interpolate_linear(other_time.t_s(), out, t_s_[k])) resampled[k] = *v;
@@ -127,17 +133,7 @@ class StreamReader {
   void done() { map_.reject_unknown_keys(); }
 
  private:
-  YamlMap time_map_for(const std::string& file) {
-    YAML::Node node;
-    node["file"] = file;
-    node["time"] = map_node_["time"];
-    return YamlMap(node, map_.file(), map_.key_path("time"));
-  }
-
- public:
-  YAML::Node map_node_;
-
- private:
+  YAML::Node node_;
   YamlMap map_;
   TableCache& cache_;
   std::string file_;
@@ -185,9 +181,7 @@ std::optional<StreamReader> stream(YamlMap& streams, const std::string& name, Ta
                                    const YAML::Node& root) {
   auto map = streams.map(name);
   if (!map) return std::nullopt;
-  StreamReader reader(std::move(*map), cache);
-  reader.map_node_ = root["streams"][name];
-  return reader;
+  return StreamReader(std::move(*map), root["streams"][name], cache);
 }
 
 }  // namespace
@@ -356,7 +350,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     }
     std::vector<double> yaw(x.size(), NAN);
     const std::string heading_source = !truth->has("heading") ? "course"
-                                       : truth->map_node_["heading"].IsScalar()
+                                       : truth->is_text("heading")
                                            ? truth->text("heading", "course")
                                            : "column";
     if (heading_source == "course") {
