@@ -42,13 +42,7 @@ void run_simulate(const SimulateArgs& args) {
   if (args.trajectory_seed) scenario.seeds.trajectory = *args.trajectory_seed;
   if (args.gnss_sigma_m) scenario.gnss.sigma_m = *args.gnss_sigma_m;
   if (args.gnss_output) scenario.gnss.output_latlon = *args.gnss_output == "latlon";
-  if (args.wheel_output) {
-    const std::string& unit = *args.wheel_output;
-    scenario.wheels.output = unit == "ticks"   ? WheelUnit::kTicks
-                             : unit == "rad"   ? WheelUnit::kRadians
-                             : unit == "radps" ? WheelUnit::kRadiansPerSecond
-                                               : WheelUnit::kMetresPerSecond;
-  }
+  if (args.wheel_output) scenario.wheels.output = *parse_wheel_unit_name(*args.wheel_output);
 
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   write_simulated_log(drive, scenario, args.out_dir);

@@ -13,6 +13,7 @@
 #include "odocal/estimation/circumference_ls.hpp"
 #include "odocal/estimation/odometry_ekf.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/model/path_length.hpp"
 
 namespace odocal {
 namespace {
@@ -61,10 +62,7 @@ class WholeLogEvaluator {
 
   double distance_m(const OdometryParams& params) {
     dead_reckon_into(params, Pose2::Zero());
-    double length_m = 0.0;
-    for (std::size_t i = 1; i < path_.size(); ++i)
-      length_m += (path_[i].head<2>() - path_[i - 1].head<2>()).norm();
-    return length_m;
+    return path_length_m(path_);
   }
 
  private:
@@ -199,8 +197,7 @@ void run_augmented(const Log& log, const ReferenceTrajectory& reference,
     innovation.z() = angle_difference(reference.poses.pose[i].z(), predicted.z());
     const Eigen::Matrix3d S = sigma.topLeftCorner<3, 3>() + M;
     const Eigen::LLT<Eigen::Matrix3d> S_llt(S);
-    Eigen::Matrix<double, 5, 3> K;  // sigma H^T S^-1, row by row (see odometry_ekf.cpp)
-    for (int r = 0; r < 5; ++r) K.row(r) = S_llt.solve(sigma.block<3, 1>(0, r)).transpose();
+    const Eigen::Matrix<double, 5, 3> K = S_llt.solve(sigma.topRows<3>()).transpose();
     x += K * innovation;
     Matrix5 I_KH = Matrix5::Identity();
     I_KH.leftCols<3>() -= K;

@@ -84,7 +84,6 @@ class ReferenceEkf {
     x_.segment<2>(2) += dt * a_world;
     x_(4) += dt * wz;
 
-    // Acceleration noise: the held sample's own noise over dt plus a random walk.
     // Variance of the acceleration (yaw rate) held over this step: the IMU sample's own noise, or
     // without an IMU the spectral density over dt; plus the random walk for unmodelled effects.
     const double acc_var =
@@ -125,12 +124,11 @@ class ReferenceEkf {
         innovation.dot(S_llt.solve(innovation)) > options_.gnss_gate_chi2) {
       return false;
     }
-    Eigen::Matrix<double, kStates, 2> K;  // P H^T S^-1, row by row (see odometry_ekf.cpp)
-    for (int r = 0; r < kStates; ++r) K.row(r) = S_llt.solve(P_.block<2, 1>(0, r)).transpose();
+    const Eigen::Matrix<double, kStates, 2> K = S_llt.solve(P_.topRows<2>()).transpose();
     x_ += K * innovation;
-    joseph_update<2>(
-        K, [](Eigen::Matrix<double, 2, kStates>& H) { H.leftCols<2>().setIdentity(); },
-        square(gnss_sigma(k)) * Eigen::Matrix2d::Identity());
+    Eigen::Matrix<double, 2, kStates> H = Eigen::Matrix<double, 2, kStates>::Zero();
+    H.leftCols<2>().setIdentity();
+    joseph_update(K, H, Eigen::Matrix2d(square(gnss_sigma(k)) * Eigen::Matrix2d::Identity()));
     return true;
   }
 
@@ -145,9 +143,7 @@ class ReferenceEkf {
     const double S = (H * P_ * H.transpose())(0, 0) + R;
     const State K = P_ * H.transpose() / S;
     x_ += K * (measured_mps - speed);
-    const Covariance I_KH = Covariance::Identity() - K * H;
-    P_ = I_KH * P_ * I_KH.transpose() + K * R * K.transpose();
-    P_ = 0.5 * (P_ + P_.transpose());
+    joseph_update(K, H, Eigen::Matrix<double, 1, 1>(R));
   }
 
   void update_yaw(double measured_rad, double sigma_rad) {
@@ -155,9 +151,9 @@ class ReferenceEkf {
     const double S = P_(4, 4) + square(sigma_rad);
     const State K = P_.col(4) / S;
     x_ += K * innovation;
-    joseph_update<1>(
-        K, [](Eigen::Matrix<double, 1, kStates>& H) { H(0, 4) = 1.0; },
-        Eigen::Matrix<double, 1, 1>(square(sigma_rad)));
+    Eigen::Matrix<double, 1, kStates> H = Eigen::Matrix<double, 1, kStates>::Zero();
+    H(0, 4) = 1.0;
+    joseph_update(K, H, Eigen::Matrix<double, 1, 1>(square(sigma_rad)));
   }
 
   void update_course() {
@@ -175,10 +171,10 @@ class ReferenceEkf {
     return log_.gnss.sigma_m.empty() ? options_.gnss_sigma_m : log_.gnss.sigma_m[k];
   }
 
-  template <int M, typename FillH, typename Noise>
-  void joseph_update(const Eigen::Matrix<double, kStates, M>& K, FillH&& fill_h, const Noise& R) {
-    Eigen::Matrix<double, M, kStates> H = Eigen::Matrix<double, M, kStates>::Zero();
-    fill_h(H);
+  template <int M>
+  void joseph_update(const Eigen::Matrix<double, kStates, M>& K,
+                     const Eigen::Matrix<double, M, kStates>& H,
+                     const Eigen::Matrix<double, M, M>& R) {
     const Covariance I_KH = Covariance::Identity() - K * H;
     P_ = I_KH * P_ * I_KH.transpose() + K * R * K.transpose();
     P_ = 0.5 * (P_ + P_.transpose());

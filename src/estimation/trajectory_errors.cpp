@@ -6,6 +6,7 @@
 #include "odocal/error.hpp"
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/model/path_length.hpp"
 
 namespace odocal {
 
@@ -38,14 +39,6 @@ ReferencePath reference_from_gnss(const GnssStream& gnss, const HeadingStream* h
   return reference;
 }
 
-double path_length_m(const PoseStream& trajectory) {
-  double length_m = 0.0;
-  for (std::size_t k = 1; k < trajectory.size(); ++k) {
-    length_m += (trajectory.pose[k].head<2>() - trajectory.pose[k - 1].head<2>()).norm();
-  }
-  return length_m;
-}
-
 TrajectoryErrors trajectory_errors(const PoseStream& trajectory, const ReferencePath& reference) {
   TrajectoryErrors errors;
   double position_sum_m = 0.0;
@@ -76,7 +69,7 @@ TrajectoryErrors trajectory_errors(const PoseStream& trajectory, const Reference
     errors.mean_heading_rad = heading_sum_rad / static_cast<double>(errors.heading_samples);
   }
 
-  errors.distance_m = path_length_m(trajectory);
+  errors.distance_m = path_length_m(trajectory.pose);
   errors.final_drift_percent =
       errors.distance_m > 0.0 ? 100.0 * errors.final_position_m / errors.distance_m : 0.0;
   return errors;

@@ -82,10 +82,7 @@ WheelUnit parse_wheel_unit(YamlMap& map, const std::string& key, WheelUnit fallb
   std::string text;
   map.read(key, text);
   if (text.empty()) return fallback;
-  if (text == "ticks") return WheelUnit::kTicks;
-  if (text == "rad") return WheelUnit::kRadians;
-  if (text == "radps") return WheelUnit::kRadiansPerSecond;
-  if (text == "mps") return WheelUnit::kMetresPerSecond;
+  if (const auto unit = parse_wheel_unit_name(text)) return *unit;
   throw InputError(map.location(key), "expected one of ticks, rad, radps, mps");
 }
 
@@ -361,10 +358,9 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("sigma_rad", s.heading.sigma_rad);
   key("bias_rad", s.heading.bias_rad);
   out << YAML::EndMap;
-  static constexpr const char* kUnits[] = {"ticks", "rad", "radps", "mps"};
   out << YAML::Key << "wheels" << YAML::Value << YAML::BeginMap;
   key("rate_hz", s.wheels.rate_hz);
-  key("output", kUnits[static_cast<int>(s.wheels.output)]);
+  key("output", wheel_unit_name(s.wheels.output));
   key("ticks_per_rev", s.wheels.ticks_per_rev);
   key("counter_bits", s.wheels.counter_bits);
   out << YAML::EndMap << YAML::EndMap;

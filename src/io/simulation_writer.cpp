@@ -13,23 +13,7 @@
 #include "text_file_writer.hpp"
 
 namespace odocal {
-namespace {
-
-const char* wheel_suffix(WheelUnit unit) {
-  switch (unit) {
-    case WheelUnit::kTicks:
-      return "ticks";
-    case WheelUnit::kRadians:
-      return "rad";
-    case WheelUnit::kRadiansPerSecond:
-      return "radps";
-    case WheelUnit::kMetresPerSecond:
-      return "mps";
-  }
-  return "ticks";
-}
-
-}  // namespace
+namespace {}  // namespace
 
 void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& scenario,
                          const std::filesystem::path& directory) {
@@ -39,7 +23,7 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
 
   write_vehicle_config(drive.nominal_vehicle, directory / "vehicle.yaml");
   detail::write_text_file(directory / "wheels.csv", [&](fmt::ostream& out) {
-    const char* unit = wheel_suffix(drive.wheel_unit);
+    const char* unit = wheel_unit_name(drive.wheel_unit);
     out.print("t,rl_{0},rr_{0}\n", unit);
     const bool ticks = drive.wheel_unit == WheelUnit::kTicks;
     for (std::size_t k = 0; k < drive.wheel_t_s.size(); ++k) {
@@ -108,7 +92,7 @@ Log simulated_log(const sim::SimulatedDrive& drive, bool with_truth) {
   Log log;
   log.source = "simulation";
   log.vehicle = drive.nominal_vehicle;
-  const std::string unit = wheel_suffix(drive.wheel_unit);
+  const std::string unit = wheel_unit_name(drive.wheel_unit);
   log.wheels = wheel_stream_from_table(table("wheels.csv", {"t", "rl_" + unit, "rr_" + unit},
                                              {drive.wheel_t_s, drive.wheel_rl, drive.wheel_rr}),
                                        log.vehicle);

@@ -11,15 +11,6 @@
 namespace odocal {
 namespace {
 
-struct UnitColumn {
-  std::string_view suffix;
-  WheelUnit unit;
-};
-constexpr std::array<UnitColumn, 4> kUnitColumns = {{{"ticks", WheelUnit::kTicks},
-                                                     {"rad", WheelUnit::kRadians},
-                                                     {"radps", WheelUnit::kRadiansPerSecond},
-                                                     {"mps", WheelUnit::kMetresPerSecond}}};
-
 struct WheelColumn {
   std::string name;
   WheelUnit unit;
@@ -28,15 +19,15 @@ struct WheelColumn {
 // The single column that gives wheel `prefix`, if any.
 std::optional<WheelColumn> find_wheel_column(const CsvTable& table, std::string_view prefix) {
   std::optional<WheelColumn> found;
-  for (const UnitColumn& candidate : kUnitColumns) {
-    std::string name = fmt::format("{}_{}", prefix, candidate.suffix);
+  for (WheelUnit unit : kWheelUnits) {
+    std::string name = fmt::format("{}_{}", prefix, wheel_unit_name(unit));
     if (!table.has(name)) continue;
     if (found) {
       throw InputError({table.file, 1, name},
                        fmt::format("wheel '{}' is given twice ({} and {}); keep one column", prefix,
                                    found->name, name));
     }
-    found = WheelColumn{std::move(name), candidate.unit};
+    found = WheelColumn{std::move(name), unit};
   }
   return found;
 }

@@ -8,6 +8,7 @@
 
 #include "odocal/error.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/model/path_length.hpp"
 
 namespace odocal::sim {
 namespace {
@@ -107,10 +108,7 @@ void simulate_wheels(const Scenario& scenario, const MotionTruth& truth, std::mt
     out.truth.t_s.push_back(t);
     out.truth.pose.push_back(sample.pose);
   }
-  out.distance_m = 0.0;
-  for (std::size_t k = 1; k < out.truth.size(); ++k) {
-    out.distance_m += (out.truth.pose[k].head<2>() - out.truth.pose[k - 1].head<2>()).norm();
-  }
+  out.distance_m = path_length_m(out.truth.pose);
 }
 
 void simulate_gnss(const GnssSimConfig& config, const MotionTruth& truth, std::mt19937_64& rng,

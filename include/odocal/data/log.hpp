@@ -3,8 +3,10 @@
 // Streams keep their own time bases (seconds on one shared clock, strictly increasing).
 // Frames: local ENU world (x east, y north), body x forward / y left / z up, yaw CCW from +x.
 
+#include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "odocal/model/odometry_model.hpp"
@@ -29,6 +31,31 @@ struct VehicleConfig {
 
 // How the wheel columns of wheels.csv were given.
 enum class WheelUnit { kTicks, kRadians, kRadiansPerSecond, kMetresPerSecond };
+inline constexpr std::array<WheelUnit, 4> kWheelUnits = {WheelUnit::kTicks, WheelUnit::kRadians,
+                                                         WheelUnit::kRadiansPerSecond,
+                                                         WheelUnit::kMetresPerSecond};
+
+// The unit's name: the suffix of its wheels.csv columns ("ticks", "rad", "radps", "mps").
+constexpr const char* wheel_unit_name(WheelUnit unit) {
+  switch (unit) {
+    case WheelUnit::kTicks:
+      return "ticks";
+    case WheelUnit::kRadians:
+      return "rad";
+    case WheelUnit::kRadiansPerSecond:
+      return "radps";
+    case WheelUnit::kMetresPerSecond:
+      return "mps";
+  }
+  return "ticks";
+}
+
+inline std::optional<WheelUnit> parse_wheel_unit_name(std::string_view name) {
+  for (WheelUnit unit : kWheelUnits) {
+    if (name == wheel_unit_name(unit)) return unit;
+  }
+  return std::nullopt;
+}
 
 // Wheel revolution increments on the wheel time base (eq. 2): rev_*[k] is the number of
 // revolutions between t_s[k-1] and t_s[k]; rev_*[0] = 0.

@@ -36,7 +36,4 @@ struct TrajectoryErrors {
 // reference position falls inside it.
 TrajectoryErrors trajectory_errors(const PoseStream& trajectory, const ReferencePath& reference);
 
-// Length of the trajectory's polyline (metres).
-double path_length_m(const PoseStream& trajectory);
-
 }  // namespace odocal
