@@ -9,6 +9,8 @@ namespace odocal {
 
 // Wraps an angle to (-pi, pi].
 inline double wrap_angle(double angle_rad) {
+  // Most callers pass differences that are already in range; std::remainder is slow.
+  if (angle_rad > -std::numbers::pi && angle_rad <= std::numbers::pi) return angle_rad;
   double wrapped = std::remainder(angle_rad, 2.0 * std::numbers::pi);
   if (wrapped <= -std::numbers::pi) wrapped += 2.0 * std::numbers::pi;
   return wrapped;
