@@ -4,7 +4,7 @@ ASAN_DIR ?= build-asan
 JOBS ?= $(shell nproc)
 ODOCAL := $(BUILD_DIR)/apps/odocal/odocal
 
-.PHONY: all deps build demo test sanitize bench clean
+.PHONY: all deps build demo test sanitize bench paper clean
 
 all: build
 
@@ -33,6 +33,24 @@ sanitize: deps
 
 bench: build
 	$(BUILD_DIR)/bench/odocal_bench
+
+# The paper's tables and figures (docs/results.md): the experiments (finished pieces in
+# $(PAPER_DIR) are reused; `make paper FRESH=1` recomputes everything), the speed benchmarks,
+# then the plots and the markdown. Uses 3 laps of Hockenheim when ../shared has the track.
+PAPER_DIR ?= $(BUILD_DIR)/paper
+HOCKENHEIM := ../shared/data/tracks/hockenheim/track.csv
+PAPER_BENCH := $(BUILD_DIR)/bench/odocal_bench \
+  --benchmark_filter='BM_OdometryEkfPass|BM_LeastSquaresSolve|BM_Calibrate/|BM_ParseCsv'
+paper: build
+	$(ODOCAL) experiment paper --out $(PAPER_DIR) \
+	  $(if $(wildcard $(HOCKENHEIM)),--track $(HOCKENHEIM)) $(if $(FRESH),--fresh)
+	@if [ -n "$(FRESH)" ] || [ ! -f $(PAPER_DIR)/bench.json ] || \
+	    [ $(BUILD_DIR)/bench/odocal_bench -nt $(PAPER_DIR)/bench.json ]; then \
+	  echo "benchmarks: $(PAPER_BENCH)"; \
+	  $(PAPER_BENCH) --benchmark_out=$(PAPER_DIR)/bench.json --benchmark_out_format=json; \
+	else echo "benchmarks: reusing $(PAPER_DIR)/bench.json"; fi
+	/usr/bin/python3 tools/paper_report.py $(PAPER_DIR) --markdown docs/results.md \
+	  --figures docs/figures/results --bench-command "$(PAPER_BENCH)"
 
 clean:
 	rm -rf $(BUILD_DIR) $(ASAN_DIR)

@@ -1,0 +1,19 @@
+#include "experiments/paper_setup.hpp"
+
+#include "odocal/io/scenario_io.hpp"
+
+namespace odocal::experiments {
+
+const char* mode_name(SimMode mode) { return mode == SimMode::kIdeal ? "ideal" : "realistic"; }
+
+sim::Scenario paper_scenario(const PaperSetup& setup, SimMode mode, std::uint64_t noise_seed) {
+  sim::Scenario scenario = load_scenario("circuit");  // the paper's sensors, 3 laps
+  if (setup.track_csv) use_track_file(scenario, *setup.track_csv);
+  scenario.ideal = mode == SimMode::kIdeal;
+  scenario.vehicle.wear_rl_mm = setup.wear_rl_mm;
+  scenario.vehicle.wear_rr_mm = setup.wear_rr_mm;
+  scenario.seeds.noise = noise_seed;
+  return scenario;
+}
+
+}  // namespace odocal::experiments
