@@ -63,7 +63,7 @@ def header(report, experiment):
     report.write()
     report.write(f"run on {experiment['date']} ({experiment['elapsed_s']:.0f} s, "
                  f"{experiment['pieces_reused']} pieces reused from an earlier run). Section 5 "
-                 f"runs: 3 laps of {experiment['track']}, true rear wear "
+                 f"runs: {experiment.get('laps', 3)} laps of {experiment['track']}, true rear wear "
                  f"{experiment['wear_rl_mm']:g} / {experiment['wear_rr_mm']:g} mm of radius, the "
                  "paper's sensor noise (σ_GPS 3 m, σ_Acc 0.2 m/s², σ_YawR 0.02 rad/s, σ_Head "
                  "0.15 rad, all at 50 Hz), 96-tick encoders. Errors are estimate − truth. "

@@ -49,6 +49,15 @@ void print_errors(const char* label, const DeadReckoningSummary& s) {
              deg_from_rad(s.max_heading_rad));
 }
 
+// The extra unknowns the user asked for, and what the log could not identify.
+void print_batch_parameters(const CalibrationResult& r) {
+  for (const EstimatedParameter& p : r.parameters) {
+    if (!p.estimated || p.name.starts_with("circumference")) continue;
+    fmt::print("{:<13}{:.6g} (1-sigma {:.3g})\n", p.name, p.value, p.sigma);
+  }
+  fmt::print("observable   {}\n", r.identifiability);
+}
+
 }  // namespace
 
 void print_calibration_report(const CalibrationResult& r) {
@@ -62,8 +71,14 @@ void print_calibration_report(const CalibrationResult& r) {
        std::sqrt(r.covariance(0, 0)));
   line("c_RR", r.estimate.circumference_rr_m, r.nominal.circumference_rr_m,
        std::sqrt(r.covariance(1, 1)));
-  if (!r.difference_identifiable) fmt::print("note         {}\n", r.identifiability);
-  if (r.method != CalibrationMethod::kAugmented) {
+  if (r.method == CalibrationMethod::kBatch) {
+    print_batch_parameters(r);
+  } else if (!r.difference_identifiable) {
+    fmt::print("note         {}\n", r.identifiability);
+  }
+  if (r.method == CalibrationMethod::kBatch) {
+    fmt::print("solver       {}\n", r.termination);
+  } else if (r.method != CalibrationMethod::kAugmented) {
     fmt::print("iteration    {} of {}: {}\n", r.chosen_iteration, r.iterations.size(),
                r.termination);
   }
@@ -77,8 +92,11 @@ void add_calibrate_command(CLI::App& app) {
   CLI::App* command =
       app.add_subcommand("calibrate", "Estimate the rear wheel circumferences from a log");
   command->add_option("LOG", args->log_dir, "Log directory (docs/log-format.md)")->required();
-  command->add_option("--method", args->method, "iterative (the paper), fixed-p or augmented")
-      ->check(CLI::IsMember({"iterative", "fixed-p", "augmented"}));
+  command
+      ->add_option("--method", args->method,
+                   "iterative (the paper), fixed-p, augmented, or batch (maximum likelihood over "
+                   "the whole log)")
+      ->check(CLI::IsMember({"iterative", "fixed-p", "augmented", "batch"}));
   command->add_option("--config", args->config_file,
                       "Calibration options YAML (docs/calibration.md)");
   command

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "batch_calibration.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/circumference_ls.hpp"
 #include "odocal/estimation/odometry_ekf.hpp"
@@ -234,6 +235,8 @@ const char* method_name(CalibrationMethod method) {
       return "fixed-p";
     case CalibrationMethod::kAugmented:
       return "augmented";
+    case CalibrationMethod::kBatch:
+      return "batch";
   }
   return "iterative";
 }
@@ -301,6 +304,8 @@ CalibrationResult calibrate(const Log& log, const CalibrationOptions& options) {
   result.before = evaluator.evaluate(result.nominal);
   if (options.method == CalibrationMethod::kAugmented) {
     run_augmented(log, reference, options, result);
+  } else if (options.method == CalibrationMethod::kBatch) {
+    run_batch(log, reference, options, result);
   } else {
     run_iterative(log, reference, evaluator, options, result);
   }

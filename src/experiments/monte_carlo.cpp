@@ -15,7 +15,8 @@ namespace {
 constexpr CalibrationMethod kMethods[] = {CalibrationMethod::kIterative, CalibrationMethod::kFixedP,
                                           CalibrationMethod::kAugmented};
 
-double paper_figure(CalibrationMethod method) {
+// The paper's mean absolute error for the method; null for methods the paper does not have.
+nlohmann::json paper_figure(CalibrationMethod method) {
   switch (method) {
     case CalibrationMethod::kIterative:
       return kPaperIterativeMeanAbsErrorMm;
@@ -23,8 +24,10 @@ double paper_figure(CalibrationMethod method) {
       return kPaperFixedPMeanAbsErrorMm;
     case CalibrationMethod::kAugmented:
       return kPaperAugmentedMeanAbsErrorMm;
+    case CalibrationMethod::kBatch:
+      break;
   }
-  return 0.0;
+  return nullptr;
 }
 
 // Accumulates one method's numbers over the seeds.

@@ -66,6 +66,7 @@ std::string PaperExperimentOptions::validate() const {
   if (seeds < 1) return "seeds must be at least 1";
   if (modes.empty()) return "at least one simulator mode is needed";
   if (setup.wear_rl_mm < 0 || setup.wear_rr_mm < 0) return "tyre wear must not be negative";
+  if (setup.laps < 1) return "laps must be at least 1";
   if (setup.track_csv && !std::filesystem::exists(*setup.track_csv))
     return "track file " + setup.track_csv->string() + " does not exist";
   return "";
@@ -117,6 +118,7 @@ void run_paper_experiment(const PaperExperimentOptions& options, std::FILE* prog
        {"track", options.setup.track_csv ? options.setup.track_csv->string() : "built-in circuit"},
        {"wear_rl_mm", options.setup.wear_rl_mm},
        {"wear_rr_mm", options.setup.wear_rr_mm},
+       {"laps", options.setup.laps},
        {"seeds", options.seeds},
        {"modes", modes},
        {"elapsed_s", progress.elapsed_s()},

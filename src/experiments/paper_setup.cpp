@@ -13,6 +13,7 @@ sim::Scenario paper_scenario(const PaperSetup& setup, SimMode mode, std::uint64_
   scenario.vehicle.wear_rl_mm = setup.wear_rl_mm;
   scenario.vehicle.wear_rr_mm = setup.wear_rr_mm;
   scenario.seeds.noise = noise_seed;
+  scenario.route.laps = setup.laps;
   return scenario;
 }
 

@@ -21,6 +21,7 @@ struct PaperSetup {
   std::optional<std::filesystem::path> track_csv;  // TUMFTM centreline; empty: built-in circuit
   double wear_rl_mm = 1.5;  // true rear tyre wear of the section 5 runs (the paper gives none)
   double wear_rr_mm = 1.0;
+  int laps = 3;  // the paper's 3 laps
 };
 
 // The section 5 scenario with the paper's sensor noise, for one noise seed.

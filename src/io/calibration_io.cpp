@@ -42,8 +42,8 @@ json vector_json(const Eigen::Vector3d& v) { return json::array({v(0), v(1), v(2
 }  // namespace
 
 std::optional<CalibrationMethod> parse_method(const std::string& name) {
-  for (auto method :
-       {CalibrationMethod::kIterative, CalibrationMethod::kFixedP, CalibrationMethod::kAugmented}) {
+  for (auto method : {CalibrationMethod::kIterative, CalibrationMethod::kFixedP,
+                      CalibrationMethod::kAugmented, CalibrationMethod::kBatch}) {
     if (name == method_name(method)) return method;
   }
   return std::nullopt;
@@ -58,7 +58,7 @@ CalibrationOptions parse_calibration_options(const std::string& yaml_text, const
   root.read("method", method);
   const auto parsed_method = parse_method(method);
   if (!parsed_method)
-    throw InputError(root.location("method"), "expected iterative, fixed-p or augmented");
+    throw InputError(root.location("method"), "expected iterative, fixed-p, augmented or batch");
   o.method = *parsed_method;
   if (auto reference = root.map("reference")) {
     std::string mode = o.reference.mode == ReferenceMode::kFilter ? "filter" : "smoother";

@@ -33,7 +33,7 @@ std::vector<std::vector<double>> read_numeric_csv(const std::string& path) {
 TEST(ExperimentCli, ReproducesThePaperPiecesAndReusesThem) {
   testing::TempLogDir dir;
   const std::string out = dir.file("paper");
-  const std::string command = "experiment paper --seeds 1 --modes ideal --out " + out;
+  const std::string command = "experiment paper --seeds 1 --laps 1 --modes ideal --out " + out;
   const auto run = run_cli(command);
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.err.find("[  3/3] Figs. 8-11, Monte Carlo, ideal: seed 1/1"), std::string::npos)
@@ -51,7 +51,7 @@ TEST(ExperimentCli, ReproducesThePaperPiecesAndReusesThem) {
 
   const auto single = nlohmann::json::parse(read_text_file(out + "/single/ideal/summary.json"));
   EXPECT_GT(single["crlb_sigma_rl_mm"].get<double>(), 0.0);
-  EXPECT_LT(single["crlb_sigma_rl_mm"].get<double>(), 0.1);
+  EXPECT_LT(single["crlb_sigma_rl_mm"].get<double>(), 0.3);  // one lap: ~0.13 mm
   for (const char* method : {"iterative", "fixed-p", "augmented"})
     EXPECT_LT(std::abs(single["methods"][method]["error_rl_mm"].get<double>()), 1.0) << method;
   const auto iterations = read_text_file(out + "/single/ideal/iterations.csv");

@@ -9,11 +9,12 @@
 #include <vector>
 
 #include "odocal/data/log.hpp"
+#include "odocal/estimation/batch_options.hpp"
 #include "odocal/estimation/reference_filter.hpp"
 
 namespace odocal {
 
-enum class CalibrationMethod { kIterative, kFixedP, kAugmented };
+enum class CalibrationMethod { kIterative, kFixedP, kAugmented, kBatch };
 
 // Where the whole-log dead reckoning of each iteration starts (the paper is silent):
 // the first reference pose; the rigid alignment (Umeyama) of the dead-reckoned path to the
@@ -40,6 +41,7 @@ struct CalibrationOptions {
   Eigen::Vector3d augmented_pose_process_diagonal{1e-4, 1e-4, 1e-6};
   double augmented_param_sigma_m_per_step = 1e-6;
   double augmented_initial_param_sigma_m = 0.02;
+  BatchOptions batch;  // --method batch
   // Identifiability.
   double min_distance_m = 100.0;
   std::size_t min_reference_samples = 100;
@@ -68,6 +70,16 @@ struct IterationRecord {
   double score{};
 };
 
+// One unknown of the batch calibration besides the poses.
+struct EstimatedParameter {
+  std::string name;  // e.g. "circumference_rl_m", "gyro_bias_radps"
+  double value{};
+  double sigma{};         // 1-sigma from the covariance; infinity when it could not be computed
+  bool estimated{};       // false: held at its configured value (not asked for)
+  bool identified{true};  // false: this log cannot pin it down (see the verdict)
+  std::string verdict;    // in words a user can act on, when not identified
+};
+
 struct CalibrationResult {
   CalibrationMethod method{};
   OdometryParams nominal;
@@ -86,6 +98,9 @@ struct CalibrationResult {
   std::string termination;              // why it stopped, in words
   bool difference_identifiable = true;  // false: c_RL / c_RR kept at the nominal ratio
   std::string identifiability;          // in words, for the user
+  // Batch: every unknown besides the poses, and the solver's report.
+  std::vector<EstimatedParameter> parameters;
+  std::string solver_report;
 };
 
 // Throws InsufficientDataError when the log cannot identify the circumferences, and Error for

@@ -1,0 +1,50 @@
+#pragma once
+// Options of the batch maximum-likelihood calibration (`--method batch`, docs/calibration.md):
+// keyframe poses and the parameters fitted to all wheel, GNSS, heading and gyro data at once.
+// Sensor noise comes from CalibrationOptions::reference (gnss_sigma_m when gnss.csv has no
+// sigma_m, heading_sigma_rad, yaw_rate_sigma_radps).
+
+#include <string>
+
+namespace odocal {
+
+enum class RobustLoss { kNone, kHuber, kCauchy };
+
+struct BatchOptions {
+  double keyframe_interval_s = 1.0;
+  // Wheel noise: slip as a random walk in arc length; the encoder quantisation is derived from
+  // vehicle.yaml's ticks_per_rev (sigma of a rounded count, 1/sqrt(12) tick).
+  double slip_sigma_m_per_sqrt_m = 1e-3;
+  // Time-correlated GNSS error, a first-order Gauss-Markov process per axis (0: white only).
+  // gnss.csv's sigma_m is then taken as the total and the white part is what remains.
+  double gnss_gauss_markov_sigma_m = 0.0;
+  double gnss_gauss_markov_tau_s = 60.0;
+  RobustLoss gnss_loss = RobustLoss::kCauchy;
+  double gnss_loss_scale = 3.0;  // in standard deviations of the fix
+  bool use_heading = true;       // heading.csv residuals
+  bool use_gyro = true;          // imu.csv yaw-rate residuals
+  // Extra unknowns on request (else held at: nominal track width, zero bias/lever arm/latency).
+  bool estimate_track_width = false;
+  bool estimate_gyro_bias = false;
+  bool estimate_heading_bias = false;
+  bool estimate_lever_arm = false;
+  bool estimate_latency = false;
+  int max_solver_iterations = 100;
+  // The odometry is pre-integrated at the current parameters and used to first order; when the
+  // solution moves them by more than this fraction, it is integrated again and re-solved.
+  double relinearise_relative_change = 1e-4;
+  int max_relinearisations = 3;
+  // Observability: a parameter whose 1-sigma exceeds its threshold counts as not identified.
+  double max_sigma_circumference_m = 1e-3;
+  double max_sigma_track_width_m = 0.01;
+  double max_sigma_gyro_bias_radps = 1e-3;
+  double max_sigma_heading_bias_rad = 0.01;
+  double max_sigma_lever_arm_m = 0.2;
+  double max_sigma_latency_s = 0.02;
+
+  std::string validate() const;  // empty when valid
+};
+
+const char* robust_loss_name(RobustLoss loss);
+
+}  // namespace odocal

@@ -1,0 +1,37 @@
+#pragma once
+// Wheel odometry pre-integrated between two keyframes, for the batch calibration: the relative
+// pose of every wheel sample in the first keyframe's frame, its Jacobian with respect to the
+// parameters [c_RL, c_RR, t_R] (so that a parameter change moves it to first order without
+// integrating again), and the covariance of the whole segment's relative pose from the wheel
+// noise. Eqs. 1-2 of the paper, chained.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "odocal/data/log.hpp"
+
+namespace odocal {
+
+// Per-wheel arc noise: slip as a random walk in arc length (variance slip^2 * |arc|), plus the
+// encoder quantisation of the segment (the count at each end is off by up to half a tick:
+// variance 2 q^2 per wheel and segment, q in revolutions).
+struct WheelNoise {
+  double slip_sigma_m_per_sqrt_m = 1e-3;
+  double quantisation_sigma_rev = 0.0;
+};
+
+struct PreintegratedSegment {
+  std::size_t first_sample{};  // wheel index of the segment's first keyframe
+  std::size_t last_sample{};   // ... and of its last one
+  // Index s = wheel index - first_sample, 0..last-first; delta[0] = 0.
+  std::vector<Pose2> delta;
+  std::vector<Eigen::Matrix3d> J_delta_params;           // d delta / d [c_RL, c_RR, t_R]
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of delta.back()
+};
+
+// Requires first_sample < last_sample < wheels.size().
+PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_sample,
+                                  std::size_t last_sample, const OdometryParams& params,
+                                  const WheelNoise& noise);
+
+}  // namespace odocal

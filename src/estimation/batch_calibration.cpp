@@ -1,0 +1,443 @@
+#include "batch_calibration.hpp"
+
+#include <ceres/ceres.h>
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include "batch_observability.hpp"
+#include "batch_residuals.hpp"
+#include "odocal/error.hpp"
+#include "odocal/estimation/odometry_preintegration.hpp"
+
+namespace odocal {
+namespace {
+
+using Block3 = std::array<double, 3>;
+using Block2 = std::array<double, 2>;
+
+std::vector<std::size_t> keyframe_samples(const WheelStream& wheels, std::size_t first,
+                                          double interval_s) {
+  std::vector<std::size_t> samples{first};
+  for (std::size_t k = first + 1; k < wheels.size(); ++k) {
+    if (wheels.t_s[k] - wheels.t_s[samples.back()] >= interval_s - 1e-9) samples.push_back(k);
+  }
+  if (samples.back() != wheels.size() - 1) samples.push_back(wheels.size() - 1);
+  return samples;
+}
+
+double quantisation_sigma_rev(const Log& log) {
+  if (log.wheels.unit_rear != WheelUnit::kTicks || !log.vehicle.ticks_per_rev) return 0.0;
+  return 1.0 / *log.vehicle.ticks_per_rev / std::sqrt(12.0);
+}
+
+double median_step_s(const std::vector<double>& t_s) {
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < t_s.size(); ++i) steps.push_back(t_s[i] - t_s[i - 1]);
+  if (steps.empty()) return 0.0;
+  std::nth_element(steps.begin(), steps.begin() + static_cast<long>(steps.size() / 2), steps.end());
+  return steps[steps.size() / 2];
+}
+
+// The batch problem: its unknowns live here across re-linearisations; each build() makes a fresh
+// Ceres problem around the current pre-integration.
+class BatchProblem {
+ public:
+  BatchProblem(const Log& log, const ReferenceTrajectory& reference,
+               const CalibrationOptions& options, const OdometryParams& nominal)
+      : log_(log), options_(options), batch_(options.batch) {
+    keyframes_ =
+        keyframe_samples(log.wheels, reference.first_wheel_index, batch_.keyframe_interval_s);
+    if (keyframes_.size() < 3) {
+      throw InsufficientDataError(
+          "too short for the batch calibration: fewer than 3 keyframes under GNSS");
+    }
+    segment_of_sample_.assign(log.wheels.size(), -1);
+    for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
+      for (std::size_t k = keyframes_[i]; k < keyframes_[i + 1]; ++k)
+        segment_of_sample_[k] = static_cast<int>(i);
+    }
+    for (const std::size_t k : keyframes_) {
+      const Pose2& pose = reference.poses.pose[k - reference.first_wheel_index];
+      poses_.push_back({pose.x(), pose.y(), pose.z()});
+    }
+    params_ = {nominal.circumference_rl_m, nominal.circumference_rr_m, nominal.track_width_m};
+    gnss_bias_.assign(gauss_markov() ? keyframes_.size() : 0, Block2{0.0, 0.0});
+    noise_ = {batch_.slip_sigma_m_per_sqrt_m, quantisation_sigma_rev(log)};
+  }
+
+  bool gauss_markov() const { return batch_.gnss_gauss_markov_sigma_m > 0.0; }
+
+  // Integrates the odometry of every segment at the current parameters.
+  void preintegrate_all() {
+    const OdometryParams at{params_[0], params_[1], params_[2]};
+    segments_.clear();
+    for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i)
+      segments_.push_back(preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise_));
+    params_lin_ = Eigen::Vector3d(params_[0], params_[1], params_[2]);
+  }
+
+  ceres::Solver::Summary solve() {
+    problem_ = std::make_unique<ceres::Problem>();
+    add_odometry();
+    add_gnss();
+    if (batch_.use_heading && log_.heading) add_heading();
+    if (batch_.use_gyro && log_.imu) add_gyro();
+    if (gauss_markov()) add_gauss_markov();
+    hold_unrequested();
+
+    ceres::Solver::Options solver;
+    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    solver.max_num_iterations = batch_.max_solver_iterations;
+    solver.num_threads = 1;
+    solver.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, problem_.get(), &summary);
+    return summary;
+  }
+
+  // Largest relative change of the parameters since the last pre-integration.
+  double relative_change() const {
+    double change = 0.0;
+    for (int p = 0; p < 3; ++p)
+      change = std::max(change, std::abs(params_[p] - params_lin_(p)) / std::abs(params_lin_(p)));
+    return change;
+  }
+
+  // 1-sigma covariance blocks of the global unknowns; empty when Ceres cannot compute them
+  // (rank-deficient problem).
+  struct Uncertainty {
+    Eigen::Matrix3d params = Eigen::Matrix3d::Zero();
+    Eigen::Matrix2d lever = Eigen::Matrix2d::Zero();
+    double gyro_bias{}, heading_bias{}, latency{};
+  };
+  std::optional<Uncertainty> uncertainty() {
+    std::vector<std::pair<const double*, const double*>> blocks;
+    const auto add = [&](const double* block) {
+      if (problem_->HasParameterBlock(block) && !problem_->IsParameterBlockConstant(block))
+        blocks.emplace_back(block, block);
+    };
+    add(params_.data());
+    add(lever_.data());
+    add(&gyro_bias_);
+    add(&heading_bias_);
+    add(&latency_);
+    ceres::Covariance::Options covariance_options;
+    covariance_options.algorithm_type = ceres::SPARSE_QR;
+    covariance_options.num_threads = 1;
+    ceres::Covariance covariance(covariance_options);
+    if (!covariance.Compute(blocks, problem_.get())) return std::nullopt;
+    Uncertainty u;
+    const auto get = [&](const double* block, double* out) {
+      if (problem_->HasParameterBlock(block) && !problem_->IsParameterBlockConstant(block))
+        covariance.GetCovarianceBlock(block, block, out);
+    };
+    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> params;
+    params.setZero();
+    get(params_.data(), params.data());
+    u.params = params;
+    Eigen::Matrix<double, 2, 2, Eigen::RowMajor> lever;
+    lever.setZero();
+    get(lever_.data(), lever.data());
+    u.lever = lever;
+    get(&gyro_bias_, &u.gyro_bias);
+    get(&heading_bias_, &u.heading_bias);
+    get(&latency_, &u.latency);
+    return u;
+  }
+
+  bool used(const double* block) const { return problem_->HasParameterBlock(block); }
+
+  const Block3& params() const { return params_; }
+  const Block2& lever() const { return lever_; }
+  double gyro_bias() const { return gyro_bias_; }
+  double heading_bias() const { return heading_bias_; }
+  double latency() const { return latency_; }
+  std::size_t keyframes() const { return keyframes_.size(); }
+  std::size_t gnss_residuals() const { return gnss_residuals_; }
+
+ private:
+  // The pre-integrated motion from keyframe `segment` to time t_s, with the reference point's
+  // velocity there (keyframe frame); nothing outside the keyframe span.
+  struct MotionAt {
+    std::size_t segment;
+    batch::RelativeMotion motion;
+    Eigen::Vector2d velocity;
+  };
+  std::optional<MotionAt> motion_at(double t_s) const {
+    const auto& t = log_.wheels.t_s;
+    if (t_s < t[keyframes_.front()] || t_s >= t[keyframes_.back()]) return std::nullopt;
+    const std::size_t k =
+        static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), t_s) - t.begin()) - 1;
+    const int segment = segment_of_sample_[k];
+    if (segment < 0) return std::nullopt;
+    const PreintegratedSegment& seg = segments_[static_cast<std::size_t>(segment)];
+    const std::size_t s = k - seg.first_sample;
+    const double dt = t[k + 1] - t[k];
+    const double w = (t_s - t[k]) / dt;
+    MotionAt at{static_cast<std::size_t>(segment), {}, {}};
+    at.motion.delta = (1.0 - w) * seg.delta[s] + w * seg.delta[s + 1];
+    at.motion.J_delta_params = (1.0 - w) * seg.J_delta_params[s] + w * seg.J_delta_params[s + 1];
+    at.motion.params_lin = params_lin_;
+    at.velocity = (seg.delta[s + 1].head<2>() - seg.delta[s].head<2>()) / dt;
+    return at;
+  }
+
+  void add_odometry() {
+    for (std::size_t i = 0; i < segments_.size(); ++i) {
+      const PreintegratedSegment& seg = segments_[i];
+      // A tiny floor keeps a standing-still segment's information finite.
+      const Eigen::Matrix3d covariance =
+          seg.covariance + Eigen::Vector3d(1e-8, 1e-8, 1e-10).asDiagonal().toDenseMatrix();
+      const Eigen::Matrix3d L = covariance.llt().matrixL();
+      auto* residual = new batch::OdometryResidual{
+          {seg.delta.back(), seg.J_delta_params.back(), params_lin_},
+          L.triangularView<Eigen::Lower>().solve(Eigen::Matrix3d::Identity())};
+      problem_->AddResidualBlock(
+          new ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, 3>(residual), nullptr,
+          poses_[i].data(), poses_[i + 1].data(), params_.data());
+    }
+  }
+
+  double white_gnss_sigma(std::size_t j) const {
+    if (log_.gnss.sigma_m.empty()) return options_.reference.gnss_sigma_m;
+    const double total = log_.gnss.sigma_m[j];
+    if (!gauss_markov()) return total;
+    const double gm = batch_.gnss_gauss_markov_sigma_m;
+    return std::sqrt(std::max(total * total - gm * gm, 0.01 * total * total));
+  }
+
+  ceres::LossFunction* gnss_loss() const {
+    switch (batch_.gnss_loss) {
+      case RobustLoss::kHuber:
+        return new ceres::HuberLoss(batch_.gnss_loss_scale);
+      case RobustLoss::kCauchy:
+        return new ceres::CauchyLoss(batch_.gnss_loss_scale);
+      case RobustLoss::kNone:
+        break;
+    }
+    return nullptr;
+  }
+
+  void add_gnss() {
+    gnss_residuals_ = 0;
+    for (std::size_t j = 0; j < log_.gnss.size(); ++j) {
+      const auto at = motion_at(log_.gnss.t_s[j]);
+      if (!at) continue;
+      auto* residual = new batch::GnssResidual{at->motion, at->velocity,
+                                               Eigen::Vector2d(log_.gnss.x_m[j], log_.gnss.y_m[j]),
+                                               white_gnss_sigma(j)};
+      double* bias = gauss_markov() ? gnss_bias_[at->segment].data() : zero_bias_.data();
+      problem_->AddResidualBlock(
+          new ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, 3, 2, 1, 2>(residual),
+          gnss_loss(), poses_[at->segment].data(), params_.data(), lever_.data(), &latency_, bias);
+      ++gnss_residuals_;
+    }
+    if (gnss_residuals_ == 0) {
+      throw InsufficientDataError("no GNSS fix inside the wheel time span: nothing to fit");
+    }
+  }
+
+  void add_heading() {
+    const HeadingStream& heading = *log_.heading;
+    for (std::size_t j = 0; j < heading.size(); ++j) {
+      const auto at = motion_at(heading.t_s[j]);
+      if (!at) continue;
+      auto* residual = new batch::HeadingResidual{at->motion, heading.heading_rad[j],
+                                                  options_.reference.heading_sigma_rad};
+      problem_->AddResidualBlock(
+          new ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, 3, 1>(residual), nullptr,
+          poses_[at->segment].data(), params_.data(), &heading_bias_);
+    }
+  }
+
+  // Zero-order hold of the yaw rate over each keyframe interval the IMU covers.
+  void add_gyro() {
+    const ImuStream& imu = *log_.imu;
+    const double step_s = median_step_s(imu.t_s);
+    if (imu.size() < 2 || step_s <= 0.0) return;
+    std::size_t j = 0;
+    for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
+      const double begin = log_.wheels.t_s[keyframes_[i]], end = log_.wheels.t_s[keyframes_[i + 1]];
+      if (imu.t_s.front() > begin || imu.t_s.back() < end) continue;
+      while (j + 1 < imu.size() && imu.t_s[j + 1] <= begin) ++j;
+      double integrated = 0.0, largest_gap = 0.0;
+      for (std::size_t m = j; m + 1 < imu.size() && imu.t_s[m] < end; ++m) {
+        const double overlap = std::min(imu.t_s[m + 1], end) - std::max(imu.t_s[m], begin);
+        integrated += imu.wz_radps[m] * overlap;
+        largest_gap = std::max(largest_gap, imu.t_s[m + 1] - imu.t_s[m]);
+      }
+      if (largest_gap > 5.0 * step_s) continue;  // an IMU dropout inside the interval
+      const double duration = end - begin;
+      auto* residual = new batch::GyroResidual{
+          integrated, duration,
+          options_.reference.yaw_rate_sigma_radps * std::sqrt(step_s * duration)};
+      problem_->AddResidualBlock(
+          new ceres::AutoDiffCostFunction<batch::GyroResidual, 1, 3, 3, 1>(residual), nullptr,
+          poses_[i].data(), poses_[i + 1].data(), &gyro_bias_);
+    }
+  }
+
+  void add_gauss_markov() {
+    const double sigma = batch_.gnss_gauss_markov_sigma_m;
+    problem_->AddResidualBlock(new ceres::AutoDiffCostFunction<batch::GaussMarkovPrior, 2, 2>(
+                                   new batch::GaussMarkovPrior{sigma}),
+                               nullptr, gnss_bias_[0].data());
+    for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
+      const double dt = log_.wheels.t_s[keyframes_[i + 1]] - log_.wheels.t_s[keyframes_[i]];
+      const double phi = std::exp(-dt / batch_.gnss_gauss_markov_tau_s);
+      problem_->AddResidualBlock(
+          new ceres::AutoDiffCostFunction<batch::GaussMarkovResidual, 2, 2, 2>(
+              new batch::GaussMarkovResidual{phi, sigma * std::sqrt(1.0 - phi * phi)}),
+          nullptr, gnss_bias_[i].data(), gnss_bias_[i + 1].data());
+    }
+  }
+
+  void hold_unrequested() {
+    const auto hold = [&](double* block, bool estimate) {
+      if (!estimate && problem_->HasParameterBlock(block))
+        problem_->SetParameterBlockConstant(block);
+    };
+    hold(zero_bias_.data(), false);
+    hold(lever_.data(), batch_.estimate_lever_arm);
+    hold(&latency_, batch_.estimate_latency);
+    hold(&heading_bias_, batch_.estimate_heading_bias);
+    hold(&gyro_bias_, batch_.estimate_gyro_bias);
+    if (!batch_.estimate_track_width)
+      problem_->SetManifold(params_.data(), new ceres::SubsetManifold(3, {2}));
+  }
+
+  const Log& log_;
+  const CalibrationOptions& options_;
+  const BatchOptions& batch_;
+  std::vector<std::size_t> keyframes_;
+  std::vector<int> segment_of_sample_;
+  std::vector<PreintegratedSegment> segments_;
+  WheelNoise noise_;
+  Eigen::Vector3d params_lin_ = Eigen::Vector3d::Zero();
+  std::unique_ptr<ceres::Problem> problem_;
+  std::size_t gnss_residuals_ = 0;
+  // Unknowns.
+  std::vector<Block3> poses_;
+  Block3 params_{};
+  Block2 lever_{0.0, 0.0};
+  double latency_ = 0.0;
+  double heading_bias_ = 0.0;
+  double gyro_bias_ = 0.0;
+  std::vector<Block2> gnss_bias_;
+  Block2 zero_bias_{0.0, 0.0};  // stands in for the GNSS bias when it is not modelled
+};
+
+}  // namespace
+
+void run_batch(const Log& log, const ReferenceTrajectory& reference,
+               const CalibrationOptions& options, CalibrationResult& result) {
+  if (const std::string problem = options.batch.validate(); !problem.empty())
+    throw Error("invalid batch options: " + problem);
+  BatchProblem batch(log, reference, options, result.nominal);
+  ceres::Solver::Summary summary;
+  int solves = 0;
+  do {
+    batch.preintegrate_all();
+    summary = batch.solve();
+    ++solves;
+  } while (batch.relative_change() > options.batch.relinearise_relative_change &&
+           solves <= options.batch.max_relinearisations);
+  if (!summary.IsSolutionUsable()) {
+    throw InsufficientDataError("the batch solver found no usable solution: " + summary.message);
+  }
+
+  const auto& p = batch.params();
+  result.estimate = {p[0], p[1], p[2]};
+  const auto uncertainty = batch.uncertainty();
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto sigma = [&](double variance) { return uncertainty ? std::sqrt(variance) : inf; };
+  const BatchOptions& b = options.batch;
+  const BatchProblem::Uncertainty u = uncertainty.value_or(BatchProblem::Uncertainty{});
+  result.parameters = {
+      {"circumference_rl_m", p[0], sigma(u.params(0, 0)), true, true, ""},
+      {"circumference_rr_m", p[1], sigma(u.params(1, 1)), true, true, ""},
+      {"track_width_m", p[2], sigma(u.params(2, 2)), b.estimate_track_width, true, ""},
+      {"gyro_bias_radps", batch.gyro_bias(), sigma(u.gyro_bias), b.estimate_gyro_bias, true, ""},
+      {"heading_bias_rad", batch.heading_bias(), sigma(u.heading_bias), b.estimate_heading_bias, true, ""},
+      {"lever_arm_x_m", batch.lever()[0], sigma(u.lever(0, 0)), b.estimate_lever_arm, true, ""},
+      {"lever_arm_y_m", batch.lever()[1], sigma(u.lever(1, 1)), b.estimate_lever_arm, true, ""},
+      {"latency_s", batch.latency(), sigma(u.latency), b.estimate_latency, true, ""}};
+  const double thresholds[] = {b.max_sigma_circumference_m,  b.max_sigma_circumference_m,
+                               b.max_sigma_track_width_m,    b.max_sigma_gyro_bias_radps,
+                               b.max_sigma_heading_bias_rad, b.max_sigma_lever_arm_m,
+                               b.max_sigma_lever_arm_m,      b.max_sigma_latency_s};
+  const LogCoverage coverage = log_coverage(log, reference);
+  const bool block_used[] = {true,
+                             true,
+                             true,
+                             log.imu.has_value() && options.batch.use_gyro,
+                             log.heading.has_value() && options.batch.use_heading,
+                             true,
+                             true,
+                             true};
+  std::vector<std::string> problems;
+  for (std::size_t i = 0; i < result.parameters.size(); ++i) {
+    EstimatedParameter& parameter = result.parameters[i];
+    if (!parameter.estimated) {
+      parameter.sigma = 0.0;
+      continue;
+    }
+    parameter.identified =
+        std::isfinite(parameter.sigma) && parameter.sigma <= thresholds[i] && block_used[i];
+    if (!parameter.identified) {
+      parameter.verdict = unidentified_reason(parameter.name, coverage, block_used[i]);
+      problems.push_back(parameter.name + ": " + parameter.verdict);
+    }
+  }
+  result.covariance = u.params.topLeftCorner<2, 2>();
+  if (uncertainty) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(result.covariance);
+    result.condition_number =
+        std::sqrt(eigen.eigenvalues()(1) / std::max(eigen.eigenvalues()(0), 1e-300));
+  } else {
+    result.condition_number = inf;
+    problems.insert(problems.begin(),
+                    "the problem is rank-deficient: some unknowns cannot be told apart");
+  }
+  result.identifiability = problems.empty()
+                               ? "every requested parameter identified"
+                               : fmt::format("not identified: {}", fmt::join(problems, "; "));
+  result.solver_report = summary.BriefReport();
+  result.termination =
+      fmt::format("batch maximum likelihood over {} keyframes and {} GNSS fixes; {} solve(s); {}",
+                  batch.keyframes(), batch.gnss_residuals(), solves,
+                  ceres::TerminationTypeToString(summary.termination_type));
+}
+
+const char* robust_loss_name(RobustLoss loss) {
+  switch (loss) {
+    case RobustLoss::kNone:
+      return "none";
+    case RobustLoss::kHuber:
+      return "huber";
+    case RobustLoss::kCauchy:
+      return "cauchy";
+  }
+  return "none";
+}
+
+std::string BatchOptions::validate() const {
+  if (!(keyframe_interval_s > 0.0)) return "keyframe_interval_s must be positive";
+  if (slip_sigma_m_per_sqrt_m < 0.0) return "slip_sigma_m_per_sqrt_m must not be negative";
+  if (gnss_gauss_markov_sigma_m < 0.0 || !(gnss_gauss_markov_tau_s > 0.0))
+    return "the Gauss-Markov GNSS sigma must not be negative and its tau must be positive";
+  if (!(gnss_loss_scale > 0.0)) return "gnss_loss_scale must be positive";
+  if (max_solver_iterations < 1) return "max_solver_iterations must be at least 1";
+  if (!(relinearise_relative_change > 0.0) || max_relinearisations < 0)
+    return "relinearise_relative_change must be positive, max_relinearisations not negative";
+  return "";
+}
+
+}  // namespace odocal

@@ -1,0 +1,139 @@
+#pragma once
+// Residuals of the batch calibration (docs/calibration.md, "Batch maximum likelihood"), as
+// templated functors for Ceres' automatic differentiation. Every residual is whitened (divided
+// by its standard deviation or multiplied by a square-root information matrix).
+//
+// Parameter blocks: pose [x m, y m, yaw rad] per keyframe; params [c_RL m, c_RR m, t_R m];
+// lever [x m forward, y m left] (GNSS antenna in the vehicle frame); latency [s] (a fix stamped t
+// reports the position at t - latency); gnss_bias [x m, y m] per keyframe (Gauss-Markov GNSS
+// error, constant zero when not modelled); heading_bias [rad]; gyro_bias [rad/s].
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Core>
+#include <cmath>
+
+namespace odocal::batch {
+
+// The pre-integrated odometry from a keyframe to one instant, linear in the parameters around
+// the values it was integrated with: delta(p) = delta + J (p - p_lin).
+struct RelativeMotion {
+  Eigen::Vector3d delta = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d J_delta_params = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d params_lin = Eigen::Vector3d::Zero();
+
+  template <typename T>
+  Eigen::Matrix<T, 3, 1> at(const T* params) const {
+    const Eigen::Matrix<T, 3, 1> change(params[0] - params_lin(0), params[1] - params_lin(1),
+                                        params[2] - params_lin(2));
+    return delta.cast<T>() + J_delta_params.cast<T>() * change;
+  }
+};
+
+template <typename T>
+T wrapped(const T& angle) {
+  using std::atan2, std::cos, std::sin;
+  return atan2(sin(angle), cos(angle));
+}
+
+// Odometry between keyframes i and i+1: the relative pose of i+1 seen from i against the
+// pre-integrated wheel motion, weighted by its propagated covariance.
+struct OdometryResidual {
+  RelativeMotion motion;
+  Eigen::Matrix3d sqrt_information;
+
+  template <typename T>
+  bool operator()(const T* pose_a, const T* pose_b, const T* params, T* residual) const {
+    using std::cos, std::sin;
+    const Eigen::Matrix<T, 3, 1> delta = motion.at(params);
+    const T c = cos(pose_a[2]), s = sin(pose_a[2]);
+    const T dx = pose_b[0] - pose_a[0], dy = pose_b[1] - pose_a[1];
+    const Eigen::Matrix<T, 3, 1> error(c * dx + s * dy - delta(0), -s * dx + c * dy - delta(1),
+                                       wrapped(T(pose_b[2] - pose_a[2] - delta(2))));
+    Eigen::Map<Eigen::Matrix<T, 3, 1>> whitened(residual);
+    whitened = sqrt_information.cast<T>() * error;
+    return true;
+  }
+};
+
+// One GNSS fix, at an instant between keyframe i (pose) and the next.
+struct GnssResidual {
+  RelativeMotion motion;
+  Eigen::Vector2d velocity_in_keyframe;  // of the reference point at the fix, keyframe frame
+  Eigen::Vector2d measured;
+  double sigma_m{};
+
+  template <typename T>
+  bool operator()(const T* pose, const T* params, const T* lever, const T* latency, const T* bias,
+                  T* residual) const {
+    using std::cos, std::sin;
+    const Eigen::Matrix<T, 3, 1> delta = motion.at(params);
+    const T c = cos(pose[2]), s = sin(pose[2]);
+    const T yaw = pose[2] + delta(2);
+    const T cy = cos(yaw), sy = sin(yaw);
+    const T vx = c * velocity_in_keyframe.x() - s * velocity_in_keyframe.y();
+    const T vy = s * velocity_in_keyframe.x() + c * velocity_in_keyframe.y();
+    const T x = pose[0] + c * delta(0) - s * delta(1) + cy * lever[0] - sy * lever[1] -
+                vx * latency[0] + bias[0];
+    const T y = pose[1] + s * delta(0) + c * delta(1) + sy * lever[0] + cy * lever[1] -
+                vy * latency[0] + bias[1];
+    residual[0] = (x - measured.x()) / sigma_m;
+    residual[1] = (y - measured.y()) / sigma_m;
+    return true;
+  }
+};
+
+// One magnetic heading sample.
+struct HeadingResidual {
+  RelativeMotion motion;
+  double measured_rad{};
+  double sigma_rad{};
+
+  template <typename T>
+  bool operator()(const T* pose, const T* params, const T* heading_bias, T* residual) const {
+    const Eigen::Matrix<T, 3, 1> delta = motion.at(params);
+    residual[0] = wrapped(T(pose[2] + delta(2) + heading_bias[0] - measured_rad)) / sigma_rad;
+    return true;
+  }
+};
+
+// The gyro's yaw change over a keyframe interval (integrated yaw rate) against the poses.
+struct GyroResidual {
+  double integrated_rad{};
+  double duration_s{};
+  double sigma_rad{};
+
+  template <typename T>
+  bool operator()(const T* pose_a, const T* pose_b, const T* gyro_bias, T* residual) const {
+    const T change = wrapped(T(pose_b[2] - pose_a[2]));
+    residual[0] = (change - (integrated_rad - gyro_bias[0] * duration_s)) / sigma_rad;
+    return true;
+  }
+};
+
+// First-order Gauss-Markov GNSS error between consecutive keyframes: b' = phi b + w.
+struct GaussMarkovResidual {
+  double phi{};
+  double sigma_m{};  // of w
+
+  template <typename T>
+  bool operator()(const T* bias_a, const T* bias_b, T* residual) const {
+    residual[0] = (bias_b[0] - phi * bias_a[0]) / sigma_m;
+    residual[1] = (bias_b[1] - phi * bias_a[1]) / sigma_m;
+    return true;
+  }
+};
+
+// The Gauss-Markov error's stationary prior at the first keyframe.
+struct GaussMarkovPrior {
+  double sigma_m{};
+
+  template <typename T>
+  bool operator()(const T* bias, T* residual) const {
+    residual[0] = bias[0] / sigma_m;
+    residual[1] = bias[1] / sigma_m;
+    return true;
+  }
+};
+
+}  // namespace odocal::batch

@@ -1,0 +1,46 @@
+#include "odocal/estimation/odometry_preintegration.hpp"
+
+#include <cmath>
+
+#include "odocal/model/odometry_model.hpp"
+
+namespace odocal {
+
+PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_sample,
+                                  std::size_t last_sample, const OdometryParams& params,
+                                  const WheelNoise& noise) {
+  PreintegratedSegment segment;
+  segment.first_sample = first_sample;
+  segment.last_sample = last_sample;
+  const std::size_t count = last_sample - first_sample + 1;
+  segment.delta.resize(count, Pose2::Zero());
+  segment.J_delta_params.resize(count, Eigen::Matrix3d::Zero());
+  OdometryJacobianPose F;
+  OdometryJacobianWheels G = OdometryJacobianWheels::Zero();
+  OdometryJacobianParams J_params;
+  Eigen::Matrix3d& sigma = segment.covariance;
+  const double slip_variance = noise.slip_sigma_m_per_sqrt_m * noise.slip_sigma_m_per_sqrt_m;
+  // How an error in the first increment reaches the segment's end (for the start count's
+  // quantisation error).
+  OdometryJacobianWheels first_to_end = OdometryJacobianWheels::Zero();
+  for (std::size_t s = 1; s < count; ++s) {
+    const WheelIncrement n = wheels.increment(first_sample + s);
+    segment.delta[s] =
+        predict_pose(segment.delta[s - 1], n, params, 0.0,
+                     {.J_pose_pose = &F, .J_pose_wheels = &G, .J_pose_params = &J_params});
+    segment.J_delta_params[s] = F * segment.J_delta_params[s - 1] + J_params;
+    // Slip variance in revolutions^2: slip^2 |arc| / c^2.
+    const Eigen::Vector2d wheel_variance(
+        slip_variance * std::abs(n.rev_rl) / params.circumference_rl_m,
+        slip_variance * std::abs(n.rev_rr) / params.circumference_rr_m);
+    sigma = F * sigma * F.transpose() + G * wheel_variance.asDiagonal() * G.transpose();
+    first_to_end = s == 1 ? G : (F * first_to_end).eval();
+  }
+  // Quantisation: the counts at both ends are off, independently per wheel; the start error
+  // enters through the first increment, the end error through the last (G).
+  const double q2 = noise.quantisation_sigma_rev * noise.quantisation_sigma_rev;
+  sigma += q2 * (first_to_end * first_to_end.transpose() + G * G.transpose());
+  return segment;
+}
+
+}  // namespace odocal

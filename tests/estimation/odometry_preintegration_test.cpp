@@ -1,0 +1,94 @@
+// Pre-integrated odometry against dead reckoning, numerical parameter Jacobians, and a
+// Monte-Carlo covariance of noisy wheel increments.
+
+#include "odocal/estimation/odometry_preintegration.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "../support/numerical_jacobian.hpp"
+#include "odocal/estimation/dead_reckoning.hpp"
+
+namespace odocal {
+namespace {
+
+WheelStream curving_wheels() {
+  WheelStream wheels;
+  for (int k = 0; k <= 120; ++k) {
+    wheels.t_s.push_back(0.02 * k);
+    const double turn = k < 60 ? 0.01 : -0.004;
+    wheels.rev_rl.push_back(k == 0 ? 0.0 : 0.2 - turn);
+    wheels.rev_rr.push_back(k == 0 ? 0.0 : 0.2 + turn);
+  }
+  return wheels;
+}
+
+TEST(OdometryPreintegration, IsDeadReckoningFromTheFirstKeyframe) {
+  const WheelStream wheels = curving_wheels();
+  const OdometryParams params{1.95, 1.96, 1.6};
+  const PreintegratedSegment segment = preintegrate(wheels, 20, 110, params, {});
+  WheelStream tail = wheels;  // samples 20..110 with sample 20 as the start
+  tail.t_s.assign(wheels.t_s.begin() + 20, wheels.t_s.begin() + 111);
+  tail.rev_rl.assign(wheels.rev_rl.begin() + 20, wheels.rev_rl.begin() + 111);
+  tail.rev_rr.assign(wheels.rev_rr.begin() + 20, wheels.rev_rr.begin() + 111);
+  tail.rev_rl[0] = tail.rev_rr[0] = 0.0;
+  const PoseStream path = dead_reckon(tail, params, Pose2::Zero());
+  ASSERT_EQ(segment.delta.size(), path.size());
+  for (std::size_t s = 0; s < path.size(); ++s)
+    EXPECT_LT((segment.delta[s] - path.pose[s]).norm(), 1e-12) << s;
+}
+
+TEST(OdometryPreintegration, ParameterJacobianMatchesNumerical) {
+  const WheelStream wheels = curving_wheels();
+  const Eigen::Vector3d at(1.95, 1.96, 1.6);
+  const PreintegratedSegment segment = preintegrate(wheels, 0, 120, {at(0), at(1), at(2)}, {});
+  for (const std::size_t s : {1ul, 37ul, 120ul}) {
+    const auto numerical = testing::numerical_jacobian<3, 3>(
+        [&](const Eigen::Vector3d& p) -> Eigen::Vector3d {
+          return preintegrate(wheels, 0, 120, {p(0), p(1), p(2)}, {}).delta[s];
+        },
+        at);
+    EXPECT_LT((segment.J_delta_params[s] - numerical).cwiseAbs().maxCoeff(), 1e-7) << s;
+  }
+}
+
+TEST(OdometryPreintegration, CovarianceMatchesMonteCarloOfNoisyWheels) {
+  // Slip: each increment's arc gets white noise of variance slip^2 |arc|; quantisation: the
+  // first and last increments get a count error of sigma q (the end counts).
+  const WheelStream wheels = curving_wheels();
+  const OdometryParams params{1.95, 1.96, 1.6};
+  const WheelNoise noise{0.01, 0.004};
+  const PreintegratedSegment model = preintegrate(wheels, 0, 120, params, noise);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const int runs = 4000;
+  std::vector<Eigen::Vector3d> ends;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int r = 0; r < runs; ++r) {
+    WheelStream noisy = wheels;
+    for (std::size_t k = 1; k < noisy.size(); ++k) {
+      noisy.rev_rl[k] += gauss(rng) * noise.slip_sigma_m_per_sqrt_m *
+                         std::sqrt(std::abs(wheels.rev_rl[k]) / params.circumference_rl_m);
+      noisy.rev_rr[k] += gauss(rng) * noise.slip_sigma_m_per_sqrt_m *
+                         std::sqrt(std::abs(wheels.rev_rr[k]) / params.circumference_rr_m);
+    }
+    for (const std::size_t k : {std::size_t{1}, noisy.size() - 1}) {
+      noisy.rev_rl[k] += gauss(rng) * noise.quantisation_sigma_rev;
+      noisy.rev_rr[k] += gauss(rng) * noise.quantisation_sigma_rev;
+    }
+    ends.push_back(preintegrate(noisy, 0, 120, params, {}).delta.back());
+    mean += ends.back() / runs;
+  }
+  Eigen::Matrix3d sample = Eigen::Matrix3d::Zero();
+  for (const auto& end : ends) sample += (end - mean) * (end - mean).transpose() / (runs - 1);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(sample(i, i), model.covariance(i, i), 0.08 * model.covariance(i, i)) << i;
+  }
+  EXPECT_NEAR(sample(1, 2) / std::sqrt(sample(1, 1) * sample(2, 2)),
+              model.covariance(1, 2) / std::sqrt(model.covariance(1, 1) * model.covariance(2, 2)),
+              0.05);
+}
+
+}  // namespace
+}  // namespace odocal
