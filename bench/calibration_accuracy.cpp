@@ -5,6 +5,9 @@
 //
 //   build/bench/odocal_calibration_accuracy [--seeds 10] [--q 2] [--window 10]
 //       [--start aligned-window] [--reference filter] [--wheels ticks] [--track FILE|builtin]
+//       [--methods iterative,fixed-p,augmented,batch] [--config OPTIONS.yaml] [--laps 3]
+// Also prints the Cramér–Rao sigma of c_RL/c_RR (GNSS and heading noise) and each method's RMS
+// error as a multiple of it.
 
 #include <fmt/format.h>
 
@@ -15,6 +18,8 @@
 #include <numeric>
 
 #include "odocal/estimation/calibration.hpp"
+#include "odocal/estimation/cramer_rao.hpp"
+#include "odocal/io/calibration_io.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
@@ -25,13 +30,17 @@ namespace {
 
 struct Stats {
   std::vector<double> abs_error_mm;  // both wheels, every seed
-  std::vector<double> mean_position_m, mean_heading_deg, milliseconds;
+  std::vector<double> mean_position_m, mean_heading_deg, milliseconds, reported_sigma_mm;
 };
 
 double mean(const std::vector<double>& v) {
   return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
 }
 double max_of(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+double rms(const std::vector<double>& v) {
+  return std::sqrt(std::inner_product(v.begin(), v.end(), v.begin(), 0.0) /
+                   static_cast<double>(v.size()));
+}
 
 }  // namespace
 
@@ -44,6 +53,9 @@ int main(int argc, char** argv) {
   std::string track =
       std::string(ODOCAL_SOURCE_DIR) + "/../shared/data/tracks/hockenheim/track.csv";
   double wear_rl = 1.5, wear_rr = 1.0;
+  std::vector<std::string> method_names{"iterative", "fixed-p", "augmented"};
+  std::string config;
+  int laps = 3;
   app.add_option("--seeds", seeds);
   app.add_option("--q", q);
   app.add_option("--window", window);
@@ -54,6 +66,12 @@ int main(int argc, char** argv) {
   app.add_option("--track", track, "TUMFTM centreline, or 'builtin' for the built-in circuit");
   app.add_option("--wear-rl", wear_rl);
   app.add_option("--wear-rr", wear_rr);
+  app.add_option("--methods", method_names)
+      ->delimiter(',')
+      ->check(CLI::IsMember({"iterative", "fixed-p", "augmented", "batch"}));
+  app.add_option("--config", config, "Calibration options YAML (as odocal calibrate --config)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--laps", laps)->check(CLI::PositiveNumber);
   CLI11_PARSE(app, argc, argv);
 
   sim::Scenario scenario = load_scenario("circuit");
@@ -63,11 +81,13 @@ int main(int argc, char** argv) {
     use_track_file(scenario, track);
     where = "Hockenheim (" + track + ")";
   }
+  scenario.route.laps = laps;
   scenario.vehicle.wear_rl_mm = wear_rl;
   scenario.vehicle.wear_rr_mm = wear_rr;
   scenario.wheels.output = wheels == "ticks" ? WheelUnit::kTicks : WheelUnit::kRadians;
 
   CalibrationOptions options;
+  if (!config.empty()) options = read_calibration_options(config);
   options.decay_exponent_q = q;
   options.ls_window_samples = window;
   options.dr_start = start == "first-reference"  ? DeadReckoningStart::kFirstReference
@@ -80,14 +100,21 @@ int main(int argc, char** argv) {
       "{}, {} laps, --ideal, wear {}/{} mm, wheels {}, {} seeds; q {}, LS window {}, start {}, "
       "reference {}\n",
       where, scenario.route.laps, wear_rl, wear_rr, wheels, seeds, q, window, start, reference);
-  const CalibrationMethod methods[] = {CalibrationMethod::kIterative, CalibrationMethod::kFixedP,
-                                       CalibrationMethod::kAugmented};
-  Stats stats[3];
+  std::vector<CalibrationMethod> methods;
+  for (const std::string& name : method_names) methods.push_back(*parse_method(name));
+  std::vector<Stats> stats(methods.size());
+  double crlb_variance = 0.0;
   for (int seed = 1; seed <= seeds; ++seed) {
     scenario.seeds.noise = static_cast<std::uint64_t>(seed);
     const sim::SimulatedDrive drive = sim::simulate(scenario);
-    const Log log = simulated_log(drive);
-    for (int m = 0; m < 3; ++m) {
+    const Log log = simulated_log(drive, true);
+    const CramerRaoBound bound = circumference_cramer_rao_bound(
+        log, drive.true_params, log.truth->pose.front(),
+        {.gnss_sigma_m = scenario.gnss.sigma_m, .heading_sigma_rad = scenario.heading.sigma_rad});
+    crlb_variance +=
+        0.5 * (bound.sigma_c_rl_m * bound.sigma_c_rl_m + bound.sigma_c_rr_m * bound.sigma_c_rr_m) /
+        seeds;
+    for (std::size_t m = 0; m < methods.size(); ++m) {
       options.method = methods[m];
       const auto begin = std::chrono::steady_clock::now();
       const CalibrationResult result = calibrate(log, options);
@@ -100,15 +127,21 @@ int main(int argc, char** argv) {
                                                      drive.true_params.circumference_rr_m));
       stats[m].mean_position_m.push_back(result.after.mean_position_m);
       stats[m].mean_heading_deg.push_back(result.after.mean_heading_rad * 180 / M_PI);
+      stats[m].reported_sigma_mm.push_back(1e3 * std::sqrt(result.covariance(0, 0)));
     }
   }
-  fmt::print("{:<10} {:>14} {:>13} {:>17} {:>18} {:>12}\n", "method", "mean |err| mm",
-             "max |err| mm", "mean DR pos err m", "mean DR head err °", "time ms");
-  for (int m = 0; m < 3; ++m) {
-    fmt::print("{:<10} {:>14.3f} {:>13.3f} {:>17.2f} {:>18.3f} {:>12.1f}\n",
-               method_name(methods[m]), mean(stats[m].abs_error_mm), max_of(stats[m].abs_error_mm),
-               mean(stats[m].mean_position_m), mean(stats[m].mean_heading_deg),
-               mean(stats[m].milliseconds));
+  const double crlb_mm = 1e3 * std::sqrt(crlb_variance);
+  fmt::print("Cramér–Rao sigma (RMS over seeds and wheels): {:.4f} mm\n", crlb_mm);
+  fmt::print("{:<10} {:>14} {:>13} {:>8} {:>10} {:>12} {:>17} {:>18} {:>9}\n", "method",
+             "mean |err| mm", "max |err| mm", "RMS mm", "RMS/CRLB", "reported mm",
+             "mean DR pos err m", "mean DR head err °", "time ms");
+  for (std::size_t m = 0; m < methods.size(); ++m) {
+    fmt::print(
+        "{:<10} {:>14.3f} {:>13.3f} {:>8.3f} {:>10.2f} {:>12.3f} {:>17.2f} {:>18.3f} {:>9.1f}\n",
+        method_name(methods[m]), mean(stats[m].abs_error_mm), max_of(stats[m].abs_error_mm),
+        rms(stats[m].abs_error_mm), rms(stats[m].abs_error_mm) / crlb_mm,
+        mean(stats[m].reported_sigma_mm), mean(stats[m].mean_position_m),
+        mean(stats[m].mean_heading_deg), mean(stats[m].milliseconds));
   }
   return 0;
 }

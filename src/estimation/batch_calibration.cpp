@@ -69,7 +69,10 @@ class BatchProblem {
     }
     params_ = {nominal.circumference_rl_m, nominal.circumference_rr_m, nominal.track_width_m};
     gnss_bias_.assign(gauss_markov() ? keyframes_.size() : 0, Block2{0.0, 0.0});
-    noise_ = {batch_.slip_sigma_m_per_sqrt_m, quantisation_sigma_rev(log)};
+    // Quantisation is modelled by the count-error states, not by the segment covariance.
+    noise_ = {batch_.slip_sigma_m_per_sqrt_m, 0.0};
+    quantisation_sigma_rev_ = quantisation_sigma_rev(log);
+    count_error_.assign(keyframes_.size(), Block2{0.0, 0.0});
   }
 
   bool gauss_markov() const { return batch_.gnss_gauss_markov_sigma_m > 0.0; }
@@ -86,6 +89,7 @@ class BatchProblem {
   ceres::Solver::Summary solve() {
     problem_ = std::make_unique<ceres::Problem>();
     add_odometry();
+    add_count_priors();
     add_gnss();
     if (batch_.use_heading && log_.heading) add_heading();
     if (batch_.use_gyro && log_.imu) add_gyro();
@@ -97,6 +101,9 @@ class BatchProblem {
     solver.max_num_iterations = batch_.max_solver_iterations;
     solver.num_threads = 1;
     solver.logging_type = ceres::SILENT;
+    // Started from the layer-1 reference, the problem is nearly linear: Gauss-Newton steps are
+    // good from the start (measured: 4 iterations instead of 47 with Ceres' default radius).
+    solver.initial_trust_region_radius = 1e8;
     ceres::Solver::Summary summary;
     ceres::Solve(solver, problem_.get(), &summary);
     return summary;
@@ -184,6 +191,8 @@ class BatchProblem {
     MotionAt at{static_cast<std::size_t>(segment), {}, {}};
     at.motion.delta = (1.0 - w) * seg.delta[s] + w * seg.delta[s + 1];
     at.motion.J_delta_params = (1.0 - w) * seg.J_delta_params[s] + w * seg.J_delta_params[s + 1];
+    at.motion.J_delta_first_increment =
+        (1.0 - w) * seg.J_delta_first_increment[s] + w * seg.J_delta_first_increment[s + 1];
     at.motion.params_lin = params_lin_;
     at.velocity = (seg.delta[s + 1].head<2>() - seg.delta[s].head<2>()) / dt;
     return at;
@@ -194,14 +203,30 @@ class BatchProblem {
       const PreintegratedSegment& seg = segments_[i];
       // A tiny floor keeps a standing-still segment's information finite.
       const Eigen::Matrix3d covariance =
-          seg.covariance + Eigen::Vector3d(1e-8, 1e-8, 1e-10).asDiagonal().toDenseMatrix();
+          seg.covariance + Eigen::Vector3d(1e-12, 1e-12, 1e-14).asDiagonal().toDenseMatrix();
       const Eigen::Matrix3d L = covariance.llt().matrixL();
       auto* residual = new batch::OdometryResidual{
-          {seg.delta.back(), seg.J_delta_params.back(), params_lin_},
+          {seg.delta.back(), seg.J_delta_params.back(), seg.J_delta_first_increment.back(),
+           params_lin_},
+          seg.J_end_last_increment,
           L.triangularView<Eigen::Lower>().solve(Eigen::Matrix3d::Identity())};
       problem_->AddResidualBlock(
-          new ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, 3>(residual), nullptr,
-          poses_[i].data(), poses_[i + 1].data(), params_.data());
+          new ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, 3, 2, 2>(residual),
+          nullptr, poses_[i].data(), poses_[i + 1].data(), params_.data(), count_error_[i].data(),
+          count_error_[i + 1].data());
+    }
+  }
+
+  // Without a quantisation (exact wheel angles or speeds) the count errors stay zero.
+  void add_count_priors() {
+    for (Block2& count : count_error_) {
+      if (quantisation_sigma_rev_ > 0.0) {
+        problem_->AddResidualBlock(new ceres::AutoDiffCostFunction<batch::CountErrorPrior, 2, 2>(
+                                       new batch::CountErrorPrior{quantisation_sigma_rev_}),
+                                   nullptr, count.data());
+      } else {
+        problem_->SetParameterBlockConstant(count.data());
+      }
     }
   }
 
@@ -235,8 +260,9 @@ class BatchProblem {
                                                white_gnss_sigma(j)};
       double* bias = gauss_markov() ? gnss_bias_[at->segment].data() : zero_bias_.data();
       problem_->AddResidualBlock(
-          new ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, 3, 2, 1, 2>(residual),
-          gnss_loss(), poses_[at->segment].data(), params_.data(), lever_.data(), &latency_, bias);
+          new ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, 3, 2, 1, 2, 2>(residual),
+          gnss_loss(), poses_[at->segment].data(), params_.data(), lever_.data(), &latency_, bias,
+          count_error_[at->segment].data());
       ++gnss_residuals_;
     }
     if (gnss_residuals_ == 0) {
@@ -252,8 +278,9 @@ class BatchProblem {
       auto* residual = new batch::HeadingResidual{at->motion, heading.heading_rad[j],
                                                   options_.reference.heading_sigma_rad};
       problem_->AddResidualBlock(
-          new ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, 3, 1>(residual), nullptr,
-          poses_[at->segment].data(), params_.data(), &heading_bias_);
+          new ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, 3, 1, 2>(residual), nullptr,
+          poses_[at->segment].data(), params_.data(), &heading_bias_,
+          count_error_[at->segment].data());
     }
   }
 
@@ -320,6 +347,7 @@ class BatchProblem {
   std::vector<int> segment_of_sample_;
   std::vector<PreintegratedSegment> segments_;
   WheelNoise noise_;
+  double quantisation_sigma_rev_ = 0.0;
   Eigen::Vector3d params_lin_ = Eigen::Vector3d::Zero();
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
@@ -331,6 +359,7 @@ class BatchProblem {
   double heading_bias_ = 0.0;
   double gyro_bias_ = 0.0;
   std::vector<Block2> gnss_bias_;
+  std::vector<Block2> count_error_;
   Block2 zero_bias_{0.0, 0.0};  // stands in for the GNSS bias when it is not modelled
 };
 
@@ -365,7 +394,8 @@ void run_batch(const Log& log, const ReferenceTrajectory& reference,
       {"circumference_rr_m", p[1], sigma(u.params(1, 1)), true, true, ""},
       {"track_width_m", p[2], sigma(u.params(2, 2)), b.estimate_track_width, true, ""},
       {"gyro_bias_radps", batch.gyro_bias(), sigma(u.gyro_bias), b.estimate_gyro_bias, true, ""},
-      {"heading_bias_rad", batch.heading_bias(), sigma(u.heading_bias), b.estimate_heading_bias, true, ""},
+      {"heading_bias_rad", batch.heading_bias(), sigma(u.heading_bias), b.estimate_heading_bias,
+       true, ""},
       {"lever_arm_x_m", batch.lever()[0], sigma(u.lever(0, 0)), b.estimate_lever_arm, true, ""},
       {"lever_arm_y_m", batch.lever()[1], sigma(u.lever(1, 1)), b.estimate_lever_arm, true, ""},
       {"latency_s", batch.latency(), sigma(u.latency), b.estimate_latency, true, ""}};

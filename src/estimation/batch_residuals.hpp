@@ -6,7 +6,10 @@
 // Parameter blocks: pose [x m, y m, yaw rad] per keyframe; params [c_RL m, c_RR m, t_R m];
 // lever [x m forward, y m left] (GNSS antenna in the vehicle frame); latency [s] (a fix stamped t
 // reports the position at t - latency); gnss_bias [x m, y m] per keyframe (Gauss-Markov GNSS
-// error, constant zero when not modelled); heading_bias [rad]; gyro_bias [rad/s].
+// error, constant zero when not modelled); heading_bias [rad]; gyro_bias [rad/s]; count
+// [n_RL rev, n_RR rev] per keyframe: the encoder quantisation error of the cumulative counts
+// there (the true count is the logged one plus this), so that quantisation shifts motion between
+// neighbouring segments instead of accumulating.
 
 #include <ceres/ceres.h>
 
@@ -16,17 +19,21 @@
 namespace odocal::batch {
 
 // The pre-integrated odometry from a keyframe to one instant, linear in the parameters around
-// the values it was integrated with: delta(p) = delta + J (p - p_lin).
+// the values it was integrated with and in the keyframe's count error q (which takes q from the
+// segment's first increment): delta(p, q) = delta + J_p (p - p_lin) - J_first q.
 struct RelativeMotion {
   Eigen::Vector3d delta = Eigen::Vector3d::Zero();
   Eigen::Matrix3d J_delta_params = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 3, 2> J_delta_first_increment = Eigen::Matrix<double, 3, 2>::Zero();
   Eigen::Vector3d params_lin = Eigen::Vector3d::Zero();
 
   template <typename T>
-  Eigen::Matrix<T, 3, 1> at(const T* params) const {
+  Eigen::Matrix<T, 3, 1> at(const T* params, const T* count) const {
     const Eigen::Matrix<T, 3, 1> change(params[0] - params_lin(0), params[1] - params_lin(1),
                                         params[2] - params_lin(2));
-    return delta.cast<T>() + J_delta_params.cast<T>() * change;
+    const Eigen::Matrix<T, 2, 1> count_error(count[0], count[1]);
+    return delta.cast<T>() + J_delta_params.cast<T>() * change -
+           J_delta_first_increment.cast<T>() * count_error;
   }
 };
 
@@ -37,15 +44,20 @@ T wrapped(const T& angle) {
 }
 
 // Odometry between keyframes i and i+1: the relative pose of i+1 seen from i against the
-// pre-integrated wheel motion, weighted by its propagated covariance.
+// pre-integrated wheel motion (its last increment gains the end count error), weighted by the
+// propagated slip covariance.
 struct OdometryResidual {
   RelativeMotion motion;
+  Eigen::Matrix<double, 3, 2> J_end_last_increment;
   Eigen::Matrix3d sqrt_information;
 
   template <typename T>
-  bool operator()(const T* pose_a, const T* pose_b, const T* params, T* residual) const {
+  bool operator()(const T* pose_a, const T* pose_b, const T* params, const T* count_a,
+                  const T* count_b, T* residual) const {
     using std::cos, std::sin;
-    const Eigen::Matrix<T, 3, 1> delta = motion.at(params);
+    const Eigen::Matrix<T, 2, 1> end_error(count_b[0], count_b[1]);
+    const Eigen::Matrix<T, 3, 1> delta =
+        motion.at(params, count_a) + J_end_last_increment.cast<T>() * end_error;
     const T c = cos(pose_a[2]), s = sin(pose_a[2]);
     const T dx = pose_b[0] - pose_a[0], dy = pose_b[1] - pose_a[1];
     const Eigen::Matrix<T, 3, 1> error(c * dx + s * dy - delta(0), -s * dx + c * dy - delta(1),
@@ -65,9 +77,9 @@ struct GnssResidual {
 
   template <typename T>
   bool operator()(const T* pose, const T* params, const T* lever, const T* latency, const T* bias,
-                  T* residual) const {
+                  const T* count, T* residual) const {
     using std::cos, std::sin;
-    const Eigen::Matrix<T, 3, 1> delta = motion.at(params);
+    const Eigen::Matrix<T, 3, 1> delta = motion.at(params, count);
     const T c = cos(pose[2]), s = sin(pose[2]);
     const T yaw = pose[2] + delta(2);
     const T cy = cos(yaw), sy = sin(yaw);
@@ -90,14 +102,16 @@ struct HeadingResidual {
   double sigma_rad{};
 
   template <typename T>
-  bool operator()(const T* pose, const T* params, const T* heading_bias, T* residual) const {
-    const Eigen::Matrix<T, 3, 1> delta = motion.at(params);
+  bool operator()(const T* pose, const T* params, const T* heading_bias, const T* count,
+                  T* residual) const {
+    const Eigen::Matrix<T, 3, 1> delta = motion.at(params, count);
     residual[0] = wrapped(T(pose[2] + delta(2) + heading_bias[0] - measured_rad)) / sigma_rad;
     return true;
   }
 };
 
-// The gyro's yaw change over a keyframe interval (integrated yaw rate) against the poses.
+// The gyro's yaw change over a keyframe interval (integrated yaw rate) against the poses. Pose
+// yaws are continuous (not wrapped), so a change beyond +-pi in a long interval stays itself.
 struct GyroResidual {
   double integrated_rad{};
   double duration_s{};
@@ -105,7 +119,7 @@ struct GyroResidual {
 
   template <typename T>
   bool operator()(const T* pose_a, const T* pose_b, const T* gyro_bias, T* residual) const {
-    const T change = wrapped(T(pose_b[2] - pose_a[2]));
+    const T change = pose_b[2] - pose_a[2];
     residual[0] = (change - (integrated_rad - gyro_bias[0] * duration_s)) / sigma_rad;
     return true;
   }
@@ -120,6 +134,19 @@ struct GaussMarkovResidual {
   bool operator()(const T* bias_a, const T* bias_b, T* residual) const {
     residual[0] = (bias_b[0] - phi * bias_a[0]) / sigma_m;
     residual[1] = (bias_b[1] - phi * bias_a[1]) / sigma_m;
+    return true;
+  }
+};
+
+// The encoder quantisation at a keyframe: a rounded count is off by U(-1/2, 1/2) tick, taken as
+// Gaussian with the same sigma (1/sqrt(12) tick, in revolutions).
+struct CountErrorPrior {
+  double sigma_rev{};
+
+  template <typename T>
+  bool operator()(const T* count, T* residual) const {
+    residual[0] = count[0] / sigma_rev;
+    residual[1] = count[1] / sigma_rev;
     return true;
   }
 };

@@ -15,14 +15,12 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
   const std::size_t count = last_sample - first_sample + 1;
   segment.delta.resize(count, Pose2::Zero());
   segment.J_delta_params.resize(count, Eigen::Matrix3d::Zero());
+  segment.J_delta_first_increment.resize(count, OdometryJacobianWheels::Zero());
   OdometryJacobianPose F;
   OdometryJacobianWheels G = OdometryJacobianWheels::Zero();
   OdometryJacobianParams J_params;
   Eigen::Matrix3d& sigma = segment.covariance;
   const double slip_variance = noise.slip_sigma_m_per_sqrt_m * noise.slip_sigma_m_per_sqrt_m;
-  // How an error in the first increment reaches the segment's end (for the start count's
-  // quantisation error).
-  OdometryJacobianWheels first_to_end = OdometryJacobianWheels::Zero();
   for (std::size_t s = 1; s < count; ++s) {
     const WheelIncrement n = wheels.increment(first_sample + s);
     segment.delta[s] =
@@ -34,12 +32,15 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
         slip_variance * std::abs(n.rev_rl) / params.circumference_rl_m,
         slip_variance * std::abs(n.rev_rr) / params.circumference_rr_m);
     sigma = F * sigma * F.transpose() + G * wheel_variance.asDiagonal() * G.transpose();
-    first_to_end = s == 1 ? G : (F * first_to_end).eval();
+    segment.J_delta_first_increment[s] =
+        s == 1 ? G : (F * segment.J_delta_first_increment[s - 1]).eval();
   }
+  segment.J_end_last_increment = G;
   // Quantisation: the counts at both ends are off, independently per wheel; the start error
   // enters through the first increment, the end error through the last (G).
   const double q2 = noise.quantisation_sigma_rev * noise.quantisation_sigma_rev;
-  sigma += q2 * (first_to_end * first_to_end.transpose() + G * G.transpose());
+  const OdometryJacobianWheels& first = segment.J_delta_first_increment.back();
+  sigma += q2 * (first * first.transpose() + G * G.transpose());
   return segment;
 }
 

@@ -13,7 +13,7 @@ namespace odocal::experiments {
 namespace {
 
 constexpr CalibrationMethod kMethods[] = {CalibrationMethod::kIterative, CalibrationMethod::kFixedP,
-                                          CalibrationMethod::kAugmented};
+                                          CalibrationMethod::kAugmented, CalibrationMethod::kBatch};
 
 // The paper's mean absolute error for the method; null for methods the paper does not have.
 nlohmann::json paper_figure(CalibrationMethod method) {

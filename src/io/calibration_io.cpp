@@ -30,6 +30,66 @@ void read_diagonal(YamlMap& map, const std::string& key, Eigen::Vector3d& value)
   }
 }
 
+void read_batch_options(YamlMap& map, BatchOptions& b) {
+  map.read("keyframe_interval_s", b.keyframe_interval_s, 1e-3, 1e4);
+  map.read("slip_sigma_m_per_sqrt_m", b.slip_sigma_m_per_sqrt_m, 0.0, 1.0);
+  map.read("gnss_gauss_markov_sigma_m", b.gnss_gauss_markov_sigma_m, 0.0, 1e3);
+  map.read("gnss_gauss_markov_tau_s", b.gnss_gauss_markov_tau_s, 1e-3, 1e6);
+  std::string loss = robust_loss_name(b.gnss_loss);
+  map.read("gnss_loss", loss);
+  if (loss == "none")
+    b.gnss_loss = RobustLoss::kNone;
+  else if (loss == "huber")
+    b.gnss_loss = RobustLoss::kHuber;
+  else if (loss == "cauchy")
+    b.gnss_loss = RobustLoss::kCauchy;
+  else
+    throw InputError(map.location("gnss_loss"), "expected none, huber or cauchy");
+  map.read("gnss_loss_scale", b.gnss_loss_scale, 1e-3, 1e3);
+  map.read("use_heading", b.use_heading);
+  map.read("use_gyro", b.use_gyro);
+  map.read("estimate_track_width", b.estimate_track_width);
+  map.read("estimate_gyro_bias", b.estimate_gyro_bias);
+  map.read("estimate_heading_bias", b.estimate_heading_bias);
+  map.read("estimate_lever_arm", b.estimate_lever_arm);
+  map.read("estimate_latency", b.estimate_latency);
+  map.read("max_solver_iterations", b.max_solver_iterations, 1, 100000);
+  map.read("relinearise_relative_change", b.relinearise_relative_change, 1e-12, 1.0);
+  map.read("max_relinearisations", b.max_relinearisations, 0, 100);
+  map.read("max_sigma_circumference_m", b.max_sigma_circumference_m, 0.0, 1.0);
+  map.read("max_sigma_track_width_m", b.max_sigma_track_width_m, 0.0, 1.0);
+  map.read("max_sigma_gyro_bias_radps", b.max_sigma_gyro_bias_radps, 0.0, 1.0);
+  map.read("max_sigma_heading_bias_rad", b.max_sigma_heading_bias_rad, 0.0, 10.0);
+  map.read("max_sigma_lever_arm_m", b.max_sigma_lever_arm_m, 0.0, 100.0);
+  map.read("max_sigma_latency_s", b.max_sigma_latency_s, 0.0, 100.0);
+  map.reject_unknown_keys();
+}
+
+json batch_options_to_json(const BatchOptions& b) {
+  return {{"keyframe_interval_s", b.keyframe_interval_s},
+          {"slip_sigma_m_per_sqrt_m", b.slip_sigma_m_per_sqrt_m},
+          {"gnss_gauss_markov_sigma_m", b.gnss_gauss_markov_sigma_m},
+          {"gnss_gauss_markov_tau_s", b.gnss_gauss_markov_tau_s},
+          {"gnss_loss", robust_loss_name(b.gnss_loss)},
+          {"gnss_loss_scale", b.gnss_loss_scale},
+          {"use_heading", b.use_heading},
+          {"use_gyro", b.use_gyro},
+          {"estimate_track_width", b.estimate_track_width},
+          {"estimate_gyro_bias", b.estimate_gyro_bias},
+          {"estimate_heading_bias", b.estimate_heading_bias},
+          {"estimate_lever_arm", b.estimate_lever_arm},
+          {"estimate_latency", b.estimate_latency},
+          {"max_solver_iterations", b.max_solver_iterations},
+          {"relinearise_relative_change", b.relinearise_relative_change},
+          {"max_relinearisations", b.max_relinearisations},
+          {"max_sigma_circumference_m", b.max_sigma_circumference_m},
+          {"max_sigma_track_width_m", b.max_sigma_track_width_m},
+          {"max_sigma_gyro_bias_radps", b.max_sigma_gyro_bias_radps},
+          {"max_sigma_heading_bias_rad", b.max_sigma_heading_bias_rad},
+          {"max_sigma_lever_arm_m", b.max_sigma_lever_arm_m},
+          {"max_sigma_latency_s", b.max_sigma_latency_s}};
+}
+
 json summary_to_json(const DeadReckoningSummary& s) {
   return {{"mean_position_m", s.mean_position_m},
           {"max_position_m", s.max_position_m},
@@ -110,6 +170,7 @@ CalibrationOptions parse_calibration_options(const std::string& yaml_text, const
     augmented->read("initial_param_sigma_m", o.augmented_initial_param_sigma_m, 1e-9, 1.0);
     augmented->reject_unknown_keys();
   }
+  if (auto batch = root.map("batch")) read_batch_options(*batch, o.batch);
   root.read("min_distance_m", o.min_distance_m, 0.0, 1e9);
   double min_samples = static_cast<double>(o.min_reference_samples);
   root.read("min_reference_samples", min_samples, 2.0, 1e9);
@@ -163,6 +224,7 @@ json options_to_json(const CalibrationOptions& o) {
            {{"pose_process_diagonal", vector_json(o.augmented_pose_process_diagonal)},
             {"param_sigma_m_per_step", o.augmented_param_sigma_m_per_step},
             {"initial_param_sigma_m", o.augmented_initial_param_sigma_m}}},
+          {"batch", batch_options_to_json(o.batch)},
           {"min_distance_m", o.min_distance_m},
           {"min_reference_samples", o.min_reference_samples},
           {"max_condition_number", o.max_condition_number},
@@ -205,6 +267,21 @@ json result_to_json(const CalibrationResult& r, const CalibrationOptions& option
     out["parameter_series"] = {{"t_s", r.parameter_t_s},
                                {"circumference_rl_m", r.parameter_c_rl_m},
                                {"circumference_rr_m", r.parameter_c_rr_m}};
+  }
+  if (!r.parameters.empty()) {
+    json parameters = json::array();
+    for (const EstimatedParameter& p : r.parameters) {
+      json entry = {{"name", p.name}, {"value", p.value}, {"estimated", p.estimated}};
+      if (p.estimated) {  // an infinite sigma (not computable) is written as null
+        entry["sigma"] = std::isfinite(p.sigma) ? json(p.sigma) : json(nullptr);
+        entry["identified"] = p.identified;
+        if (!p.verdict.empty()) entry["verdict"] = p.verdict;
+      }
+      parameters.push_back(entry);
+    }
+    out["parameters"] = parameters;
+    out["identifiability"] = r.identifiability;
+    out["solver_report"] = r.solver_report;
   }
   return out;
 }

@@ -33,6 +33,7 @@ batch::RelativeMotion some_motion() {
   batch::RelativeMotion motion;
   motion.delta << 12.0, 1.5, 0.3;
   motion.J_delta_params << 3.1, 3.0, -0.2, 0.4, -0.5, 0.9, -0.8, 0.8, -0.1;
+  motion.J_delta_first_increment << 1.0, 0.9, -0.3, 0.35, -1.2, 1.25;
   motion.params_lin << 1.95, 1.96, 1.6;
   return motion;
 }
@@ -42,16 +43,18 @@ TEST(BatchResiduals, JacobiansMatchNumericalOnes) {
   const std::vector<double> params{1.951, 1.958, 1.62};
   Eigen::Matrix3d sqrt_information;
   sqrt_information << 3.0, 0.2, 0.1, 0.0, 2.5, -0.3, 0.0, 0.0, 40.0;
-  expect_correct_jacobians(ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, 3>(
-                               new batch::OdometryResidual{some_motion(), sqrt_information}),
-                           {pose_a, pose_b, params});
   expect_correct_jacobians(
-      ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, 3, 2, 1, 2>(
+      ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, 3, 2, 2>(
+          new batch::OdometryResidual{some_motion(), some_motion().J_delta_first_increment,
+                                      sqrt_information}),
+      {pose_a, pose_b, params, {0.002, -0.001}, {-0.003, 0.001}});
+  expect_correct_jacobians(
+      ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, 3, 2, 1, 2, 2>(
           new batch::GnssResidual{some_motion(), {20.0, 3.0}, {22.0, 5.0}, 2.5}),
-      {pose_a, params, {0.4, -0.2}, {0.05}, {0.7, -1.1}});
-  expect_correct_jacobians(ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, 3, 1>(
+      {pose_a, params, {0.4, -0.2}, {0.05}, {0.7, -1.1}, {0.002, -0.001}});
+  expect_correct_jacobians(ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, 3, 1, 2>(
                                new batch::HeadingResidual{some_motion(), -3.0, 0.15}),
-                           {pose_a, params, {0.02}});
+                           {pose_a, params, {0.02}, {0.002, -0.001}});
   expect_correct_jacobians(ceres::AutoDiffCostFunction<batch::GyroResidual, 1, 3, 3, 1>(
                                new batch::GyroResidual{0.35, 1.0, 0.003}),
                            {pose_a, pose_b, {0.001}});
@@ -65,9 +68,11 @@ TEST(BatchResiduals, VanishAtTheirClosedFormSolutions) {
   const double pose_a[3] = {10.0, -4.0, M_PI / 2};
   const double pose_b[3] = {10.0 - 1.5, -4.0 + 12.0, M_PI / 2 + 0.3};
   const double params[3] = {1.95, 1.96, 1.6};  // = params_lin: no first-order change
+  const double no_count_error[2] = {0.0, 0.0};
   double residual[3];
-  batch::OdometryResidual{some_motion(), Eigen::Matrix3d::Identity()}(pose_a, pose_b, params,
-                                                                      residual);
+  batch::OdometryResidual{some_motion(), Eigen::Matrix<double, 3, 2>::Zero(),
+                          Eigen::Matrix3d::Identity()}(pose_a, pose_b, params, no_count_error,
+                                                       no_count_error, residual);
   EXPECT_NEAR(Eigen::Vector3d(residual[0], residual[1], residual[2]).norm(), 0.0, 1e-12);
   // GNSS antenna 1 m ahead of the reference point, 0.1 s latency at 10 m/s forward (keyframe
   // frame x = world y here), 0.5 m east bias.
@@ -76,7 +81,7 @@ TEST(BatchResiduals, VanishAtTheirClosedFormSolutions) {
   const Eigen::Vector2d expected(10.0 - 1.5 + std::cos(yaw) + 0.5,
                                  -4.0 + 12.0 + std::sin(yaw) - 10.0 * 0.1);
   batch::GnssResidual{some_motion(), {10.0, 0.0}, expected, 1.0}(pose_a, params, lever, latency,
-                                                                 bias, residual);
+                                                                 bias, no_count_error, residual);
   EXPECT_NEAR(std::hypot(residual[0], residual[1]), 0.0, 1e-12);
 }
 

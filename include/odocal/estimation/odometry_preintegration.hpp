@@ -25,7 +25,12 @@ struct PreintegratedSegment {
   std::size_t last_sample{};   // ... and of its last one
   // Index s = wheel index - first_sample, 0..last-first; delta[0] = 0.
   std::vector<Pose2> delta;
-  std::vector<Eigen::Matrix3d> J_delta_params;           // d delta / d [c_RL, c_RR, t_R]
+  std::vector<Eigen::Matrix3d> J_delta_params;  // d delta / d [c_RL, c_RR, t_R]
+  // d delta / d [n_RL, n_RR] of the first increment: how an error in the start counts moves
+  // every later sample (zero at s = 0).
+  std::vector<Eigen::Matrix<double, 3, 2>> J_delta_first_increment;
+  // d delta.back() / d [n_RL, n_RR] of the last increment (an error in the end counts).
+  Eigen::Matrix<double, 3, 2> J_end_last_increment = Eigen::Matrix<double, 3, 2>::Zero();
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of delta.back()
 };
 
