@@ -70,19 +70,24 @@ class BatchProblem {
     params_ = {nominal.circumference_rl_m, nominal.circumference_rr_m, nominal.track_width_m};
     gnss_bias_.assign(gauss_markov() ? keyframes_.size() : 0, Block2{0.0, 0.0});
     // Quantisation is modelled by the count-error states, not by the segment covariance.
-    noise_ = {batch_.slip_sigma_m_per_sqrt_m, 0.0};
-    quantisation_sigma_rev_ = quantisation_sigma_rev(log);
+    noise_ = {batch_.slip_sigma_m_per_sqrt_m, 0.0, batch_.lateral_sigma_m_per_sqrt_m};
+    quantisation_sigma_rev_ = batch_.quantisation_sigma_rev < 0.0 ? quantisation_sigma_rev(log)
+                                                                 : batch_.quantisation_sigma_rev;
     count_error_.assign(keyframes_.size(), Block2{0.0, 0.0});
   }
 
   bool gauss_markov() const { return batch_.gnss_gauss_markov_sigma_m > 0.0; }
 
-  // Integrates the odometry of every segment at the current parameters.
-  void preintegrate_all() {
+  // Integrates the odometry of every segment at the current parameters. `slip_floor` loosens the
+  // slip noise for a first, coarse solve: started from the layer-1 reference, a nearly rigid
+  // odometry chain would take the solver many small steps.
+  void preintegrate_all(double slip_floor = 0.0) {
     const OdometryParams at{params_[0], params_[1], params_[2]};
+    const WheelNoise noise{std::max(noise_.slip_sigma_m_per_sqrt_m, slip_floor), 0.0,
+                           std::max(noise_.lateral_sigma_m_per_sqrt_m, slip_floor)};
     segments_.clear();
     for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i)
-      segments_.push_back(preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise_));
+      segments_.push_back(preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise));
     params_lin_ = Eigen::Vector3d(params_[0], params_[1], params_[2]);
   }
 
@@ -203,7 +208,7 @@ class BatchProblem {
       const PreintegratedSegment& seg = segments_[i];
       // A tiny floor keeps a standing-still segment's information finite.
       const Eigen::Matrix3d covariance =
-          seg.covariance + Eigen::Vector3d(1e-12, 1e-12, 1e-14).asDiagonal().toDenseMatrix();
+          seg.covariance + Eigen::Vector3d(1e-10, 1e-10, 1e-12).asDiagonal().toDenseMatrix();
       const Eigen::Matrix3d L = covariance.llt().matrixL();
       auto* residual = new batch::OdometryResidual{
           {seg.delta.back(), seg.J_delta_params.back(), seg.J_delta_first_increment.back(),
@@ -372,12 +377,13 @@ void run_batch(const Log& log, const ReferenceTrajectory& reference,
   BatchProblem batch(log, reference, options, result.nominal);
   ceres::Solver::Summary summary;
   int solves = 0;
+  constexpr double kCoarseNoise = 1e-3;  // m per sqrt(m), slip and lateral
   do {
-    batch.preintegrate_all();
+    batch.preintegrate_all(solves == 0 ? kCoarseNoise : 0.0);
     summary = batch.solve();
     ++solves;
-  } while (batch.relative_change() > options.batch.relinearise_relative_change &&
-           solves <= options.batch.max_relinearisations);
+  } while (solves == 1 || (batch.relative_change() > options.batch.relinearise_relative_change &&
+           solves <= options.batch.max_relinearisations));
   if (!summary.IsSolutionUsable()) {
     throw InsufficientDataError("the batch solver found no usable solution: " + summary.message);
   }

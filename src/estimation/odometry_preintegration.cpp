@@ -32,6 +32,11 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
         slip_variance * std::abs(n.rev_rl) / params.circumference_rl_m,
         slip_variance * std::abs(n.rev_rr) / params.circumference_rr_m);
     sigma = F * sigma * F.transpose() + G * wheel_variance.asDiagonal() * G.transpose();
+    const double course = 0.5 * (segment.delta[s - 1].z() + segment.delta[s].z());
+    const Eigen::Vector2d across(-std::sin(course), std::cos(course));
+    const double step_m = (segment.delta[s].head<2>() - segment.delta[s - 1].head<2>()).norm();
+    const double lateral = noise.lateral_sigma_m_per_sqrt_m;
+    sigma.topLeftCorner<2, 2>() += lateral * lateral * step_m * across * across.transpose();
     segment.J_delta_first_increment[s] =
         s == 1 ? G : (F * segment.J_delta_first_increment[s - 1]).eval();
   }

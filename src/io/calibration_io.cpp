@@ -33,6 +33,8 @@ void read_diagonal(YamlMap& map, const std::string& key, Eigen::Vector3d& value)
 void read_batch_options(YamlMap& map, BatchOptions& b) {
   map.read("keyframe_interval_s", b.keyframe_interval_s, 1e-3, 1e4);
   map.read("slip_sigma_m_per_sqrt_m", b.slip_sigma_m_per_sqrt_m, 0.0, 1.0);
+  map.read("quantisation_sigma_rev", b.quantisation_sigma_rev, -1.0, 1.0);
+  map.read("lateral_sigma_m_per_sqrt_m", b.lateral_sigma_m_per_sqrt_m, 0.0, 1.0);
   map.read("gnss_gauss_markov_sigma_m", b.gnss_gauss_markov_sigma_m, 0.0, 1e3);
   map.read("gnss_gauss_markov_tau_s", b.gnss_gauss_markov_tau_s, 1e-3, 1e6);
   std::string loss = robust_loss_name(b.gnss_loss);
@@ -68,6 +70,8 @@ void read_batch_options(YamlMap& map, BatchOptions& b) {
 json batch_options_to_json(const BatchOptions& b) {
   return {{"keyframe_interval_s", b.keyframe_interval_s},
           {"slip_sigma_m_per_sqrt_m", b.slip_sigma_m_per_sqrt_m},
+          {"quantisation_sigma_rev", b.quantisation_sigma_rev},
+          {"lateral_sigma_m_per_sqrt_m", b.lateral_sigma_m_per_sqrt_m},
           {"gnss_gauss_markov_sigma_m", b.gnss_gauss_markov_sigma_m},
           {"gnss_gauss_markov_tau_s", b.gnss_gauss_markov_tau_s},
           {"gnss_loss", robust_loss_name(b.gnss_loss)},

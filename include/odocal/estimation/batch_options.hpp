@@ -15,6 +15,10 @@ struct BatchOptions {
   // Wheel noise: slip as a random walk in arc length; the encoder quantisation is derived from
   // vehicle.yaml's ticks_per_rev (sigma of a rounded count, 1/sqrt(12) tick).
   double slip_sigma_m_per_sqrt_m = 1e-3;
+  double lateral_sigma_m_per_sqrt_m = 1e-3;  // side slip and model error across the course
+  // Encoder quantisation per count in revolutions; negative: 1/sqrt(12) tick from ticks_per_rev
+  // (0 for wheel angles or speeds); 0: counts taken as exact.
+  double quantisation_sigma_rev = -1.0;
   // Time-correlated GNSS error, a first-order Gauss-Markov process per axis (0: white only).
   // gnss.csv's sigma_m is then taken as the total and the white part is what remains.
   double gnss_gauss_markov_sigma_m = 0.0;

@@ -15,9 +15,12 @@ namespace odocal {
 // Per-wheel arc noise: slip as a random walk in arc length (variance slip^2 * |arc|), plus the
 // encoder quantisation of the segment (the count at each end is off by up to half a tick:
 // variance 2 q^2 per wheel and segment, q in revolutions).
+// Lateral noise: side slip and model error move the reference point sideways, a random walk
+// across the course (variance lateral^2 * |distance|).
 struct WheelNoise {
   double slip_sigma_m_per_sqrt_m = 1e-3;
   double quantisation_sigma_rev = 0.0;
+  double lateral_sigma_m_per_sqrt_m = 0.0;
 };
 
 struct PreintegratedSegment {
