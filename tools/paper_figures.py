@@ -11,8 +11,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-METHODS = ("iterative", "fixed-p", "augmented")
-COLOURS = {"iterative": "tab:blue", "fixed-p": "tab:orange", "augmented": "tab:green"}
+METHODS = ("iterative", "fixed-p", "augmented", "batch")
+COLOURS = {"iterative": "tab:blue", "fixed-p": "tab:orange", "augmented": "tab:green",
+           "batch": "tab:purple"}
 
 
 def read_csv(path):

@@ -150,8 +150,7 @@ def single_run(report):
         report.write("| method | error RL / RR [mm] | RMS error / CRLB σ | reported 1σ [mm] | "
                      "stop at iteration | DR mean / max pos [m] | DR mean / max heading [°] |")
         report.write("|---|---|---|---|---|---|---|")
-        for method in figures.METHODS:
-            r = s["methods"][method]
+        for method, r in s["methods"].items():
             stop = r["chosen_iteration"] if method != "augmented" else "–"
             rms = (0.5 * (r["error_rl_mm"] ** 2 + r["error_rr_mm"] ** 2)) ** 0.5
             report.write(f"| {method} | {r['error_rl_mm']:+.3f} / {r['error_rr_mm']:+.3f} | "
@@ -182,10 +181,13 @@ def monte_carlo(report):
     modes = report.modes("monte_carlo")
     if not modes:
         return
-    report.write("## Figs. 8–11: noise seeds, iterative vs fixed-P vs augmented KF")
+    report.write("## Figs. 8–11: noise seeds, iterative vs fixed-P vs augmented KF (and batch)")
     report.write()
     report.provenance()
-    report.write("Paper: mean absolute error 0.86 mm (iterative), 1.39 mm (fixed-P, 1.6×), and "
+    report.write("*batch* is odocal's maximum-likelihood estimator (`--method batch`, not in the "
+                 "paper; in ideal mode with its wheel noise set near zero, as the truth has no "
+                 "slip). "
+                 "Paper: mean absolute error 0.86 mm (iterative), 1.39 mm (fixed-P, 1.6×), and "
                  "the augmented KF about twice the iterative method's (\"reduced around 50 %\"). "
                  "*bias* is the mean signed error, *within 3σ* the share of errors inside three "
                  "times the method's own reported σ.")
@@ -209,7 +211,7 @@ def monte_carlo(report):
                 f"{row['rms_error_mm']:.3f} | {row['crlb_sigma_mm']:.4f} | "
                 f"{row['rms_over_crlb']:.1f} | {100 * row['within_3_reported_sigma']:.0f} % | "
                 f"{row['mean_dr_position_m']:.2f} | {row['mean_dr_heading_deg']:.3f} | "
-                f"{row['mean_milliseconds']:.0f} | {row['paper_mean_abs_error_mm']:.2f} |")
+                f"{row['mean_milliseconds']:.0f} | {fmt(row['paper_mean_abs_error_mm'])} |")
         report.write()
         floor = figures.crlb_floor(seeds)
         cells = [
@@ -224,9 +226,9 @@ def monte_carlo(report):
                           lambda s, k: s["methods"][k]["dr_mean_heading_deg"], figures.METHODS,
                           "DR mean heading error [°]", f"Fig. 10, {m}: orientation error", None),
             report.figure(f"mc-methods-{m}.png", figures.seed_bars, seeds,
-                          figures.mean_abs_error, ("iterative", "augmented"),
+                          figures.mean_abs_error, ("iterative", "augmented", "batch"),
                           "mean |error| RL, RR [mm]",
-                          f"Fig. 11, {m}: iterative vs augmented KF", floor)]
+                          f"Fig. 11, {m}: iterative vs augmented KF (and batch)", floor)]
         report.write("| | |")
         report.write("|---|---|")
         report.write(f"| {cells[0]} | {cells[1]} |")
@@ -275,6 +277,17 @@ def reading(report):
             f"{aug['rms_over_crlb']:.0f}× (augmented) that. A full-log estimator that fits the "
             f"wheel odometry to the raw GNSS and headings (the batch maximum-likelihood "
             f"calibration, issue #6) is what can close the gap.")
+        if "batch" in ideal:
+            b = ideal["batch"]
+            report.write(
+                f"- **The batch estimator.** Mean absolute error {b['mean_abs_error_mm']:.3f} mm, "
+                f"{it['mean_abs_error_mm'] / b['mean_abs_error_mm']:.1f}× smaller than the "
+                f"iterative method's on the same runs; RMS {b['rms_over_crlb']:.2f}× the "
+                f"Cramér–Rao σ. What remains is the 96-tick encoder quantisation: the simulator "
+                f"starts each wheel on a tick edge, so every later count lags by half a tick on "
+                f"average, which the fit turns into a −0.05 mm scale offset; with exact wheel "
+                f"angles the same seeds give 1.01× the bound (docs/calibration.md, \"Batch "
+                f"maximum likelihood\").")
         report.write(
             f"- **Reported uncertainty.** {100 * it['within_3_reported_sigma']:.0f} % of the "
             f"iterative method's errors lie inside 3× its reported σ (the LS covariance, "
@@ -300,6 +313,32 @@ def reading(report):
             f"its tyre model's radius must depend far less on load than ours (0.4 mm/kN). A "
             f"calibration for fast driving needs a load (lateral acceleration) term in the "
             f"model, or must use only slow, gentle segments.")
+    report.write()
+
+
+def robustness(report):
+    path = f"{report.results}/robustness/summary.json"
+    if not os.path.exists(path):
+        return
+    summary = figures.read_json(path)
+    report.write("## Beyond the paper: the batch estimator under degraded GNSS")
+    report.write()
+    report.provenance()
+    report.write("Ideal mode, the same seeds, GNSS degraded by a first-order Gauss–Markov error "
+                 "(σ 2 m, τ 60 s) on top of the white 3 m, 2 % outliers of 20–50 m and a 120 s "
+                 "outage. The batch estimator is told the Gauss–Markov σ and τ (error states per "
+                 "keyframe) and uses its default Cauchy loss on GNSS; the iterative method runs "
+                 "with its defaults.")
+    report.write()
+    report.write("| GNSS | method | mean \\|err\\| [mm] | RMS [mm] | within 3 reported σ |")
+    report.write("|---|---|---|---|---|")
+    for row in summary["rows"]:
+        report.write(f"| {row['gnss']} | {row['method']} | {row['mean_abs_error_mm']:.3f} | "
+                     f"{row['rms_error_mm']:.3f} | {100 * row['within_3_reported_sigma']:.0f} % |")
+    report.write()
+    report.write(f"The batch estimator's RMS error under degraded GNSS is "
+                 f"{summary['batch_degraded_over_clean_rms']:.1f}× its clean-case value "
+                 f"({summary['seeds']} seeds).")
     report.write()
 
 
@@ -398,6 +437,7 @@ def main():
     single_run(report)
     monte_carlo(report)
     augmented(report)
+    robustness(report)
     reading(report)
     speed(report, args.bench_command)
     layout(report)

@@ -89,9 +89,8 @@ nlohmann::json run_monte_carlo_seed(const PaperSetup& setup, SimMode mode, std::
   const CramerRaoBound bound = scenario_cramer_rao_bound(scenario, log, drive.true_params);
   nlohmann::json methods = nlohmann::json::object();
   for (const CalibrationMethod method : kMethods) {
-    CalibrationOptions options;
-    options.method = method;
-    methods[method_name(method)] = method_run_to_json(run_method(log, drive.true_params, options));
+    methods[method_name(method)] =
+        method_run_to_json(run_method(log, drive.true_params, method_options(method, mode)));
   }
   return {{"mode", mode_name(mode)},
           {"seed", seed},

@@ -3,10 +3,12 @@
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 
 #include "experiments/experiment_progress.hpp"
+#include "experiments/gnss_robustness.hpp"
 #include "experiments/json_file.hpp"
 #include "experiments/monte_carlo.hpp"
 #include "experiments/piece_cache.hpp"
@@ -20,7 +22,7 @@ namespace odocal::experiments {
 namespace {
 
 // Bump when an experiment's code changes what it writes: finished pieces are then recomputed.
-constexpr int kExperimentVersion = 1;
+constexpr int kExperimentVersion = 2;
 
 std::string stamp(const std::string& piece, const sim::Scenario& scenario) {
   return nlohmann::json{{"version", kExperimentVersion},
@@ -76,7 +78,11 @@ void run_paper_experiment(const PaperExperimentOptions& options, std::FILE* prog
   if (const std::string problem = options.validate(); !problem.empty())
     throw Error("invalid experiment options: " + problem);
   const int per_mode = 2 + options.seeds;
-  ExperimentProgress progress(progress_out, per_mode * static_cast<int>(options.modes.size()));
+  const bool robustness =
+      options.robustness && std::find(options.modes.begin(), options.modes.end(),
+                                       SimMode::kIdeal) != options.modes.end();
+  ExperimentProgress progress(progress_out, per_mode * static_cast<int>(options.modes.size()) +
+                                                (robustness ? options.seeds : 0));
   PieceRunner runner(options.fresh, progress);
   const std::filesystem::path& out = options.out_dir;
   const std::uint64_t single_seed = 1;
@@ -105,6 +111,23 @@ void run_paper_experiment(const PaperExperimentOptions& options, std::FILE* prog
     const nlohmann::json summary = summarise_monte_carlo(seeds);
     write_json_file(out / "monte_carlo" / name / "summary.json", summary);
     write_monte_carlo_summary_csv(summary, out / "monte_carlo" / name / "summary.csv");
+  }
+
+  if (robustness) {
+    const DegradedGnss gnss;
+    std::vector<nlohmann::json> seeds;
+    for (int seed = 1; seed <= options.seeds; ++seed) {
+      const std::filesystem::path dir = out / "robustness" / fmt::format("seed-{:02}", seed);
+      const auto noise_seed = static_cast<std::uint64_t>(seed);
+      runner.run(
+          fmt::format("degraded GNSS, batch vs iterative: seed {}/{}", seed, options.seeds), dir,
+          stamp("robustness", paper_scenario(options.setup, SimMode::kIdeal, noise_seed)), [&] {
+            write_json_file(dir / "result.json",
+                            run_robustness_seed(options.setup, gnss, noise_seed));
+          });
+      seeds.push_back(read_json_file(dir / "result.json"));
+    }
+    write_json_file(out / "robustness" / "summary.json", summarise_robustness(seeds));
   }
 
   nlohmann::json modes = nlohmann::json::array();

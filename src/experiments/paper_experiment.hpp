@@ -1,6 +1,7 @@
 #pragma once
 // `odocal experiment paper`: every table and figure of the paper (Table 1 / Fig. 2, Figs. 4-7,
-// Figs. 8-11, Fig. 12) in each simulator mode, with the Cramér–Rao bound of every run. Results go
+// Figs. 8-11, Fig. 12) in each simulator mode, with the Cramér–Rao bound of every run, plus the
+// batch estimator beside them and under degraded GNSS. Results go
 // to CSV/JSON under out_dir (layout in docs/results.md); tools/paper_report.py draws them.
 
 #include <cstdio>
@@ -17,6 +18,7 @@ struct PaperExperimentOptions {
   PaperSetup setup;
   int seeds = 10;  // Figs. 8-11
   std::vector<SimMode> modes{SimMode::kIdeal, SimMode::kRealistic};
+  bool robustness = true;    // the degraded-GNSS runs (ideal mode only)
   bool fresh = false;        // recompute pieces that a previous run finished
   std::string command_line;  // recorded in experiment.json
 

@@ -17,4 +17,14 @@ sim::Scenario paper_scenario(const PaperSetup& setup, SimMode mode, std::uint64_
   return scenario;
 }
 
+CalibrationOptions method_options(CalibrationMethod method, SimMode mode) {
+  CalibrationOptions options;
+  options.method = method;
+  if (method == CalibrationMethod::kBatch && mode == SimMode::kIdeal) {
+    options.batch.slip_sigma_m_per_sqrt_m = 1e-6;
+    options.batch.lateral_sigma_m_per_sqrt_m = 1e-6;
+  }
+  return options;
+}
+
 }  // namespace odocal::experiments

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "odocal/estimation/calibration.hpp"
 #include "odocal/sim/scenario.hpp"
 
 namespace odocal::experiments {
@@ -26,6 +27,11 @@ struct PaperSetup {
 
 // The section 5 scenario with the paper's sensor noise, for one noise seed.
 sim::Scenario paper_scenario(const PaperSetup& setup, SimMode mode, std::uint64_t noise_seed);
+
+// The options each method runs with. Defaults throughout, except that the batch estimator's
+// wheel noise matches the simulator mode: in ideal mode the truth has no slip and no side slip,
+// so its odometry noise is set near zero (1e-6 m per sqrt(m)); realistic mode keeps the defaults.
+CalibrationOptions method_options(CalibrationMethod method, SimMode mode);
 
 // Table 1: rear tyre wear [mm of radius] and the paper's dead-reckoning errors.
 struct PaperWearRow {
