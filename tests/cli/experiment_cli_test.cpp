@@ -36,7 +36,9 @@ TEST(ExperimentCli, ReproducesThePaperPiecesAndReusesThem) {
   const std::string command = "experiment paper --seeds 1 --laps 1 --modes ideal --out " + out;
   const auto run = run_cli(command);
   ASSERT_EQ(run.status, 0) << run.err;
-  EXPECT_NE(run.err.find("[  3/3] Figs. 8-11, Monte Carlo, ideal: seed 1/1"), std::string::npos)
+  EXPECT_NE(run.err.find("[  3/4] Figs. 8-11, Monte Carlo, ideal: seed 1/1"), std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("[  4/4] degraded GNSS, batch vs iterative: seed 1/1"), std::string::npos)
       << run.err;
 
   // Table 1: no wear, no error beyond quantisation; equal wear grows the error; the paper's
@@ -65,10 +67,13 @@ TEST(ExperimentCli, ReproducesThePaperPiecesAndReusesThem) {
   ASSERT_EQ(summary.size(), 4u);  // the paper's three methods and the batch estimator
   EXPECT_GT(summary[0]["rms_over_crlb"].get<double>(), 1.0);  // nobody beats the bound here
   EXPECT_TRUE(nlohmann::json::parse(read_text_file(out + "/experiment.json")).contains("date"));
+  const auto robust = nlohmann::json::parse(read_text_file(out + "/robustness/summary.json"));
+  ASSERT_EQ(robust["rows"].size(), 3u);
+  EXPECT_EQ(robust["rows"][1]["gnss"], "degraded");
 
   const auto again = run_cli(command);
   ASSERT_EQ(again.status, 0) << again.err;
-  EXPECT_NE(again.err.find("3 pieces reused"), std::string::npos) << again.err;
+  EXPECT_NE(again.err.find("4 pieces reused"), std::string::npos) << again.err;
 }
 
 TEST(ExperimentCli, RejectsAMissingTrackFile) {
