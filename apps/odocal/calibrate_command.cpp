@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "odocal/error.hpp"
+#include "odocal/io/calibration_export.hpp"
 #include "odocal/io/calibration_io.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/model/angle.hpp"
@@ -21,6 +22,8 @@ struct CalibrateArgs {
   std::string config_file;
   std::string json_file;
   std::optional<std::string> reference;
+  std::string vehicle_out;
+  std::string ros2_out;
 };
 
 void run_calibrate(const CalibrateArgs& args) {
@@ -41,6 +44,10 @@ void run_calibrate(const CalibrateArgs& args) {
     out << result_to_json(result, options).dump(2) << "\n";
     if (!out) throw Error("cannot write " + args.json_file);
   }
+  if (!args.vehicle_out.empty())
+    write_calibrated_vehicle(log.vehicle, result.estimate, args.vehicle_out);
+  if (!args.ros2_out.empty())
+    write_ros2_diff_drive_parameters(log.vehicle, result.estimate, args.ros2_out);
 }
 
 void print_errors(const char* label, const DeadReckoningSummary& s) {
@@ -104,6 +111,11 @@ void add_calibrate_command(CLI::App& app) {
                    "Layer-1 reference: filter (the paper) or smoother")
       ->check(CLI::IsMember({"filter", "smoother"}));
   command->add_option("--json", args->json_file, "Write the full result as JSON");
+  command->add_option("--vehicle-out", args->vehicle_out,
+                      "Write vehicle.yaml with the calibrated circumferences and track width");
+  command->add_option("--ros2-out", args->ros2_out,
+                      "Write ROS 2 diff_drive_controller parameters (radius and separation "
+                      "multipliers)");
   command->callback([args] { run_calibrate(*args); });
 }
 

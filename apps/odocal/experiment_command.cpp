@@ -59,8 +59,9 @@ void add_experiment_command(CLI::App& app, int argc, char** argv) {
       ->add_option("--wear-rr", args->options.setup.wear_rr_mm,
                    "True rear-right wear of the section 5 runs, mm of radius")
       ->capture_default_str();
-  paper->add_option("--laps", args->options.setup.laps,
-                    "Laps of the section 5 runs (the paper: 3; fewer for a quick look)")
+  paper
+      ->add_option("--laps", args->options.setup.laps,
+                   "Laps of the section 5 runs (the paper: 3; fewer for a quick look)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   paper->add_flag("--fresh", args->options.fresh,

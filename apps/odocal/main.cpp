@@ -12,6 +12,7 @@
 #include "import_command.hpp"
 #include "odocal/error.hpp"
 #include "simulate_command.hpp"
+#include "validate_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace odocal::cli;
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   add_experiment_command(app, argc, argv);
   add_import_command(app);
   add_simulate_command(app);
+  add_validate_command(app);
 
   try {
     app.parse(argc, argv);

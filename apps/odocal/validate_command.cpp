@@ -1,0 +1,99 @@
+#include "validate_command.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "odocal/error.hpp"
+#include "odocal/estimation/drift_validation.hpp"
+#include "odocal/io/calibration_export.hpp"
+#include "odocal/io/log_reader.hpp"
+
+namespace odocal::cli {
+namespace {
+
+struct ValidateArgs {
+  std::string log_dir;
+  std::string params_file;
+  DriftValidationOptions options;
+  std::string reference = "smoother";
+  std::string json_file;
+};
+
+nlohmann::json statistics_json(const DriftStatistics& s) {
+  return {{"windows", s.windows},
+          {"median_end_error_m", s.median_end_error_m},
+          {"p95_end_error_m", s.p95_end_error_m},
+          {"median_drift_percent", s.median_drift_percent},
+          {"p95_drift_percent", s.p95_drift_percent}};
+}
+
+void run_validate(const ValidateArgs& args) {
+  const OdometryParams calibrated = read_calibrated_parameters(args.params_file);
+  LogReadOptions read_options;
+  read_options.read_truth = false;
+  const Log log = read_log(args.log_dir, read_options);
+  ReferenceOptions reference_options;
+  reference_options.mode =
+      args.reference == "smoother" ? ReferenceMode::kSmoother : ReferenceMode::kFilter;
+  const ReferenceTrajectory reference = compute_reference(log, reference_options);
+  const DriftValidation v =
+      validate_drift(log.wheels, reference, log.vehicle.nominal_params(), calibrated, args.options);
+  fmt::print("{} windows of {:.0f} s, dead-reckoned from the {} reference at their start:\n",
+             v.nominal_statistics.windows, args.options.window_s, args.reference);
+  fmt::print("{:<12} {:>18} {:>16} {:>18} {:>16}\n", "parameters", "median drift [%]",
+             "p95 drift [%]", "median end [m]", "p95 end [m]");
+  const auto row = [](const char* name, const DriftStatistics& s) {
+    fmt::print("{:<12} {:>18.3f} {:>16.3f} {:>18.2f} {:>16.2f}\n", name, s.median_drift_percent,
+               s.p95_drift_percent, s.median_end_error_m, s.p95_end_error_m);
+  };
+  row("nominal", v.nominal_statistics);
+  row("calibrated", v.calibrated_statistics);
+  if (!args.json_file.empty()) {
+    nlohmann::json windows = nlohmann::json::array();
+    for (std::size_t i = 0; i < v.nominal.size(); ++i) {
+      windows.push_back({{"start_s", v.nominal[i].start_s},
+                         {"distance_m", v.nominal[i].distance_m},
+                         {"nominal_end_error_m", v.nominal[i].end_error_m},
+                         {"calibrated_end_error_m", v.calibrated[i].end_error_m}});
+    }
+    std::ofstream out(args.json_file);
+    out << nlohmann::json{{"window_s", args.options.window_s},
+                          {"reference", args.reference},
+                          {"nominal", statistics_json(v.nominal_statistics)},
+                          {"calibrated", statistics_json(v.calibrated_statistics)},
+                          {"windows", windows}}
+               .dump(2)
+        << "\n";
+    if (!out) throw Error("cannot write " + args.json_file);
+  }
+}
+
+}  // namespace
+
+void add_validate_command(CLI::App& app) {
+  auto args = std::make_shared<ValidateArgs>();
+  CLI::App* command = app.add_subcommand(
+      "validate",
+      "Held-out drift: dead-reckon windows of the log from the reference pose as if GNSS were "
+      "lost there, with nominal and calibrated parameters");
+  command->add_option("LOG", args->log_dir, "Log directory (docs/log-format.md)")->required();
+  command->add_option("--params", args->params_file, "Calibration result (odocal calibrate --json)")
+      ->required();
+  command->add_option("--window", args->options.window_s, "Window length, s")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--min-distance", args->options.min_window_distance_m,
+                   "Skip windows with less driving than this, m")
+      ->capture_default_str();
+  command->add_option("--reference", args->reference, "Reference pose: smoother or filter")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"filter", "smoother"}));
+  command->add_option("--json", args->json_file, "Write the statistics and every window as JSON");
+  command->callback([args] { run_validate(*args); });
+}
+
+}  // namespace odocal::cli

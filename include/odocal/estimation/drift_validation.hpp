@@ -1,0 +1,48 @@
+#pragma once
+// Held-out validation: what a calibration buys when GNSS is lost. The log is cut into windows;
+// each is dead-reckoned from the reference pose at its start, as if GNSS had gone there, and its
+// drift is the distance from the reference pose at the window's end, in metres and in % of the
+// distance driven in the window. Compared for two parameter sets (nominal and calibrated).
+
+#include <string>
+#include <vector>
+
+#include "odocal/data/log.hpp"
+#include "odocal/estimation/reference_filter.hpp"
+
+namespace odocal {
+
+struct DriftValidationOptions {
+  double window_s = 60.0;
+  double min_window_distance_m = 20.0;  // shorter windows (standing, creeping) are skipped
+  std::string validate() const;         // empty when valid
+};
+
+struct WindowDrift {
+  double start_s{};
+  double distance_m{};
+  double end_error_m{};
+  double drift_percent{};  // end error / distance * 100
+};
+
+struct DriftStatistics {
+  std::size_t windows{};
+  double median_end_error_m{};
+  double p95_end_error_m{};
+  double median_drift_percent{};
+  double p95_drift_percent{};
+};
+
+struct DriftValidation {
+  std::vector<WindowDrift> nominal;     // one per usable window
+  std::vector<WindowDrift> calibrated;  // the same windows
+  DriftStatistics nominal_statistics;
+  DriftStatistics calibrated_statistics;
+};
+
+// Throws InsufficientDataError when no window is long enough, Error for invalid options.
+DriftValidation validate_drift(const WheelStream& wheels, const ReferenceTrajectory& reference,
+                               const OdometryParams& nominal, const OdometryParams& calibrated,
+                               const DriftValidationOptions& options = {});
+
+}  // namespace odocal

@@ -1,0 +1,85 @@
+#include "odocal/estimation/drift_validation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "odocal/error.hpp"
+#include "odocal/model/odometry_model.hpp"
+
+namespace odocal {
+namespace {
+
+// Linear-interpolated percentile (p in [0, 1]) of unsorted values.
+double percentile(std::vector<double> values, double p) {
+  std::sort(values.begin(), values.end());
+  const double position = p * static_cast<double>(values.size() - 1);
+  const auto below = static_cast<std::size_t>(std::floor(position));
+  const std::size_t above = std::min(below + 1, values.size() - 1);
+  return values[below] + (position - static_cast<double>(below)) * (values[above] - values[below]);
+}
+
+DriftStatistics statistics(const std::vector<WindowDrift>& windows) {
+  std::vector<double> errors, percents;
+  for (const WindowDrift& w : windows) {
+    errors.push_back(w.end_error_m);
+    percents.push_back(w.drift_percent);
+  }
+  return {windows.size(), percentile(errors, 0.5), percentile(errors, 0.95),
+          percentile(percents, 0.5), percentile(percents, 0.95)};
+}
+
+// Dead reckoning over reference samples [first, last] from the reference pose at `first`.
+WindowDrift window_drift(const WheelStream& wheels, const ReferenceTrajectory& reference,
+                         std::size_t first, std::size_t last, const OdometryParams& params) {
+  Pose2 pose = reference.poses.pose[first];
+  double distance = 0.0;
+  for (std::size_t i = first + 1; i <= last; ++i) {
+    const Pose2 next =
+        predict_pose(pose, wheels.increment(reference.first_wheel_index + i), params);
+    distance += (next.head<2>() - pose.head<2>()).norm();
+    pose = next;
+  }
+  const double error = (pose.head<2>() - reference.poses.pose[last].head<2>()).norm();
+  return {reference.poses.t_s[first], distance, error, 100.0 * error / distance};
+}
+
+}  // namespace
+
+std::string DriftValidationOptions::validate() const {
+  if (!(window_s > 0.0)) return "window_s must be positive";
+  if (min_window_distance_m < 0.0) return "min_window_distance_m must not be negative";
+  return "";
+}
+
+DriftValidation validate_drift(const WheelStream& wheels, const ReferenceTrajectory& reference,
+                               const OdometryParams& nominal, const OdometryParams& calibrated,
+                               const DriftValidationOptions& options) {
+  if (const std::string problem = options.validate(); !problem.empty())
+    throw Error("invalid validation options: " + problem);
+  DriftValidation result;
+  const auto& t = reference.poses.t_s;
+  std::size_t first = 0;
+  while (first + 1 < t.size()) {
+    std::size_t last = first;
+    while (last + 1 < t.size() && t[last + 1] - t[first] <= options.window_s) ++last;
+    if (t[last] - t[first] < 0.99 * options.window_s) break;  // the short tail
+    const WindowDrift with_nominal = window_drift(wheels, reference, first, last, nominal);
+    if (with_nominal.distance_m >= options.min_window_distance_m) {
+      result.nominal.push_back(with_nominal);
+      result.calibrated.push_back(window_drift(wheels, reference, first, last, calibrated));
+    }
+    first = last;
+  }
+  if (result.nominal.empty()) {
+    throw InsufficientDataError(
+        fmt::format("no {} s window with at least {} m of driving: nothing to validate",
+                    options.window_s, options.min_window_distance_m));
+  }
+  result.nominal_statistics = statistics(result.nominal);
+  result.calibrated_statistics = statistics(result.calibrated);
+  return result;
+}
+
+}  // namespace odocal

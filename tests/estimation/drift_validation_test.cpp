@@ -1,0 +1,56 @@
+// Held-out drift on a closed-form drive: a straight line whose reference is exact, so a 1 %
+// circumference error drifts exactly 1 % in every window and the true parameters do not drift.
+
+#include "odocal/estimation/drift_validation.hpp"
+
+#include <gtest/gtest.h>
+
+#include "odocal/error.hpp"
+
+namespace odocal {
+namespace {
+
+struct StraightDrive {
+  WheelStream wheels;
+  ReferenceTrajectory reference;
+};
+
+// 10 m/s east for `duration_s` at 10 Hz with 2 m wheels.
+StraightDrive straight_drive(double duration_s) {
+  StraightDrive d;
+  for (int k = 0; k <= static_cast<int>(duration_s * 10); ++k) {
+    d.wheels.t_s.push_back(0.1 * k);
+    d.wheels.rev_rl.push_back(k == 0 ? 0.0 : 0.5);
+    d.wheels.rev_rr.push_back(k == 0 ? 0.0 : 0.5);
+    d.reference.poses.t_s.push_back(0.1 * k);
+    d.reference.poses.pose.emplace_back(1.0 * k, 0.0, 0.0);
+  }
+  return d;
+}
+
+TEST(DriftValidation, OnePercentScaleErrorDriftsOnePercentPerWindow) {
+  const StraightDrive d = straight_drive(130.0);
+  const OdometryParams truth{2.0, 2.0, 1.6};
+  const OdometryParams scaled{2.02, 2.02, 1.6};
+  const DriftValidation v = validate_drift(d.wheels, d.reference, scaled, truth, {60.0, 20.0});
+  ASSERT_EQ(v.nominal.size(), 2u);  // two full minutes; the 10 s tail is left out
+  for (const WindowDrift& w : v.nominal) {
+    EXPECT_NEAR(w.distance_m, 606.0, 1e-6);
+    EXPECT_NEAR(w.end_error_m, 6.0, 1e-6);
+    EXPECT_NEAR(w.drift_percent, 100.0 * 6.0 / 606.0, 1e-9);
+  }
+  EXPECT_NEAR(v.calibrated_statistics.p95_end_error_m, 0.0, 1e-9);
+  EXPECT_NEAR(v.nominal_statistics.median_end_error_m, 6.0, 1e-6);
+  EXPECT_EQ(v.calibrated_statistics.windows, 2u);
+}
+
+TEST(DriftValidation, RefusesALogWithoutALongEnoughWindow) {
+  const StraightDrive d = straight_drive(30.0);
+  EXPECT_THROW(validate_drift(d.wheels, d.reference, {2, 2, 1.6}, {2, 2, 1.6}, {60.0, 20.0}),
+               InsufficientDataError);
+  EXPECT_THROW(validate_drift(d.wheels, d.reference, {2, 2, 1.6}, {2, 2, 1.6}, {-1.0, 20.0}),
+               Error);
+}
+
+}  // namespace
+}  // namespace odocal
