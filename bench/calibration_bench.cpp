@@ -67,7 +67,7 @@ void BM_Calibrate(benchmark::State& state) {
   state.SetLabel(std::string(method_name(options.method)) + ", " + std::to_string(iterations) +
                  " iterations");
 }
-BENCHMARK(BM_Calibrate)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Calibrate)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 
 // The iterative method forced through all 30 iterations (no early stop).
 void BM_CalibrateThirtyIterations(benchmark::State& state) {

@@ -1,14 +1,11 @@
-// The batch maximum-likelihood calibration: residual derivatives against numerical ones, wear
-// recovered on simulated drives within the reported uncertainty, optional unknowns, robustness
-// to GNSS outliers, and the observability verdicts.
+// The batch maximum-likelihood calibration on simulated drives: wear recovered within the
+// reported uncertainty, optional unknowns, robustness to GNSS outliers. Labelled slow.
 
-#include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "estimation/batch_residuals.hpp"
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
@@ -16,75 +13,6 @@
 
 namespace odocal {
 namespace {
-
-// Checks a cost function's Jacobians against central differences at a given point.
-void expect_correct_jacobians(const ceres::CostFunction& cost,
-                              std::vector<std::vector<double>> values) {
-  std::vector<const double*> parameters;
-  for (const auto& block : values) parameters.push_back(block.data());
-  ceres::NumericDiffOptions numeric;
-  const std::vector<const ceres::Manifold*>* no_manifolds = nullptr;
-  const ceres::GradientChecker checker(&cost, no_manifolds, numeric);
-  ceres::GradientChecker::ProbeResults results;
-  EXPECT_TRUE(checker.Probe(parameters.data(), 1e-7, &results)) << results.error_log;
-}
-
-batch::RelativeMotion some_motion() {
-  batch::RelativeMotion motion;
-  motion.delta << 12.0, 1.5, 0.3;
-  motion.J_delta_params << 3.1, 3.0, -0.2, 0.4, -0.5, 0.9, -0.8, 0.8, -0.1;
-  motion.J_delta_first_increment << 1.0, 0.9, -0.3, 0.35, -1.2, 1.25;
-  motion.params_lin << 1.95, 1.96, 1.6;
-  return motion;
-}
-
-TEST(BatchResiduals, JacobiansMatchNumericalOnes) {
-  const std::vector<double> pose_a{10.0, -4.0, 2.9}, pose_b{21.0, -1.0, 3.3};
-  const std::vector<double> params{1.951, 1.958, 1.62};
-  Eigen::Matrix3d sqrt_information;
-  sqrt_information << 3.0, 0.2, 0.1, 0.0, 2.5, -0.3, 0.0, 0.0, 40.0;
-  expect_correct_jacobians(
-      ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, 3, 2, 2>(
-          new batch::OdometryResidual{some_motion(), some_motion().J_delta_first_increment,
-                                      sqrt_information}),
-      {pose_a, pose_b, params, {0.002, -0.001}, {-0.003, 0.001}});
-  expect_correct_jacobians(
-      ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, 3, 2, 1, 2, 2>(
-          new batch::GnssResidual{some_motion(), {20.0, 3.0}, {22.0, 5.0}, 2.5}),
-      {pose_a, params, {0.4, -0.2}, {0.05}, {0.7, -1.1}, {0.002, -0.001}});
-  expect_correct_jacobians(ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, 3, 1, 2>(
-                               new batch::HeadingResidual{some_motion(), -3.0, 0.15}),
-                           {pose_a, params, {0.02}, {0.002, -0.001}});
-  expect_correct_jacobians(ceres::AutoDiffCostFunction<batch::GyroResidual, 1, 3, 3, 1>(
-                               new batch::GyroResidual{0.35, 1.0, 0.003}),
-                           {pose_a, pose_b, {0.001}});
-  expect_correct_jacobians(ceres::AutoDiffCostFunction<batch::GaussMarkovResidual, 2, 2, 2>(
-                               new batch::GaussMarkovResidual{0.98, 0.4}),
-                           {{1.0, -2.0}, {0.9, -1.7}});
-}
-
-TEST(BatchResiduals, VanishAtTheirClosedFormSolutions) {
-  // Keyframe a at (10, -4) heading 90 deg; the motion moves 12 m forward, 1.5 m left, turns 0.3.
-  const double pose_a[3] = {10.0, -4.0, M_PI / 2};
-  const double pose_b[3] = {10.0 - 1.5, -4.0 + 12.0, M_PI / 2 + 0.3};
-  const double params[3] = {1.95, 1.96, 1.6};  // = params_lin: no first-order change
-  const double no_count_error[2] = {0.0, 0.0};
-  double residual[3];
-  batch::OdometryResidual{some_motion(), Eigen::Matrix<double, 3, 2>::Zero(),
-                          Eigen::Matrix3d::Identity()}(pose_a, pose_b, params, no_count_error,
-                                                       no_count_error, residual);
-  EXPECT_NEAR(Eigen::Vector3d(residual[0], residual[1], residual[2]).norm(), 0.0, 1e-12);
-  // GNSS antenna 1 m ahead of the reference point, 0.1 s latency at 10 m/s forward (keyframe
-  // frame x = world y here), 0.5 m east bias.
-  const double lever[2] = {1.0, 0.0}, latency[1] = {0.1}, bias[2] = {0.5, 0.0};
-  const double yaw = M_PI / 2 + 0.3;
-  const Eigen::Vector2d expected(10.0 - 1.5 + std::cos(yaw) + 0.5,
-                                 -4.0 + 12.0 + std::sin(yaw) - 10.0 * 0.1);
-  batch::GnssResidual{some_motion(), {10.0, 0.0}, expected, 1.0}(pose_a, params, lever, latency,
-                                                                 bias, no_count_error, residual);
-  EXPECT_NEAR(std::hypot(residual[0], residual[1]), 0.0, 1e-12);
-}
-
 sim::Scenario ideal_lap() {
   sim::Scenario scenario = load_scenario("circuit");
   scenario.ideal = true;
@@ -175,33 +103,6 @@ TEST(BatchCalibration, RobustLossKeepsGnssOutliersOut) {
   EXPECT_LT(cauchy, 0.75 * std::sqrt(reference.covariance(0, 0)));
   EXPECT_GT(squared, 3.0 * cauchy);
   EXPECT_LT(huber, squared);
-}
-
-TEST(BatchCalibration, SaysWhatAStraightDriveCannotIdentify) {
-  sim::Scenario scenario =
-      parse_scenario("route:\n  segments:\n    - straight: 3000\n", "straight.yaml");
-  scenario.ideal = true;
-  Log log = simulated_log(sim::simulate(scenario));
-  log.heading.reset();
-  CalibrationOptions options = batch_options();
-  options.batch.estimate_track_width = true;
-  options.batch.estimate_heading_bias = true;
-  options.min_heading_range_for_difference_rad = 0.0;
-  const CalibrationResult result = calibrate(log, options);
-  bool track_said = false, heading_said = false;
-  for (const EstimatedParameter& p : result.parameters) {
-    if (p.name == "track_width_m") {
-      EXPECT_FALSE(p.identified);
-      track_said = p.verdict.find("needs more turns") != std::string::npos;
-    }
-    if (p.name == "heading_bias_rad") {
-      EXPECT_FALSE(p.identified);
-      heading_said = p.verdict.find("no heading reference") != std::string::npos;
-    }
-  }
-  EXPECT_TRUE(track_said) << result.identifiability;
-  EXPECT_TRUE(heading_said) << result.identifiability;
-  EXPECT_NE(result.identifiability.find("not identified"), std::string::npos);
 }
 
 }  // namespace
