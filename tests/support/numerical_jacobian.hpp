@@ -20,4 +20,20 @@ Eigen::Matrix<double, M, N> numerical_jacobian(Function&& f, const Eigen::Matrix
   return jacobian;
 }
 
+// The same for run-time sizes: f maps an Eigen::VectorXd to an Eigen::VectorXd.
+template <typename Function>
+Eigen::MatrixXd numerical_jacobian(Function&& f, const Eigen::VectorXd& x, double step = 1e-6) {
+  Eigen::MatrixXd jacobian;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    Eigen::VectorXd plus = x;
+    Eigen::VectorXd minus = x;
+    plus[i] += step;
+    minus[i] -= step;
+    const Eigen::VectorXd column = (f(plus) - f(minus)) / (2.0 * step);
+    if (i == 0) jacobian.resize(column.size(), x.size());
+    jacobian.col(i) = column;
+  }
+  return jacobian;
+}
+
 }  // namespace odocal::testing
