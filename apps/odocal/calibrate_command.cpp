@@ -60,7 +60,7 @@ void print_errors(const char* label, const DeadReckoningSummary& s) {
 void print_batch_parameters(const CalibrationResult& r) {
   for (const EstimatedParameter& p : r.parameters) {
     if (!p.estimated || p.name.starts_with("circumference")) continue;
-    fmt::print("{:<13}{:.6g} (1-sigma {:.3g})\n", p.name, p.value, p.sigma);
+    fmt::print("{:<13}{} = {:.6g} (1-sigma {:.3g})\n", "parameter", p.name, p.value, p.sigma);
   }
   fmt::print("observable   {}\n", r.identifiability);
 }
