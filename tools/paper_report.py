@@ -283,11 +283,12 @@ def reading(report):
                 f"- **The batch estimator.** Mean absolute error {b['mean_abs_error_mm']:.3f} mm, "
                 f"{it['mean_abs_error_mm'] / b['mean_abs_error_mm']:.1f}× smaller than the "
                 f"iterative method's on the same runs; RMS {b['rms_over_crlb']:.2f}× the "
-                f"Cramér–Rao σ. What remains is the 96-tick encoder quantisation: the simulator "
-                f"starts each wheel on a tick edge, so every later count lags by half a tick on "
-                f"average, which the fit turns into a −0.05 mm scale offset; with exact wheel "
-                f"angles the same seeds give 1.01× the bound (docs/calibration.md, \"Batch "
-                f"maximum likelihood\").")
+                f"Cramér–Rao σ. What remains is the 96-tick encoder quantisation, which the bound "
+                f"ignores (it takes counts as exact): floor counting shortens each arc by the "
+                f"tick fraction, a start-phase-dependent sub-centimetre along-track offset that "
+                f"GNSS cannot tell from scale, and the bound's own model fitted to the data shows "
+                f"the same shifts; with exact wheel angles the same seeds give 1.01× the bound "
+                f"(docs/batch-calibration.md).")
         report.write(
             f"- **Reported uncertainty.** {100 * it['within_3_reported_sigma']:.0f} % of the "
             f"iterative method's errors lie inside 3× its reported σ (the LS covariance, "
