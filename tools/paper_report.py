@@ -284,10 +284,8 @@ def reading(report):
                 f"{it['mean_abs_error_mm'] / b['mean_abs_error_mm']:.1f}× smaller than the "
                 f"iterative method's on the same runs; RMS {b['rms_over_crlb']:.2f}× the "
                 f"Cramér–Rao σ. What remains is the 96-tick encoder quantisation, which the bound "
-                f"ignores (it takes counts as exact): floor counting shortens each arc by the "
-                f"tick fraction, a start-phase-dependent sub-centimetre along-track offset that "
-                f"GNSS cannot tell from scale, and the bound's own model fitted to the data shows "
-                f"the same shifts; with exact wheel angles the same seeds give 1.01× the bound "
+                f"ignores (it takes counts as exact): the fit moves with the encoders' start phase, "
+                f"and the bound's own model fitted to the data moves alike; with exact wheel angles the same seeds give 1.01× the bound "
                 f"(docs/batch-calibration.md).")
         report.write(
             f"- **Reported uncertainty.** {100 * it['within_3_reported_sigma']:.0f} % of the "
