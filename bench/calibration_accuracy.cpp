@@ -17,8 +17,8 @@
 #include <filesystem>
 #include <numeric>
 
+#include "experiments/truth_comparison.hpp"
 #include "odocal/estimation/calibration.hpp"
-#include "odocal/estimation/cramer_rao.hpp"
 #include "odocal/io/calibration_io.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
@@ -108,9 +108,8 @@ int main(int argc, char** argv) {
     scenario.seeds.noise = static_cast<std::uint64_t>(seed);
     const sim::SimulatedDrive drive = sim::simulate(scenario);
     const Log log = simulated_log(drive, true);
-    const CramerRaoBound bound = circumference_cramer_rao_bound(
-        log, drive.true_params, log.truth->pose.front(),
-        {.gnss_sigma_m = scenario.gnss.sigma_m, .heading_sigma_rad = scenario.heading.sigma_rad});
+    const CramerRaoBound bound =
+        experiments::scenario_cramer_rao_bound(scenario, log, drive.true_params);
     crlb_variance +=
         0.5 * (bound.sigma_c_rl_m * bound.sigma_c_rl_m + bound.sigma_c_rr_m * bound.sigma_c_rr_m) /
         seeds;

@@ -42,6 +42,14 @@ class Report:
     def modes(self, piece):
         return [m for m in MODES if os.path.isdir(os.path.join(self.results, piece, m))]
 
+    def grid(self, cells):
+        """Figures two per row."""
+        self.write("| | |")
+        self.write("|---|---|")
+        for left, right in zip(cells[::2], cells[1::2]):
+            self.write(f"| {left} | {right} |")
+        self.write()
+
     def provenance(self):
         """Which command made the section's numbers, and when."""
         self.write(f"*Produced by `{self.experiment['command']}` on {self.experiment['date']}, "
@@ -170,11 +178,7 @@ def single_run(report):
                                f"Fig. 6, {m}: errors per iteration"),
                  report.figure(f"single-circumference-{m}.png", figures.iteration_circumferences,
                                d, f"Fig. 7, {m}: circumference per iteration")]
-        report.write("| | |")
-        report.write("|---|---|")
-        report.write(f"| {cells[0]} | {cells[1]} |")
-        report.write(f"| {cells[2]} | {cells[3]} |")
-        report.write()
+        report.grid(cells)
 
 
 def monte_carlo(report):
@@ -229,11 +233,7 @@ def monte_carlo(report):
                           figures.mean_abs_error, ("iterative", "augmented", "batch"),
                           "mean |error| RL, RR [mm]",
                           f"Fig. 11, {m}: iterative vs augmented KF (and batch)", floor)]
-        report.write("| | |")
-        report.write("|---|---|")
-        report.write(f"| {cells[0]} | {cells[1]} |")
-        report.write(f"| {cells[2]} | {cells[3]} |")
-        report.write()
+        report.grid(cells)
 
 
 def reading(report):

@@ -72,7 +72,7 @@ class BatchProblem {
     // Quantisation is modelled by the count-error states, not by the segment covariance.
     noise_ = {batch_.slip_sigma_m_per_sqrt_m, 0.0, batch_.lateral_sigma_m_per_sqrt_m};
     quantisation_sigma_rev_ = batch_.quantisation_sigma_rev < 0.0 ? quantisation_sigma_rev(log)
-                                                                 : batch_.quantisation_sigma_rev;
+                                                                  : batch_.quantisation_sigma_rev;
     count_error_.assign(keyframes_.size(), Block2{0.0, 0.0});
   }
 
@@ -130,10 +130,13 @@ class BatchProblem {
     double gyro_bias{}, heading_bias{}, latency{};
   };
   std::optional<Uncertainty> uncertainty() {
+    // Blocks that are in the problem and free: unused or held ones have no covariance.
+    const auto estimated = [&](const double* block) {
+      return problem_->HasParameterBlock(block) && !problem_->IsParameterBlockConstant(block);
+    };
     std::vector<std::pair<const double*, const double*>> blocks;
     const auto add = [&](const double* block) {
-      if (problem_->HasParameterBlock(block) && !problem_->IsParameterBlockConstant(block))
-        blocks.emplace_back(block, block);
+      if (estimated(block)) blocks.emplace_back(block, block);
     };
     add(params_.data());
     add(lever_.data());
@@ -147,8 +150,7 @@ class BatchProblem {
     if (!covariance.Compute(blocks, problem_.get())) return std::nullopt;
     Uncertainty u;
     const auto get = [&](const double* block, double* out) {
-      if (problem_->HasParameterBlock(block) && !problem_->IsParameterBlockConstant(block))
-        covariance.GetCovarianceBlock(block, block, out);
+      if (estimated(block)) covariance.GetCovarianceBlock(block, block, out);
     };
     Eigen::Matrix<double, 3, 3, Eigen::RowMajor> params;
     params.setZero();
@@ -163,8 +165,6 @@ class BatchProblem {
     get(&latency_, &u.latency);
     return u;
   }
-
-  bool used(const double* block) const { return problem_->HasParameterBlock(block); }
 
   const Block3& params() const { return params_; }
   const Block2& lever() const { return lever_; }
@@ -383,7 +383,7 @@ void run_batch(const Log& log, const ReferenceTrajectory& reference,
     summary = batch.solve();
     ++solves;
   } while (solves == 1 || (batch.relative_change() > options.batch.relinearise_relative_change &&
-           solves <= options.batch.max_relinearisations));
+                           solves <= options.batch.max_relinearisations));
   if (!summary.IsSolutionUsable()) {
     throw InsufficientDataError("the batch solver found no usable solution: " + summary.message);
   }
@@ -450,30 +450,6 @@ void run_batch(const Log& log, const ReferenceTrajectory& reference,
       fmt::format("batch maximum likelihood over {} keyframes and {} GNSS fixes; {} solve(s); {}",
                   batch.keyframes(), batch.gnss_residuals(), solves,
                   ceres::TerminationTypeToString(summary.termination_type));
-}
-
-const char* robust_loss_name(RobustLoss loss) {
-  switch (loss) {
-    case RobustLoss::kNone:
-      return "none";
-    case RobustLoss::kHuber:
-      return "huber";
-    case RobustLoss::kCauchy:
-      return "cauchy";
-  }
-  return "none";
-}
-
-std::string BatchOptions::validate() const {
-  if (!(keyframe_interval_s > 0.0)) return "keyframe_interval_s must be positive";
-  if (slip_sigma_m_per_sqrt_m < 0.0) return "slip_sigma_m_per_sqrt_m must not be negative";
-  if (gnss_gauss_markov_sigma_m < 0.0 || !(gnss_gauss_markov_tau_s > 0.0))
-    return "the Gauss-Markov GNSS sigma must not be negative and its tau must be positive";
-  if (!(gnss_loss_scale > 0.0)) return "gnss_loss_scale must be positive";
-  if (max_solver_iterations < 1) return "max_solver_iterations must be at least 1";
-  if (!(relinearise_relative_change > 0.0) || max_relinearisations < 0)
-    return "relinearise_relative_change must be positive, max_relinearisations not negative";
-  return "";
 }
 
 }  // namespace odocal

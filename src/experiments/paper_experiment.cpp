@@ -32,12 +32,6 @@ std::string stamp(const std::string& piece, const sim::Scenario& scenario) {
       .dump();
 }
 
-sim::Scenario parking_scenario(SimMode mode) {
-  sim::Scenario scenario = load_scenario("parking");
-  scenario.ideal = mode == SimMode::kIdeal;
-  return scenario;
-}
-
 class PieceRunner {
  public:
   PieceRunner(bool fresh, ExperimentProgress& progress) : cache_(fresh), progress_(progress) {}
@@ -79,8 +73,8 @@ void run_paper_experiment(const PaperExperimentOptions& options, std::FILE* prog
     throw Error("invalid experiment options: " + problem);
   const int per_mode = 2 + options.seeds;
   const bool robustness =
-      options.robustness && std::find(options.modes.begin(), options.modes.end(),
-                                       SimMode::kIdeal) != options.modes.end();
+      options.robustness &&
+      std::find(options.modes.begin(), options.modes.end(), SimMode::kIdeal) != options.modes.end();
   ExperimentProgress progress(progress_out, per_mode * static_cast<int>(options.modes.size()) +
                                                 (robustness ? options.seeds : 0));
   PieceRunner runner(options.fresh, progress);

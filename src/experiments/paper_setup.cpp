@@ -6,6 +6,12 @@ namespace odocal::experiments {
 
 const char* mode_name(SimMode mode) { return mode == SimMode::kIdeal ? "ideal" : "realistic"; }
 
+sim::Scenario parking_scenario(SimMode mode) {
+  sim::Scenario scenario = load_scenario("parking");
+  scenario.ideal = mode == SimMode::kIdeal;
+  return scenario;
+}
+
 sim::Scenario paper_scenario(const PaperSetup& setup, SimMode mode, std::uint64_t noise_seed) {
   sim::Scenario scenario = load_scenario("circuit");  // the paper's sensors, 3 laps
   if (setup.track_csv) use_track_file(scenario, *setup.track_csv);

@@ -25,6 +25,9 @@ struct PaperSetup {
   int laps = 3;  // the paper's 3 laps
 };
 
+// The section 1 parking garage (Table 1, Fig. 2) in the given mode, wear as built in.
+sim::Scenario parking_scenario(SimMode mode);
+
 // The section 5 scenario with the paper's sensor noise, for one noise seed.
 sim::Scenario paper_scenario(const PaperSetup& setup, SimMode mode, std::uint64_t noise_seed);
 

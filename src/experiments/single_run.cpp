@@ -79,8 +79,7 @@ void run_single(const PaperSetup& setup, SimMode mode, std::uint64_t seed,
   std::vector<MethodRun> illustrations;  // run on through max_iterations
   for (const CalibrationMethod method :
        {CalibrationMethod::kIterative, CalibrationMethod::kFixedP, CalibrationMethod::kAugmented}) {
-    CalibrationOptions options;
-    options.method = method;
+    CalibrationOptions options = method_options(method, mode);
     const MethodRun run = run_method(log, truth, options);
     methods[method_name(method)] = method_run_to_json(run);
     if (method == CalibrationMethod::kAugmented) {

@@ -26,8 +26,7 @@ void run_wear_table(SimMode mode, const std::filesystem::path& dir) {
   std::vector<WearCase> cases;
   PoseStream truth;
   for (const PaperWearRow& paper : kPaperTable1) {
-    sim::Scenario scenario = load_scenario("parking");
-    scenario.ideal = mode == SimMode::kIdeal;
+    sim::Scenario scenario = parking_scenario(mode);
     scenario.vehicle.wear_rl_mm = paper.wear_rl_mm;
     scenario.vehicle.wear_rr_mm = paper.wear_rr_mm;
     const Log log = simulated_log(sim::simulate(scenario), true);

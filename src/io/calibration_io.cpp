@@ -39,14 +39,14 @@ void read_batch_options(YamlMap& map, BatchOptions& b) {
   map.read("gnss_gauss_markov_tau_s", b.gnss_gauss_markov_tau_s, 1e-3, 1e6);
   std::string loss = robust_loss_name(b.gnss_loss);
   map.read("gnss_loss", loss);
-  if (loss == "none")
-    b.gnss_loss = RobustLoss::kNone;
-  else if (loss == "huber")
-    b.gnss_loss = RobustLoss::kHuber;
-  else if (loss == "cauchy")
-    b.gnss_loss = RobustLoss::kCauchy;
-  else
-    throw InputError(map.location("gnss_loss"), "expected none, huber or cauchy");
+  bool known = false;
+  for (const RobustLoss candidate : {RobustLoss::kNone, RobustLoss::kHuber, RobustLoss::kCauchy}) {
+    if (loss == robust_loss_name(candidate)) {
+      b.gnss_loss = candidate;
+      known = true;
+    }
+  }
+  if (!known) throw InputError(map.location("gnss_loss"), "expected none, huber or cauchy");
   map.read("gnss_loss_scale", b.gnss_loss_scale, 1e-3, 1e3);
   map.read("use_heading", b.use_heading);
   map.read("use_gyro", b.use_gyro);
