@@ -32,11 +32,6 @@ std::vector<std::size_t> keyframe_samples(const WheelStream& wheels, std::size_t
   return samples;
 }
 
-double quantisation_sigma_rev(const Log& log) {
-  if (log.wheels.unit_rear != WheelUnit::kTicks || !log.vehicle.ticks_per_rev) return 0.0;
-  return 1.0 / *log.vehicle.ticks_per_rev / std::sqrt(12.0);
-}
-
 double median_step_s(const std::vector<double>& t_s) {
   std::vector<double> steps;
   for (std::size_t i = 1; i < t_s.size(); ++i) steps.push_back(t_s[i] - t_s[i - 1]);
@@ -69,10 +64,12 @@ class BatchProblem {
     }
     params_ = {nominal.circumference_rl_m, nominal.circumference_rr_m, nominal.track_width_m};
     gnss_bias_.assign(gauss_markov() ? keyframes_.size() : 0, Block2{0.0, 0.0});
-    // Quantisation is modelled by the count-error states, not by the segment covariance.
-    noise_ = {batch_.slip_sigma_m_per_sqrt_m, 0.0, batch_.lateral_sigma_m_per_sqrt_m};
-    quantisation_sigma_rev_ = batch_.quantisation_sigma_rev < 0.0 ? quantisation_sigma_rev(log)
+    // Quantisation: the keyframes' counts are count-error states, the inner samples' counts are
+    // in the segment covariance.
+    quantisation_sigma_rev_ = batch_.quantisation_sigma_rev < 0.0 ? encoder_quantisation_sigma_rev(log)
                                                                   : batch_.quantisation_sigma_rev;
+    noise_ = {batch_.slip_sigma_m_per_sqrt_m, quantisation_sigma_rev_,
+              batch_.lateral_sigma_m_per_sqrt_m};
     count_error_.assign(keyframes_.size(), Block2{0.0, 0.0});
   }
 
@@ -83,7 +80,8 @@ class BatchProblem {
   // odometry chain would take the solver many small steps.
   void preintegrate_all(double slip_floor = 0.0) {
     const OdometryParams at{params_[0], params_[1], params_[2]};
-    const WheelNoise noise{std::max(noise_.slip_sigma_m_per_sqrt_m, slip_floor), 0.0,
+    const WheelNoise noise{std::max(noise_.slip_sigma_m_per_sqrt_m, slip_floor),
+                           noise_.quantisation_sigma_rev,
                            std::max(noise_.lateral_sigma_m_per_sqrt_m, slip_floor)};
     segments_.clear();
     for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i)

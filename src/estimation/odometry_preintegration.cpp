@@ -18,6 +18,8 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
   segment.J_delta_first_increment.resize(count, OdometryJacobianWheels::Zero());
   OdometryJacobianPose F;
   OdometryJacobianWheels G = OdometryJacobianWheels::Zero();
+  OdometryJacobianWheels G_previous = OdometryJacobianWheels::Zero();
+  const double q2 = noise.quantisation_sigma_rev * noise.quantisation_sigma_rev;
   OdometryJacobianParams J_params;
   Eigen::Matrix3d& sigma = segment.covariance;
   const double slip_variance = noise.slip_sigma_m_per_sqrt_m * noise.slip_sigma_m_per_sqrt_m;
@@ -32,6 +34,13 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
         slip_variance * std::abs(n.rev_rl) / params.circumference_rl_m,
         slip_variance * std::abs(n.rev_rr) / params.circumference_rr_m);
     sigma = F * sigma * F.transpose() + G * wheel_variance.asDiagonal() * G.transpose();
+    if (s >= 2) {
+      // The count at inner sample s - 1 is off by e: +e in the previous increment, -e in this one.
+      // Its heading blip moves everything after it sideways; summed over a segment, a random walk.
+      const OdometryJacobianWheels inner = F * G_previous - G;
+      sigma += q2 * inner * inner.transpose();
+    }
+    G_previous = G;
     const double course = 0.5 * (segment.delta[s - 1].z() + segment.delta[s].z());
     const Eigen::Vector2d across(-std::sin(course), std::cos(course));
     const double step_m = (segment.delta[s].head<2>() - segment.delta[s - 1].head<2>()).norm();
@@ -41,11 +50,6 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
         s == 1 ? G : (F * segment.J_delta_first_increment[s - 1]).eval();
   }
   segment.J_end_last_increment = G;
-  // Quantisation: the counts at both ends are off, independently per wheel; the start error
-  // enters through the first increment, the end error through the last (G).
-  const double q2 = noise.quantisation_sigma_rev * noise.quantisation_sigma_rev;
-  const OdometryJacobianWheels& first = segment.J_delta_first_increment.back();
-  sigma += q2 * (first * first.transpose() + G * G.transpose());
   return segment;
 }
 

@@ -33,7 +33,7 @@ nlohmann::json paper_figure(CalibrationMethod method) {
 // Accumulates one method's numbers over the seeds.
 struct MethodStats {
   std::vector<double> errors_rl, errors_rr;
-  double crlb_variance_sum = 0.0;
+  double crlb_variance_sum = 0.0, crlb_exact_counts_variance_sum = 0.0;
   int within_3_sigma = 0;
   double dr_position_sum = 0.0, dr_heading_sum = 0.0, milliseconds_sum = 0.0;
 
@@ -43,6 +43,9 @@ struct MethodStats {
     errors_rr.push_back(e_rr);
     const double s_rl = seed.at("crlb_sigma_rl_mm"), s_rr = seed.at("crlb_sigma_rr_mm");
     crlb_variance_sum += s_rl * s_rl + s_rr * s_rr;
+    const double x_rl = seed.value("crlb_exact_counts_sigma_rl_mm", s_rl);
+    const double x_rr = seed.value("crlb_exact_counts_sigma_rr_mm", s_rr);
+    crlb_exact_counts_variance_sum += x_rl * x_rl + x_rr * x_rr;
     within_3_sigma += std::abs(e_rl) < 3.0 * run.at("reported_sigma_rl_mm").get<double>();
     within_3_sigma += std::abs(e_rr) < 3.0 * run.at("reported_sigma_rr_mm").get<double>();
     dr_position_sum += run.at("dr_mean_position_m").get<double>();
@@ -72,6 +75,7 @@ struct MethodStats {
             {"rms_error_mm", rms},
             {"crlb_sigma_mm", crlb},
             {"rms_over_crlb", rms / crlb},
+            {"crlb_exact_counts_sigma_mm", std::sqrt(crlb_exact_counts_variance_sum / (2 * n))},
             {"within_3_reported_sigma", within_3_sigma / (2 * n)},
             {"mean_dr_position_m", dr_position_sum / n},
             {"mean_dr_heading_deg", dr_heading_sum / n},
@@ -87,6 +91,8 @@ nlohmann::json run_monte_carlo_seed(const PaperSetup& setup, SimMode mode, std::
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   const Log log = simulated_log(drive, true);
   const CramerRaoBound bound = scenario_cramer_rao_bound(scenario, log, drive.true_params);
+  const CramerRaoBound exact_counts =
+      scenario_cramer_rao_bound(scenario, log, drive.true_params, CountModel::kExact);
   nlohmann::json methods = nlohmann::json::object();
   for (const CalibrationMethod method : kMethods) {
     methods[method_name(method)] =
@@ -98,6 +104,8 @@ nlohmann::json run_monte_carlo_seed(const PaperSetup& setup, SimMode mode, std::
           {"true_circumference_rr_m", drive.true_params.circumference_rr_m},
           {"crlb_sigma_rl_mm", 1e3 * bound.sigma_c_rl_m},
           {"crlb_sigma_rr_mm", 1e3 * bound.sigma_c_rr_m},
+          {"crlb_exact_counts_sigma_rl_mm", 1e3 * exact_counts.sigma_c_rl_m},
+          {"crlb_exact_counts_sigma_rr_mm", 1e3 * exact_counts.sigma_c_rr_m},
           {"methods", methods}};
 }
 
@@ -124,6 +132,7 @@ void write_monte_carlo_summary_csv(const nlohmann::json& summary,
                                  "rms_error_mm",
                                  "crlb_sigma_mm",
                                  "rms_over_crlb",
+                                 "crlb_exact_counts_sigma_mm",
                                  "within_3_reported_sigma",
                                  "mean_dr_position_m",
                                  "mean_dr_heading_deg",

@@ -32,10 +32,13 @@ TruthComparison compare_with_truth(const CalibrationResult& result, const Log& l
 }
 
 CramerRaoBound scenario_cramer_rao_bound(const sim::Scenario& scenario, const Log& log,
-                                         const OdometryParams& truth) {
+                                         const OdometryParams& truth, CountModel counts) {
   return circumference_cramer_rao_bound(
       log, truth, truth_of(log).pose.front(),
-      {.gnss_sigma_m = scenario.gnss.sigma_m, .heading_sigma_rad = scenario.heading.sigma_rad});
+      {.gnss_sigma_m = scenario.gnss.sigma_m,
+       .heading_sigma_rad = scenario.heading.sigma_rad,
+       .quantisation_sigma_rev =
+           counts == CountModel::kQuantised ? encoder_quantisation_sigma_rev(log) : 0.0});
 }
 
 MethodRun run_method(const Log& log, const OdometryParams& truth,

@@ -139,6 +139,7 @@ void parse_sensors(YamlMap sensors, sim::Scenario& s) {
     wheels->read("counter_bits", s.wheels.counter_bits, 0, 62);
     if (s.wheels.counter_bits == 1)
       throw InputError(wheels->location("counter_bits"), "expected 0 (no wrap) or 2..62");
+    wheels->read("start_phase", s.wheels.start_phase, -1.0, 0.999999);
     wheels->reject_unknown_keys();
   }
   sensors.reject_unknown_keys();
@@ -363,6 +364,7 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("output", wheel_unit_name(s.wheels.output));
   key("ticks_per_rev", s.wheels.ticks_per_rev);
   key("counter_bits", s.wheels.counter_bits);
+  key("start_phase", s.wheels.start_phase);
   out << YAML::EndMap << YAML::EndMap;
   out << YAML::Key << "seeds" << YAML::Value << YAML::BeginMap;
   key("trajectory", s.seeds.trajectory);

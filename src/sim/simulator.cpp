@@ -71,11 +71,17 @@ void simulate_wheels(const Scenario& scenario, const MotionTruth& truth, std::mt
   const WheelSimConfig& config = scenario.wheels;
   const double nominal_radius_m = scenario.vehicle.tyre_radius_m;
   const double modulus = config.counter_bits > 0 ? std::ldexp(1.0, config.counter_bits) : 0.0;
+  // A counter starts at any count and anywhere between two ticks: the fractional part is the
+  // encoder phase, which decides where every later count is cut.
   std::uniform_real_distribution<double> start_count(0.0, modulus > 0 ? modulus : 1.0);
-  const double offset_rl = std::floor(start_count(rng));
-  const double offset_rr = std::floor(start_count(rng));
+  const auto start = [&] {
+    const double count = start_count(rng);
+    return config.start_phase < 0.0 ? count : std::floor(count) + config.start_phase;
+  };
+  const double offset_rl = start();
+  const double offset_rr = start();
   const auto ticks = [&](double angle_rad, double offset) {
-    double count = offset + std::floor(angle_rad / kTwoPi * config.ticks_per_rev);
+    double count = std::floor(offset + angle_rad / kTwoPi * config.ticks_per_rev);
     if (modulus > 0) count -= modulus * std::floor(count / modulus);
     return count;
   };

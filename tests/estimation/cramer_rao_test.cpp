@@ -87,6 +87,85 @@ TEST(CramerRaoBound, EqualsTheInverseFisherInformationOfNumericalSensitivities) 
   EXPECT_DOUBLE_EQ(bound.sigma_c_rl_m, std::sqrt(bound.covariance(3, 3)));
 }
 
+// Poses at the wheel samples `at` for v = [theta (5), count errors of RL at every sample,
+// count errors of RR at every sample]: a cumulative count error e_j adds e_j to increment j and
+// takes it from increment j + 1.
+Eigen::VectorXd measured_poses(const Log& log, const std::vector<std::size_t>& at,
+                               const Eigen::VectorXd& v) {
+  const auto n = static_cast<Eigen::Index>(log.wheels.size());
+  const OdometryParams params{v(3), v(4), kTrackWidth};
+  Eigen::VectorXd out(3 * static_cast<Eigen::Index>(at.size()));
+  Pose2 pose = v.head<3>();
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < log.wheels.size(); ++k) {
+    if (k > 0) {
+      const auto i = static_cast<Eigen::Index>(k);
+      const WheelIncrement increment{log.wheels.rev_rl[k] + v(5 + i) - v(4 + i),
+                                     log.wheels.rev_rr[k] + v(5 + n + i) - v(4 + n + i)};
+      pose = predict_pose(pose, increment, params);
+    }
+    if (next < at.size() && at[next] == k)
+      out.segment<3>(3 * static_cast<Eigen::Index>(next++)) = pose;
+  }
+  return out;
+}
+
+TEST(CramerRaoBound, WithQuantisedCountsEqualsTheDenseCorrelatedNoiseInformation) {
+  // Independent truth: every measurement's sensitivity to theta and to every count error by
+  // central differences, the full noise covariance R + q^2 G G^T, and S^T Sigma^-1 S inverted.
+  Log log = winding_log();
+  log.wheels.t_s.resize(241);
+  log.wheels.rev_rl.resize(241);
+  log.wheels.rev_rr.resize(241);
+  std::vector<std::size_t> at;
+  log.gnss.t_s.clear();
+  log.heading->t_s.clear();
+  for (std::size_t k = 0; k < log.wheels.size(); k += 3) {
+    at.push_back(k);
+    log.gnss.t_s.push_back(log.wheels.t_s[k]);
+    log.heading->t_s.push_back(log.wheels.t_s[k]);
+  }
+  const double gnss_sigma = 0.05, heading_sigma = 0.02, q = 0.02;
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(5 + 2 * static_cast<Eigen::Index>(log.wheels.size()));
+  v.head<5>() << 3.0, -2.0, 0.4, 1.9641, 1.9702;
+  const Eigen::MatrixXd J = testing::numerical_jacobian(
+      [&](const Eigen::VectorXd& x) { return measured_poses(log, at, x); }, v);
+  // Rows: x, y of every fix, then every heading.
+  const auto m = static_cast<Eigen::Index>(at.size());
+  Eigen::MatrixXd rows(3 * m, J.cols());
+  Eigen::VectorXd variance(3 * m);
+  for (Eigen::Index j = 0; j < m; ++j) {
+    rows.row(2 * j) = J.row(3 * j);
+    rows.row(2 * j + 1) = J.row(3 * j + 1);
+    rows.row(2 * m + j) = J.row(3 * j + 2);
+    variance(2 * j) = variance(2 * j + 1) = gnss_sigma * gnss_sigma;
+    variance(2 * m + j) = heading_sigma * heading_sigma;
+  }
+  const Eigen::MatrixXd S = rows.leftCols<5>();
+  const Eigen::MatrixXd G = rows.rightCols(rows.cols() - 5);
+  Eigen::MatrixXd sigma = q * q * G * G.transpose();
+  sigma.diagonal() += variance;
+  const Eigen::MatrixXd fisher = S.transpose() * sigma.ldlt().solve(S);
+  const Eigen::MatrixXd expected = fisher.ldlt().solve(Eigen::MatrixXd::Identity(5, 5));
+
+  const CramerRaoOptions options{
+      .gnss_sigma_m = gnss_sigma, .heading_sigma_rad = heading_sigma, .quantisation_sigma_rev = q};
+  const OdometryParams params{v(3), v(4), kTrackWidth};
+  const CramerRaoBound bound = circumference_cramer_rao_bound(log, params, v.head<3>(), options);
+  ASSERT_TRUE(bound.informative());
+  for (int r = 0; r < 5; ++r) {
+    for (int c = 0; c < 5; ++c) {
+      EXPECT_NEAR(bound.covariance(r, c), expected(r, c),
+                  1e-4 * std::sqrt(expected(r, r) * expected(c, c)))
+          << r << "," << c;
+    }
+  }
+  // The quantisation costs accuracy here: the bound with exact counts is clearly tighter.
+  const CramerRaoBound exact = circumference_cramer_rao_bound(
+      log, params, v.head<3>(), {.gnss_sigma_m = gnss_sigma, .heading_sigma_rad = heading_sigma});
+  EXPECT_LT(exact.sigma_c_rl_m, 0.9 * bound.sigma_c_rl_m);
+}
+
 TEST(CramerRaoBound, StraightLineCommonScaleHasTheRegressionVariance) {
   // Driving straight east, x_j = x0 + s n_j to first order with s = (c_RL + c_RR) / 2 and n_j
   // the revolutions up to fix j; y and heading do not depend on x0 or s. So

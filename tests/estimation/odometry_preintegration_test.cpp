@@ -54,8 +54,8 @@ TEST(OdometryPreintegration, ParameterJacobianMatchesNumerical) {
 }
 
 TEST(OdometryPreintegration, CovarianceMatchesMonteCarloOfNoisyWheels) {
-  // Slip: each increment's arc gets white noise of variance slip^2 |arc|; quantisation: the
-  // first and last increments get a count error of sigma q (the end counts).
+  // Slip: each increment's arc gets white noise of variance slip^2 |arc|; quantisation: every
+  // inner sample's cumulative count is off by sigma q (+e in its increment, -e in the next one).
   const WheelStream wheels = curving_wheels();
   const OdometryParams params{1.95, 1.96, 1.6};
   const WheelNoise noise{0.01, 0.004};
@@ -73,9 +73,13 @@ TEST(OdometryPreintegration, CovarianceMatchesMonteCarloOfNoisyWheels) {
       noisy.rev_rr[k] += gauss(rng) * noise.slip_sigma_m_per_sqrt_m *
                          std::sqrt(std::abs(wheels.rev_rr[k]) / params.circumference_rr_m);
     }
-    for (const std::size_t k : {std::size_t{1}, noisy.size() - 1}) {
-      noisy.rev_rl[k] += gauss(rng) * noise.quantisation_sigma_rev;
-      noisy.rev_rr[k] += gauss(rng) * noise.quantisation_sigma_rev;
+    for (std::size_t m = 1; m + 1 < noisy.size(); ++m) {
+      const double e_rl = gauss(rng) * noise.quantisation_sigma_rev;
+      const double e_rr = gauss(rng) * noise.quantisation_sigma_rev;
+      noisy.rev_rl[m] += e_rl;
+      noisy.rev_rl[m + 1] -= e_rl;
+      noisy.rev_rr[m] += e_rr;
+      noisy.rev_rr[m + 1] -= e_rr;
     }
     ends.push_back(preintegrate(noisy, 0, 120, params, {}).delta.back());
     mean += ends.back() / runs;

@@ -4,6 +4,7 @@
 // Frames: local ENU world (x east, y north), body x forward / y left / z up, yaw CCW from +x.
 
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -125,5 +126,12 @@ struct Log {
   std::optional<HeadingStream> heading;
   std::optional<PoseStream> truth;  // evaluation only: estimators must never read it
 };
+
+// Sigma of one cumulative count's quantisation, revolutions: 1/sqrt(12) tick for a counter that
+// floors; 0 when the log carries wheel angles or speeds.
+inline double encoder_quantisation_sigma_rev(const Log& log) {
+  if (log.wheels.unit_rear != WheelUnit::kTicks || !log.vehicle.ticks_per_rev) return 0.0;
+  return 1.0 / *log.vehicle.ticks_per_rev / std::sqrt(12.0);
+}
 
 }  // namespace odocal

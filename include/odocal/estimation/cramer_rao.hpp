@@ -10,6 +10,14 @@
 // dead-reckoned trajectory at the measurement time (propagated with the odometry model's
 // Jacobians along the path, linearly interpolated between wheel samples). docs/results.md
 // discusses what the bound leaves out (IMU, noise correlation, model error).
+//
+// Encoder quantisation (quantisation_sigma_rev > 0): every cumulative count is off by an
+// independent error of that sigma (1/sqrt(12) tick for a counter that floors). Such an error
+// shifts two increments by +e and -e; the heading blip between them moves the rest of the
+// trajectory sideways, so the dead-reckoned positions carry a random walk that GNSS cannot
+// average away. The measurements' noise is then correlated: the information is summed over the
+// innovations of a Kalman filter of that noise process (states: pose error, current count
+// errors) run on the sensitivity columns, i.e. S^T Sigma^-1 S without forming Sigma.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -22,6 +30,7 @@ struct CramerRaoOptions {
   double gnss_sigma_m = 3.0;  // per axis; used when the log has no per-fix sigma_m column
   double heading_sigma_rad = 0.15;
   bool use_heading = true;  // false: GNSS positions only
+  double quantisation_sigma_rev = 0.0;  // per cumulative count; 0: counts exact
 };
 
 struct CramerRaoBound {

@@ -13,8 +13,10 @@
 namespace odocal {
 
 // Per-wheel arc noise: slip as a random walk in arc length (variance slip^2 * |arc|), plus the
-// encoder quantisation of the segment (the count at each end is off by up to half a tick:
-// variance 2 q^2 per wheel and segment, q in revolutions).
+// encoder quantisation: every cumulative count is off by an independent error of sigma q
+// (revolutions; 1/sqrt(12) tick). The covariance holds the errors of the segment's inner
+// samples; the two end counts are left to the caller (the batch estimates them as states
+// through J_delta_first_increment and J_end_last_increment).
 // Lateral noise: side slip and model error move the reference point sideways, a random walk
 // across the course (variance lateral^2 * |distance|).
 struct WheelNoise {

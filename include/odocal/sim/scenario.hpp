@@ -72,6 +72,9 @@ struct WheelSimConfig {
   WheelUnit output = WheelUnit::kTicks;
   int ticks_per_rev = 96;
   int counter_bits = 16;  // 0: the counter never wraps
+  // Where each counter starts between two ticks, in ticks [0, 1); negative: drawn per wheel from
+  // the noise seed, as a real encoder is found at power-up.
+  double start_phase = -1.0;
 };
 
 struct Seeds {
