@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -34,50 +35,68 @@ class MeasurementCursor {
   std::size_t next_ = 0;
 };
 
-// Whitens the measurements against the quantisation noise: a Kalman filter of the noise state
-// z = [pose error (3), current count errors (2)] applied to the sensitivity columns instead of
-// data. Each measurement adds nu^T F^-1 nu (nu: the columns' innovation, F: its covariance) to
-// the Fisher information; with exact counts nu = S and F = R, the plain sum.
-class QuantisationWhitener {
+// Whitens the measurements against the correlated noise: a Kalman filter of the noise state
+// z = [pose error (3), current count errors (2), GNSS Gauss-Markov error (2)] applied to the
+// sensitivity columns instead of data. Each measurement adds nu^T F^-1 nu (nu: the columns'
+// innovation, F: its covariance) to the Fisher information; without correlated noise nu = S and
+// F = R, the plain sum.
+class CorrelatedNoiseWhitener {
  public:
-  explicit QuantisationWhitener(double sigma_rev) : variance_(sigma_rev * sigma_rev) {
-    P_.bottomRightCorner<2, 2>() = variance_ * Eigen::Matrix2d::Identity();  // the start counts
+  using State = Eigen::Matrix<double, 7, 1>;
+  using StateMatrix = Eigen::Matrix<double, 7, 7>;
+
+  CorrelatedNoiseWhitener(double count_sigma_rev, double gauss_markov_sigma_m, double tau_s)
+      : count_variance_(count_sigma_rev * count_sigma_rev),
+        gauss_markov_variance_(gauss_markov_sigma_m * gauss_markov_sigma_m),
+        tau_s_(tau_s) {
+    P_.block<2, 2>(3, 3) = count_variance_ * Eigen::Matrix2d::Identity();  // the start counts
+    P_.block<2, 2>(5, 5) = gauss_markov_variance_ * Eigen::Matrix2d::Identity();  // stationary
   }
 
-  // Rows `first`.. of the pose observed with white noise `sigma`; returns the information.
+  bool correlated() const { return count_variance_ > 0.0 || gauss_markov_variance_ > 0.0; }
+  double gauss_markov_variance() const { return gauss_markov_variance_; }
+
+  // Measurement rows with sensitivity S, noise-state rows H and white noise variance.
   template <int Rows>
-  Information observe(const Eigen::Matrix<double, Rows, 5>& sensitivity, int first, double sigma) {
-    const double noise = sigma * sigma;
-    if (variance_ == 0.0) return sensitivity.transpose() * sensitivity / noise;
-    const Eigen::Matrix<double, Rows, 5> innovation =
-        sensitivity - X_.template middleRows<Rows>(first);
-    Eigen::Matrix<double, Rows, Rows> F = P_.template block<Rows, Rows>(first, first);
-    F.diagonal().array() += noise;
+  Information observe(const Eigen::Matrix<double, Rows, 5>& S,
+                      const Eigen::Matrix<double, Rows, 7>& H, double white_variance) {
+    if (!correlated()) return S.transpose() * S / white_variance;
+    const Eigen::Matrix<double, Rows, 5> innovation = S - H * X_;
+    Eigen::Matrix<double, Rows, Rows> F = H * P_ * H.transpose();
+    F.diagonal().array() += white_variance;
     const Eigen::Matrix<double, Rows, Rows> F_inverse = F.inverse();
-    const Eigen::Matrix<double, 5, Rows> gain = P_.template middleCols<Rows>(first) * F_inverse;
+    const Eigen::Matrix<double, 7, Rows> gain = P_ * H.transpose() * F_inverse;
     X_ += gain * innovation;
-    P_ -= gain * P_.template middleRows<Rows>(first);
+    P_ -= gain * H * P_;
     P_ = 0.5 * (P_ + P_.transpose()).eval();
     return innovation.transpose() * F_inverse * innovation;
   }
 
-  // One wheel increment: the pose error propagates with J_pose and takes the increment's count
-  // error, new minus previous cumulative error, through J_wheels.
-  void step(const OdometryJacobianPose& J_pose, const OdometryJacobianWheels& J_wheels) {
-    if (variance_ == 0.0) return;
-    Eigen::Matrix<double, 5, 5> A = Eigen::Matrix<double, 5, 5>::Zero();
+  // One wheel increment over dt_s: the pose error propagates with J_pose and takes the
+  // increment's count error (new minus previous cumulative error) through J_wheels; the GNSS
+  // error decays by exp(-dt / tau) and is driven to stay stationary.
+  void step(const OdometryJacobianPose& J_pose, const OdometryJacobianWheels& J_wheels,
+            double dt_s) {
+    if (!correlated()) return;
+    StateMatrix A = StateMatrix::Zero();
     A.topLeftCorner<3, 3>() = J_pose;
-    A.topRightCorner<3, 2>() = -J_wheels;
-    Eigen::Matrix<double, 5, 2> B;
-    B << J_wheels, Eigen::Matrix2d::Identity();
+    A.block<3, 2>(0, 3) = -J_wheels;
+    const double decay = gauss_markov_variance_ > 0.0 ? std::exp(-dt_s / tau_s_) : 0.0;
+    A.block<2, 2>(5, 5) = decay * Eigen::Matrix2d::Identity();
+    Eigen::Matrix<double, 7, 2> B = Eigen::Matrix<double, 7, 2>::Zero();
+    B.topRows<3>() = J_wheels;
+    B.middleRows<2>(3).setIdentity();
     X_ = (A * X_).eval();
-    P_ = (A * P_ * A.transpose() + variance_ * B * B.transpose()).eval();
+    P_ = (A * P_ * A.transpose() + count_variance_ * B * B.transpose()).eval();
+    P_.block<2, 2>(5, 5).diagonal().array() += gauss_markov_variance_ * (1.0 - decay * decay);
   }
 
  private:
-  double variance_;
-  Eigen::Matrix<double, 5, 5> X_ = Eigen::Matrix<double, 5, 5>::Zero();  // noise-state columns
-  Eigen::Matrix<double, 5, 5> P_ = Eigen::Matrix<double, 5, 5>::Zero();
+  double count_variance_;
+  double gauss_markov_variance_;
+  double tau_s_;
+  Eigen::Matrix<double, 7, 5> X_ = Eigen::Matrix<double, 7, 5>::Zero();  // noise-state columns
+  StateMatrix P_ = StateMatrix::Zero();
 };
 
 }  // namespace
@@ -91,7 +110,14 @@ CramerRaoBound circumference_cramer_rao_bound(const Log& log, const OdometryPara
   static const std::vector<double> kNoTimes;
   const bool use_heading = options.use_heading && log.heading.has_value();
   MeasurementCursor heading(use_heading ? log.heading->t_s : kNoTimes);
-  QuantisationWhitener whitener(options.quantisation_sigma_rev);
+  CorrelatedNoiseWhitener whitener(options.quantisation_sigma_rev,
+                                   options.gnss_gauss_markov_sigma_m,
+                                   options.gnss_gauss_markov_tau_s);
+  Eigen::Matrix<double, 2, 7> H_gnss = Eigen::Matrix<double, 2, 7>::Zero();
+  H_gnss.leftCols<2>().setIdentity();
+  H_gnss.rightCols<2>().setIdentity();
+  Eigen::Matrix<double, 1, 7> H_heading = Eigen::Matrix<double, 1, 7>::Zero();
+  H_heading(2) = 1.0;
 
   Pose2 pose = start;
   Sensitivity S = Sensitivity::Zero();
@@ -101,11 +127,15 @@ CramerRaoBound circumference_cramer_rao_bound(const Log& log, const OdometryPara
   OdometryJacobianParams J_params;
   const auto observe_gnss = [&](std::size_t j, const Sensitivity& at) {
     const double sigma = log.gnss.sigma_m.empty() ? options.gnss_sigma_m : log.gnss.sigma_m[j];
-    fisher += whitener.observe<2>(at.topRows<2>(), 0, sigma);
+    // A fix's sigma is the total; with a Gauss-Markov part, the white part is what remains.
+    const double white =
+        std::max(sigma * sigma - whitener.gauss_markov_variance(), 1e-3 * sigma * sigma);
+    fisher += whitener.observe<2>(at.topRows<2>(), H_gnss, white);
     ++bound.gnss_used;
   };
   const auto observe_heading = [&](const Sensitivity& at) {
-    fisher += whitener.observe<1>(at.row(2), 2, options.heading_sigma_rad);
+    fisher += whitener.observe<1>(at.row(2), H_heading,
+                                  options.heading_sigma_rad * options.heading_sigma_rad);
     ++bound.heading_used;
   };
   for (std::size_t k = 0; k + 1 < wheels.size(); ++k) {
@@ -121,7 +151,7 @@ CramerRaoBound circumference_cramer_rao_bound(const Log& log, const OdometryPara
                  [&](std::size_t j, double weight) { observe_gnss(j, at(weight)); });
     heading.advance(wheels.t_s[k], wheels.t_s[k + 1], false,
                     [&](std::size_t, double weight) { observe_heading(at(weight)); });
-    whitener.step(J_pose, J_wheels);
+    whitener.step(J_pose, J_wheels, wheels.t_s[k + 1] - wheels.t_s[k]);
     S = S_next;
   }
   const double t_end = wheels.t_s.back();  // measurements at the last wheel sample

@@ -35,7 +35,15 @@ nlohmann::json run_robustness_seed(const PaperSetup& setup, const DegradedGnss& 
   batch_told.batch.gnss_gauss_markov_tau_s = gnss.gauss_markov_tau_s;
   const Log clean_log = simulated_log(clean, true);
   const Log degraded_log = simulated_log(degraded, true);
+  sim::Scenario clean_scenario = paper_scenario(setup, SimMode::kIdeal, seed);
+  const auto bound_mm = [](const sim::Scenario& s, const Log& log, const OdometryParams& truth) {
+    const CramerRaoBound bound = scenario_cramer_rao_bound(s, log, truth);
+    return 1e3 * std::sqrt(0.5 * (bound.sigma_c_rl_m * bound.sigma_c_rl_m +
+                                  bound.sigma_c_rr_m * bound.sigma_c_rr_m));
+  };
   return {{"seed", seed},
+          {"crlb_sigma_clean_mm", bound_mm(clean_scenario, clean_log, clean.true_params)},
+          {"crlb_sigma_degraded_mm", bound_mm(scenario, degraded_log, degraded.true_params)},
           {"clean", {{"batch", calibrate_json(clean_log, clean.true_params, batch)}}},
           {"degraded",
            {{"batch", calibrate_json(degraded_log, degraded.true_params, batch_told)},
@@ -66,12 +74,19 @@ nlohmann::json summarise_robustness(const std::vector<nlohmann::json>& seeds) {
                           {"mean_abs_error_mm", absolute / count},
                           {"within_3_reported_sigma", static_cast<double>(inside) / count}};
   };
+  double clean_bound = 0.0, degraded_bound = 0.0;  // RMS over seeds
+  for (const nlohmann::json& seed : seeds) {
+    clean_bound += std::pow(seed.value("crlb_sigma_clean_mm", NAN), 2) / seeds.size();
+    degraded_bound += std::pow(seed.value("crlb_sigma_degraded_mm", NAN), 2) / seeds.size();
+  }
   const nlohmann::json clean = stats("clean", "batch");
   const nlohmann::json degraded = stats("degraded", "batch");
   return {{"rows", {clean, degraded, stats("degraded", "iterative")}},
           {"seeds", seeds.size()},
           {"batch_degraded_over_clean_rms",
-           degraded.at("rms_error_mm").get<double>() / clean.at("rms_error_mm").get<double>()}};
+           degraded.at("rms_error_mm").get<double>() / clean.at("rms_error_mm").get<double>()},
+          {"crlb_sigma_clean_mm", std::sqrt(clean_bound)},
+          {"crlb_sigma_degraded_mm", std::sqrt(degraded_bound)}};
 }
 
 }  // namespace odocal::experiments

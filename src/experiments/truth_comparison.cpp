@@ -35,10 +35,12 @@ CramerRaoBound scenario_cramer_rao_bound(const sim::Scenario& scenario, const Lo
                                          const OdometryParams& truth, CountModel counts) {
   return circumference_cramer_rao_bound(
       log, truth, truth_of(log).pose.front(),
-      {.gnss_sigma_m = scenario.gnss.sigma_m,
+      {.gnss_sigma_m = std::hypot(scenario.gnss.sigma_m, scenario.gnss.gauss_markov_sigma_m),
        .heading_sigma_rad = scenario.heading.sigma_rad,
        .quantisation_sigma_rev =
-           counts == CountModel::kQuantised ? encoder_quantisation_sigma_rev(log) : 0.0});
+           counts == CountModel::kQuantised ? encoder_quantisation_sigma_rev(log) : 0.0,
+       .gnss_gauss_markov_sigma_m = scenario.gnss.gauss_markov_sigma_m,
+       .gnss_gauss_markov_tau_s = scenario.gnss.gauss_markov_tau_s});
 }
 
 MethodRun run_method(const Log& log, const OdometryParams& truth,

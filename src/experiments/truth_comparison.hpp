@@ -23,7 +23,8 @@ struct TruthComparison {
 TruthComparison compare_with_truth(const CalibrationResult& result, const Log& log,
                                    const OdometryParams& truth);
 
-// The bound for the scenario's GNSS and heading noise, along the true start and parameters, with
+// The bound for the scenario's GNSS (white and Gauss-Markov; outliers left out) and heading
+// noise, along the true start and parameters, with
 // the log's encoder quantisation as count noise (or, for comparison, the counts taken as exact).
 enum class CountModel { kQuantised, kExact };
 CramerRaoBound scenario_cramer_rao_bound(const sim::Scenario& scenario, const Log& log,

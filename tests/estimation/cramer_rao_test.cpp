@@ -110,9 +110,13 @@ Eigen::VectorXd measured_poses(const Log& log, const std::vector<std::size_t>& a
   return out;
 }
 
-TEST(CramerRaoBound, WithQuantisedCountsEqualsTheDenseCorrelatedNoiseInformation) {
+class CramerRaoCorrelatedNoise : public ::testing::TestWithParam<double> {};
+
+TEST_P(CramerRaoCorrelatedNoise, EqualsTheDenseCorrelatedNoiseInformation) {
   // Independent truth: every measurement's sensitivity to theta and to every count error by
-  // central differences, the full noise covariance R + q^2 G G^T, and S^T Sigma^-1 S inverted.
+  // central differences, the full noise covariance R + q^2 G G^T (+ the Gauss-Markov GNSS error's
+  // sigma^2 exp(-|t_i - t_j| / tau) per axis, white part = total - that), and S^T Sigma^-1 S
+  // inverted. Parameter: the Gauss-Markov sigma (0: quantisation only).
   Log log = winding_log();
   log.wheels.t_s.resize(241);
   log.wheels.rev_rl.resize(241);
@@ -126,6 +130,7 @@ TEST(CramerRaoBound, WithQuantisedCountsEqualsTheDenseCorrelatedNoiseInformation
     log.heading->t_s.push_back(log.wheels.t_s[k]);
   }
   const double gnss_sigma = 0.05, heading_sigma = 0.02, q = 0.02;
+  const double markov_sigma = GetParam(), tau = 1.5;
   Eigen::VectorXd v = Eigen::VectorXd::Zero(5 + 2 * static_cast<Eigen::Index>(log.wheels.size()));
   v.head<5>() << 3.0, -2.0, 0.4, 1.9641, 1.9702;
   const Eigen::MatrixXd J = testing::numerical_jacobian(
@@ -144,12 +149,26 @@ TEST(CramerRaoBound, WithQuantisedCountsEqualsTheDenseCorrelatedNoiseInformation
   const Eigen::MatrixXd S = rows.leftCols<5>();
   const Eigen::MatrixXd G = rows.rightCols(rows.cols() - 5);
   Eigen::MatrixXd sigma = q * q * G * G.transpose();
+  for (Eigen::Index i = 0; i < m; ++i) {
+    for (Eigen::Index j = 0; j < m; ++j) {
+      const double dt =
+          log.gnss.t_s[static_cast<std::size_t>(i)] - log.gnss.t_s[static_cast<std::size_t>(j)];
+      const double markov = markov_sigma * markov_sigma * std::exp(-std::abs(dt) / tau);
+      sigma(2 * i, 2 * j) += markov;
+      sigma(2 * i + 1, 2 * j + 1) += markov;
+    }
+    variance(2 * i) -= markov_sigma * markov_sigma;
+    variance(2 * i + 1) -= markov_sigma * markov_sigma;
+  }
   sigma.diagonal() += variance;
   const Eigen::MatrixXd fisher = S.transpose() * sigma.ldlt().solve(S);
   const Eigen::MatrixXd expected = fisher.ldlt().solve(Eigen::MatrixXd::Identity(5, 5));
 
-  const CramerRaoOptions options{
-      .gnss_sigma_m = gnss_sigma, .heading_sigma_rad = heading_sigma, .quantisation_sigma_rev = q};
+  const CramerRaoOptions options{.gnss_sigma_m = gnss_sigma,
+                                 .heading_sigma_rad = heading_sigma,
+                                 .quantisation_sigma_rev = q,
+                                 .gnss_gauss_markov_sigma_m = markov_sigma,
+                                 .gnss_gauss_markov_tau_s = tau};
   const OdometryParams params{v(3), v(4), kTrackWidth};
   const CramerRaoBound bound = circumference_cramer_rao_bound(log, params, v.head<3>(), options);
   ASSERT_TRUE(bound.informative());
@@ -165,6 +184,9 @@ TEST(CramerRaoBound, WithQuantisedCountsEqualsTheDenseCorrelatedNoiseInformation
       log, params, v.head<3>(), {.gnss_sigma_m = gnss_sigma, .heading_sigma_rad = heading_sigma});
   EXPECT_LT(exact.sigma_c_rl_m, 0.9 * bound.sigma_c_rl_m);
 }
+
+INSTANTIATE_TEST_SUITE_P(QuantisationAndGaussMarkov, CramerRaoCorrelatedNoise,
+                         ::testing::Values(0.0, 0.03));
 
 TEST(CramerRaoBound, StraightLineCommonScaleHasTheRegressionVariance) {
   // Driving straight east, x_j = x0 + s n_j to first order with s = (c_RL + c_RR) / 2 and n_j

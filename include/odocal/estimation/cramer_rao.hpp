@@ -17,7 +17,8 @@
 // trajectory sideways, so the dead-reckoned positions carry a random walk that GNSS cannot
 // average away. The measurements' noise is then correlated: the information is summed over the
 // innovations of a Kalman filter of that noise process (states: pose error, current count
-// errors) run on the sensitivity columns, i.e. S^T Sigma^-1 S without forming Sigma.
+// errors) run on the sensitivity columns, i.e. S^T Sigma^-1 S without forming Sigma. A
+// Gauss-Markov GNSS error joins that noise state the same way.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -31,6 +32,10 @@ struct CramerRaoOptions {
   double heading_sigma_rad = 0.15;
   bool use_heading = true;  // false: GNSS positions only
   double quantisation_sigma_rev = 0.0;  // per cumulative count; 0: counts exact
+  // Time-correlated GNSS error, first-order Gauss-Markov per axis (0: white only); a fix's sigma
+  // is then the total and the white part what remains, as in the batch calibration.
+  double gnss_gauss_markov_sigma_m = 0.0;
+  double gnss_gauss_markov_tau_s = 60.0;
 };
 
 struct CramerRaoBound {
