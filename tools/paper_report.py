@@ -86,8 +86,8 @@ def header(report, experiment):
                  "96-tick encoders' quantisation is in it as count noise (1/√12 tick per "
                  "cumulative count, each encoder starting at a random phase): every count's error "
                  "puts a heading blip into dead reckoning, and the blips add up to a sideways "
-                 "random walk that GNSS cannot average away, which roughly triples the bound "
-                 "against counts taken as exact. It leaves "
+                 "random walk that GNSS cannot average away, which makes the bound three to four "
+                 "times that of counts taken as exact. It leaves "
                  "the IMU out (the methods' layer 1 uses it), so a method could in principle dip "
                  "slightly below it; in realistic mode the odometry model itself is wrong, so "
                  "there the bound says how well the *model's* parameters could be pinned down, not "
@@ -218,10 +218,14 @@ def monte_carlo(report):
                 f"{row['mean_abs_error_rr_mm']:.3f} / {row['mean_abs_error_mm']:.3f} | "
                 f"{row['max_abs_error_mm']:.3f} | {row['mean_error_mm']:+.3f} | "
                 f"{row['rms_error_mm']:.3f} | {row['crlb_sigma_mm']:.4f} | "
-                f"{row['rms_over_crlb']:.1f} | {100 * row['within_3_reported_sigma']:.0f} % | "
+                f"{row['rms_over_crlb']:.2f} | {100 * row['within_3_reported_sigma']:.0f} % | "
                 f"{row['mean_dr_position_m']:.2f} | {row['mean_dr_heading_deg']:.3f} | "
                 f"{row['mean_milliseconds']:.0f} | {fmt(row['paper_mean_abs_error_mm'])} |")
         report.write()
+        if "crlb_exact_counts_sigma_mm" in summary[0]:
+            report.write(f"The CRLB σ includes the encoders' quantisation; with the counts taken "
+                         f"as exact it would be {summary[0]['crlb_exact_counts_sigma_mm']:.4f} mm.")
+            report.write()
         floor = figures.crlb_floor(seeds)
         cells = [
             report.figure(f"mc-circumference-{m}.png", figures.seed_bars, seeds,
