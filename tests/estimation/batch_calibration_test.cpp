@@ -1,5 +1,6 @@
 // The batch maximum-likelihood calibration on simulated drives: wear recovered within the
-// reported uncertainty, optional unknowns, robustness to GNSS outliers. Labelled slow.
+// reported uncertainty, which is the Cramér–Rao bound's, optional unknowns, robustness to GNSS
+// outliers. Labelled slow.
 
 #include <gtest/gtest.h>
 
@@ -7,6 +8,7 @@
 #include <random>
 
 #include "odocal/estimation/calibration.hpp"
+#include "odocal/estimation/cramer_rao.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
@@ -49,6 +51,30 @@ TEST(BatchCalibration, RecoversTheWearWithinItsReportedUncertainty) {
     EXPECT_EQ(result.identifiability, "every requested parameter identified");
     EXPECT_LT(result.after.mean_position_m, result.before.mean_position_m);
   }
+}
+
+TEST(BatchCalibration, ReportsTheUncertaintyOfTheQuantisationLimitedBound) {
+  // Independent truth: the Cramér–Rao bound of the same log with the encoders' quantisation as
+  // count noise. With the wheel noise of an ideal drive (no slip), the batch's reported sigma is
+  // that bound: it neither claims more than the data hold nor leaves information unused.
+  sim::Scenario scenario = ideal_lap();
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log log = simulated_log(drive, true);
+  CalibrationOptions options = batch_options();
+  options.batch.slip_sigma_m_per_sqrt_m = options.batch.lateral_sigma_m_per_sqrt_m = 1e-6;
+  const CalibrationResult result = calibrate(log, options);
+  const CramerRaoBound bound = circumference_cramer_rao_bound(
+      log, drive.true_params, log.truth->pose.front(),
+      {.gnss_sigma_m = scenario.gnss.sigma_m,
+       .heading_sigma_rad = scenario.heading.sigma_rad,
+       .quantisation_sigma_rev = encoder_quantisation_sigma_rev(log)});
+  const double reported_rl = std::sqrt(result.covariance(0, 0));
+  const double reported_rr = std::sqrt(result.covariance(1, 1));
+  EXPECT_GT(reported_rl, 0.95 * bound.sigma_c_rl_m);
+  EXPECT_LT(reported_rl, 1.25 * bound.sigma_c_rl_m);
+  EXPECT_GT(reported_rr, 0.95 * bound.sigma_c_rr_m);
+  EXPECT_LT(reported_rr, 1.25 * bound.sigma_c_rr_m);
+  expect_within_3_sigma(result, drive.true_params);
 }
 
 TEST(BatchCalibration, EstimatesTrackWidthGyroBiasAndLatencyWhenAsked) {
