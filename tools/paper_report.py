@@ -106,7 +106,10 @@ def wear_table(report):
     report.write("The built-in `parking` scenario (two ramps, two reversing manoeuvres into bays, "
                  "~580 m at ≤ 4 m/s) with the paper's seven rear wear pairs, dead-reckoned with "
                  "the nominal (unworn) radius 312.6 mm from the true start pose. Our garage is "
-                 "not the paper's CarMaker garage, so only the trend and the magnitudes compare.")
+                 "not the paper's CarMaker garage, so only the trend and the magnitudes compare. "
+                 "Both encoders start on a tick edge here (`start_phase: 0`; elsewhere the "
+                 "simulator draws the phase), so that the unworn row shows no start-heading "
+                 "error from the first counts.")
     report.write()
     tables = {m: figures.read_csv(f"{report.results}/table1/{m}/table1.csv") for m in modes}
     first = tables[modes[0]]
