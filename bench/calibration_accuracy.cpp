@@ -119,11 +119,8 @@ int main(int argc, char** argv) {
         experiments::scenario_cramer_rao_bound(scenario, log, drive.true_params);
     const CramerRaoBound exact_counts = experiments::scenario_cramer_rao_bound(
         scenario, log, drive.true_params, experiments::CountModel::kExact);
-    const auto mean_variance = [&](const CramerRaoBound& b) {
-      return 0.5 * (b.sigma_c_rl_m * b.sigma_c_rl_m + b.sigma_c_rr_m * b.sigma_c_rr_m) / seeds;
-    };
-    crlb_variance += mean_variance(bound);
-    crlb_exact_counts_variance += mean_variance(exact_counts);
+    crlb_variance += std::pow(bound.rms_sigma_circumference_m(), 2) / seeds;
+    crlb_exact_counts_variance += std::pow(exact_counts.rms_sigma_circumference_m(), 2) / seeds;
     for (std::size_t m = 0; m < methods.size(); ++m) {
       options.method = methods[m];
       const auto begin = std::chrono::steady_clock::now();

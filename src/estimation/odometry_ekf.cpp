@@ -12,21 +12,6 @@ Eigen::Vector3d decaying_process_diagonal(int iteration, double q) {
   return Eigen::Vector3d(150.0, 150.0, 15.0) * scale;
 }
 
-namespace {
-
-// F sigma F^T for the two-wheel model's Jacobian F = [I2 g; 0 1] (g = d(x, y)/d yaw), written
-// out because the pass spends most of its time here and F is identity apart from g.
-void propagate_covariance(const Eigen::Vector2d& g, Eigen::Matrix3d& sigma) {
-  const Eigen::Vector2d position_yaw = sigma.topRightCorner<2, 1>();
-  const double yaw_variance = sigma(2, 2);
-  sigma.topLeftCorner<2, 2>() += g * position_yaw.transpose() + position_yaw * g.transpose() +
-                                 yaw_variance * g * g.transpose();
-  sigma.topRightCorner<2, 1>() += yaw_variance * g;
-  sigma.bottomLeftCorner<1, 2>() = sigma.topRightCorner<2, 1>().transpose();
-}
-
-}  // namespace
-
 void run_odometry_ekf(const WheelStream& wheels, const ReferenceTrajectory& reference,
                       const OdometryParams& params, const OdometryEkfNoise& noise,
                       std::vector<Pose2>& out) {
@@ -41,9 +26,8 @@ void run_odometry_ekf(const WheelStream& wheels, const ReferenceTrajectory& refe
   for (std::size_t i = 1; i < n; ++i) {
     const std::size_t k = reference.first_wheel_index + i;
     x = predict_pose(x, wheels.increment(k), params, 0.0, {.J_pose_pose = &F});  // eq. 5a
-    propagate_covariance(F.topRightCorner<2, 1>(), sigma);                       // eq. 5b
-    sigma += P;
-    Eigen::Vector3d innovation = reference.poses.pose[i] - x;  // eq. 7a
+    sigma = F.lazyProduct(sigma).lazyProduct(F.transpose()) + P;                 // eq. 5b
+    Eigen::Vector3d innovation = reference.poses.pose[i] - x;                    // eq. 7a
     innovation.z() = angle_difference(reference.poses.pose[i].z(), x.z());
     // S >= M is positive definite and well conditioned, so Eigen's closed-form 3x3 inverse is
     // as accurate here as a Cholesky solve and several times faster (no dynamic-size kernels).

@@ -19,8 +19,9 @@ nlohmann::json calibrate_json(const Log& log, const OdometryParams& truth,
 
 nlohmann::json run_robustness_seed(const PaperSetup& setup, const DegradedGnss& gnss,
                                    std::uint64_t seed) {
-  sim::Scenario scenario = paper_scenario(setup, SimMode::kIdeal, seed);
-  const sim::SimulatedDrive clean = sim::simulate(scenario);
+  const sim::Scenario clean_scenario = paper_scenario(setup, SimMode::kIdeal, seed);
+  const sim::SimulatedDrive clean = sim::simulate(clean_scenario);
+  sim::Scenario scenario = clean_scenario;
   scenario.gnss.gauss_markov_sigma_m = gnss.gauss_markov_sigma_m;
   scenario.gnss.gauss_markov_tau_s = gnss.gauss_markov_tau_s;
   scenario.gnss.outlier_rate = gnss.outlier_rate;
@@ -35,11 +36,8 @@ nlohmann::json run_robustness_seed(const PaperSetup& setup, const DegradedGnss& 
   batch_told.batch.gnss_gauss_markov_tau_s = gnss.gauss_markov_tau_s;
   const Log clean_log = simulated_log(clean, true);
   const Log degraded_log = simulated_log(degraded, true);
-  sim::Scenario clean_scenario = paper_scenario(setup, SimMode::kIdeal, seed);
   const auto bound_mm = [](const sim::Scenario& s, const Log& log, const OdometryParams& truth) {
-    const CramerRaoBound bound = scenario_cramer_rao_bound(s, log, truth);
-    return 1e3 * std::sqrt(0.5 * (bound.sigma_c_rl_m * bound.sigma_c_rl_m +
-                                  bound.sigma_c_rr_m * bound.sigma_c_rr_m));
+    return 1e3 * scenario_cramer_rao_bound(s, log, truth).rms_sigma_circumference_m();
   };
   return {{"seed", seed},
           {"crlb_sigma_clean_mm", bound_mm(clean_scenario, clean_log, clean.true_params)},
@@ -75,9 +73,10 @@ nlohmann::json summarise_robustness(const std::vector<nlohmann::json>& seeds) {
                           {"within_3_reported_sigma", static_cast<double>(inside) / count}};
   };
   double clean_bound = 0.0, degraded_bound = 0.0;  // RMS over seeds
+  const auto seed_count = static_cast<double>(seeds.size());
   for (const nlohmann::json& seed : seeds) {
-    clean_bound += std::pow(seed.value("crlb_sigma_clean_mm", NAN), 2) / seeds.size();
-    degraded_bound += std::pow(seed.value("crlb_sigma_degraded_mm", NAN), 2) / seeds.size();
+    clean_bound += std::pow(seed.at("crlb_sigma_clean_mm").get<double>(), 2) / seed_count;
+    degraded_bound += std::pow(seed.at("crlb_sigma_degraded_mm").get<double>(), 2) / seed_count;
   }
   const nlohmann::json clean = stats("clean", "batch");
   const nlohmann::json degraded = stats("degraded", "batch");

@@ -43,8 +43,8 @@ struct MethodStats {
     errors_rr.push_back(e_rr);
     const double s_rl = seed.at("crlb_sigma_rl_mm"), s_rr = seed.at("crlb_sigma_rr_mm");
     crlb_variance_sum += s_rl * s_rl + s_rr * s_rr;
-    const double x_rl = seed.value("crlb_exact_counts_sigma_rl_mm", s_rl);
-    const double x_rr = seed.value("crlb_exact_counts_sigma_rr_mm", s_rr);
+    const double x_rl = seed.at("crlb_exact_counts_sigma_rl_mm");
+    const double x_rr = seed.at("crlb_exact_counts_sigma_rr_mm");
     crlb_exact_counts_variance_sum += x_rl * x_rl + x_rr * x_rr;
     within_3_sigma += std::abs(e_rl) < 3.0 * run.at("reported_sigma_rl_mm").get<double>();
     within_3_sigma += std::abs(e_rr) < 3.0 * run.at("reported_sigma_rr_mm").get<double>();

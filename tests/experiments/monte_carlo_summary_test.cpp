@@ -25,6 +25,8 @@ nlohmann::json seed(int n, double error_rl, double error_rr, double crlb_rl, dou
   return {{"seed", n},
           {"crlb_sigma_rl_mm", crlb_rl},
           {"crlb_sigma_rr_mm", crlb_rr},
+          {"crlb_exact_counts_sigma_rl_mm", crlb_rl / 3.0},
+          {"crlb_exact_counts_sigma_rr_mm", crlb_rr / 3.0},
           {"methods", methods}};
 }
 
@@ -47,6 +49,7 @@ TEST(MonteCarloSummary, MatchesHandComputedStatistics) {
   EXPECT_DOUBLE_EQ(row["rms_error_mm"].get<double>(), rms);
   EXPECT_DOUBLE_EQ(row["crlb_sigma_mm"].get<double>(), crlb);
   EXPECT_DOUBLE_EQ(row["rms_over_crlb"].get<double>(), rms / crlb);
+  EXPECT_NEAR(row["crlb_exact_counts_sigma_mm"].get<double>(), crlb / 3.0, 1e-15);
   // 3 sigma = 1.5 mm: |1| and |0| inside, |-2| and |3| outside.
   EXPECT_DOUBLE_EQ(row["within_3_reported_sigma"].get<double>(), 0.5);
   EXPECT_DOUBLE_EQ(row["mean_dr_position_m"].get<double>(), 2.0);

@@ -30,7 +30,7 @@ namespace odocal {
 struct CramerRaoOptions {
   double gnss_sigma_m = 3.0;  // per axis; used when the log has no per-fix sigma_m column
   double heading_sigma_rad = 0.15;
-  bool use_heading = true;  // false: GNSS positions only
+  bool use_heading = true;              // false: GNSS positions only
   double quantisation_sigma_rev = 0.0;  // per cumulative count; 0: counts exact
   // Time-correlated GNSS error, first-order Gauss-Markov per axis (0: white only); a fix's sigma
   // is then the total and the white part what remains, as in the batch calibration.
@@ -49,6 +49,10 @@ struct CramerRaoBound {
   // infinite when the log carries no information on some combination of the unknowns.
   double condition_number{};
   bool informative() const { return std::isfinite(condition_number) && condition_number < 1e12; }
+  // RMS of the two circumferences' sigma, the figure the accuracy tables quote.
+  double rms_sigma_circumference_m() const {
+    return std::sqrt(0.5 * (sigma_c_rl_m * sigma_c_rl_m + sigma_c_rr_m * sigma_c_rr_m));
+  }
 };
 
 // `params` are the true parameters and `start` the true pose at the first wheel sample: the
