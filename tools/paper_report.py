@@ -50,6 +50,12 @@ class Report:
             self.write(f"| {left} | {right} |")
         self.write()
 
+    def section(self, title):
+        """A results section: its heading and the command that made its numbers."""
+        self.write(f"## {title}")
+        self.write()
+        self.provenance()
+
     def provenance(self):
         """Which command made the section's numbers, and when."""
         self.write(f"*Produced by `{self.experiment['command']}` on {self.experiment['date']}, "
@@ -100,9 +106,7 @@ def wear_table(report):
     modes = report.modes("table1")
     if not modes:
         return
-    report.write("## Table 1 and Fig. 2: tyre wear in a parking garage")
-    report.write()
-    report.provenance()
+    report.section("Table 1 and Fig. 2: tyre wear in a parking garage")
     report.write("The built-in `parking` scenario (two ramps, two reversing manoeuvres into bays, "
                  "~580 m at ≤ 4 m/s) with the paper's seven rear wear pairs, dead-reckoned with "
                  "the nominal (unworn) radius 312.6 mm from the true start pose. Our garage is "
@@ -145,9 +149,7 @@ def single_run(report):
     modes = report.modes("single")
     if not modes:
         return
-    report.write("## Figs. 4–7: one 3-lap run (noise seed 1)")
-    report.write()
-    report.provenance()
+    report.section("Figs. 4–7: one 3-lap run (noise seed 1)")
     report.write("The iterative method and fixed-P are run on through all 30 iterations for the "
                  "plots, as in the paper; the red dashed line is where the stop rule (the minimum "
                  "of mean position error + 10 m/rad × mean heading error, 5 iterations of "
@@ -193,9 +195,7 @@ def monte_carlo(report):
     modes = report.modes("monte_carlo")
     if not modes:
         return
-    report.write("## Figs. 8–11: noise seeds, iterative vs fixed-P vs augmented KF (and batch)")
-    report.write()
-    report.provenance()
+    report.section("Figs. 8–11: noise seeds, iterative vs fixed-P vs augmented KF (and batch)")
     report.write("*batch* is odocal's maximum-likelihood estimator (`--method batch`, not in the "
                  "paper; in ideal mode with its wheel noise set near zero, as the truth has no "
                  "slip). "
@@ -333,9 +333,7 @@ def robustness(report):
     if not os.path.exists(path):
         return
     summary = figures.read_json(path)
-    report.write("## Beyond the paper: the batch estimator under degraded GNSS")
-    report.write()
-    report.provenance()
+    report.section("Beyond the paper: the batch estimator under degraded GNSS")
     report.write("Ideal mode, the same seeds, GNSS degraded by a first-order Gauss–Markov error "
                  "(σ 2 m, τ 60 s) on top of the white 3 m, 2 % outliers of 20–50 m and a 120 s "
                  "outage. The batch estimator is told the Gauss–Markov σ and τ (error states per "
@@ -369,9 +367,7 @@ def augmented(report):
     modes = report.modes("single")
     if not modes:
         return
-    report.write("## Fig. 12: the augmented KF's parameters over time (seed 1)")
-    report.write()
-    report.provenance()
+    report.section("Fig. 12: the augmented KF's parameters over time (seed 1)")
     cells = [report.figure(f"augmented-{m}.png", figures.augmented_series,
                            f"{report.results}/single/{m}", f"Fig. 12, {m}") for m in modes]
     report.write("| " + " | ".join(MODE_TITLES[m] for m in modes) + " |")
