@@ -12,6 +12,7 @@
 #include "batch_calibration.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/circumference_ls.hpp"
+#include "odocal/estimation/dead_reckoning.hpp"
 #include "odocal/estimation/odometry_ekf.hpp"
 #include "odocal/model/angle.hpp"
 #include "odocal/model/path_length.hpp"
@@ -43,7 +44,8 @@ class WholeLogEvaluator {
   }
 
   DeadReckoningSummary evaluate(const OdometryParams& params) {
-    dead_reckon_into(params, reference_.poses.pose[0]);
+    path_[0] = reference_.poses.pose[0];
+    dead_reckon_into(wheels_, reference_.first_wheel_index, params, path_);
     if (options_.dr_start != DeadReckoningStart::kFirstReference && align_count_ >= 2)
       align_start();
     DeadReckoningSummary summary;
@@ -62,19 +64,12 @@ class WholeLogEvaluator {
   }
 
   double distance_m(const OdometryParams& params) {
-    dead_reckon_into(params, Pose2::Zero());
+    path_[0] = Pose2::Zero();
+    dead_reckon_into(wheels_, reference_.first_wheel_index, params, path_);
     return path_length_m(path_);
   }
 
  private:
-  void dead_reckon_into(const OdometryParams& params, const Pose2& start) {
-    path_[0] = start;
-    for (std::size_t i = 1; i < path_.size(); ++i) {
-      path_[i] =
-          predict_pose(path_[i - 1], wheels_.increment(reference_.first_wheel_index + i), params);
-    }
-  }
-
   // Moves the whole path rigidly so that its first align_count_ positions best fit the reference.
   void align_start() {
     for (std::size_t i = 0; i < align_count_; ++i)

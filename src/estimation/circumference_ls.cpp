@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "odocal/model/angle.hpp"
+#include "odocal/model/stepwise_cos_sin.hpp"
 
 namespace odocal {
 namespace {
@@ -16,7 +17,9 @@ class GivensLeastSquares {
     double row[3] = {a0, a1, b};
     for (int j = 0; j < 2; ++j) {
       if (row[j] == 0.0) continue;
-      const double r = std::hypot(R_(j, j), row[j]);
+      // Entries are revolution counts and metres: far from overflow, so no need for hypot's
+      // scaling, which costs as much as the rest of the rotation.
+      const double r = std::sqrt(R_(j, j) * R_(j, j) + row[j] * row[j]);
       const double c = R_(j, j) / r, s = row[j] / r;
       for (int col = j; col < 3; ++col) {
         const double upper = R_(j, col);
@@ -50,6 +53,7 @@ void for_each_row(const WheelStream& wheels, const ReferenceTrajectory& referenc
   // Sum of the window's rows: [phi_x | z_x], [phi_y | z_y], [phi_yaw | z_yaw].
   Eigen::Matrix3d window = Eigen::Matrix3d::Zero();
   int in_window = 0;
+  StepwiseCosSin heading_cos_sin;
   const auto flush = [&] {
     for (int r = 0; r < 3; ++r)
       add_row(sqrt_w(r) * window(r, 0), sqrt_w(r) * window(r, 1), sqrt_w(r) * window(r, 2));
@@ -60,7 +64,7 @@ void for_each_row(const WheelStream& wheels, const ReferenceTrajectory& referenc
     const WheelIncrement n = wheels.increment(reference.first_wheel_index + i);
     const Pose2& previous = x_hat[i - 1];
     const Pose2& target = reference.poses.pose[i];
-    const double c = std::cos(previous.z()), s = std::sin(previous.z());
+    const auto [c, s] = heading_cos_sin(previous.z());
     window.row(0) +=
         Eigen::RowVector3d(0.5 * n.rev_rl * c, 0.5 * n.rev_rr * c, target.x() - previous.x());
     window.row(1) +=

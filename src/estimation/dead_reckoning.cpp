@@ -1,5 +1,7 @@
 #include "odocal/estimation/dead_reckoning.hpp"
 
+#include "odocal/model/stepwise_cos_sin.hpp"
+
 namespace odocal {
 
 PoseStream dead_reckon(const WheelStream& wheels, const OdometryParams& params,
@@ -9,10 +11,19 @@ PoseStream dead_reckon(const WheelStream& wheels, const OdometryParams& params,
   trajectory.pose.resize(wheels.size());
   if (wheels.size() == 0) return trajectory;
   trajectory.pose[0] = start;
-  for (std::size_t k = 1; k < wheels.size(); ++k) {
-    trajectory.pose[k] = predict_pose(trajectory.pose[k - 1], wheels.increment(k), params);
-  }
+  dead_reckon_into(wheels, 0, params, trajectory.pose);
   return trajectory;
+}
+
+void dead_reckon_into(const WheelStream& wheels, std::size_t first_sample,
+                      const OdometryParams& params, std::vector<Pose2>& path) {
+  StepwiseCosSin course_cos_sin;
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    const WheelIncrement increment = wheels.increment(first_sample + i);
+    const BodyIncrement step = body_increment(increment, params);
+    const CosSin course = course_cos_sin(path[i - 1].z() + 0.5 * step.yaw_rad);
+    path[i] = predict_pose_on_course(path[i - 1], increment, step, course, params);
+  }
 }
 
 }  // namespace odocal
