@@ -66,8 +66,9 @@ class BatchProblem {
     gnss_bias_.assign(gauss_markov() ? keyframes_.size() : 0, Block2{0.0, 0.0});
     // Quantisation: the keyframes' counts are count-error states, the inner samples' counts are
     // in the segment covariance.
-    quantisation_sigma_rev_ = batch_.quantisation_sigma_rev < 0.0 ? encoder_quantisation_sigma_rev(log)
-                                                                  : batch_.quantisation_sigma_rev;
+    quantisation_sigma_rev_ = batch_.quantisation_sigma_rev < 0.0
+                                  ? encoder_quantisation_sigma_rev(log)
+                                  : batch_.quantisation_sigma_rev;
     noise_ = {batch_.slip_sigma_m_per_sqrt_m, quantisation_sigma_rev_,
               batch_.lateral_sigma_m_per_sqrt_m};
     count_error_.assign(keyframes_.size(), Block2{0.0, 0.0});

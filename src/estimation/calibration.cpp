@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "batch_calibration.hpp"
+#include "hot_loop.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/circumference_ls.hpp"
 #include "odocal/estimation/dead_reckoning.hpp"
@@ -43,7 +44,7 @@ class WholeLogEvaluator {
     }
   }
 
-  DeadReckoningSummary evaluate(const OdometryParams& params) {
+  ODOCAL_HOT_LOOP DeadReckoningSummary evaluate(const OdometryParams& params) {
     path_[0] = reference_.poses.pose[0];
     dead_reckon_into(wheels_, reference_.first_wheel_index, params, path_);
     if (options_.dr_start != DeadReckoningStart::kFirstReference && align_count_ >= 2)

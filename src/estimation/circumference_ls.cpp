@@ -1,47 +1,14 @@
 #include "odocal/estimation/circumference_ls.hpp"
 
+#include <Eigen/QR>
 #include <Eigen/SVD>
 #include <cmath>
 
+#include "hot_loop.hpp"
 #include "odocal/model/angle.hpp"
 #include "odocal/model/stepwise_cos_sin.hpp"
 
 namespace odocal {
-namespace {
-
-// Upper-triangular [R | d] of a growing least-squares problem, updated by Givens rotations.
-class GivensLeastSquares {
- public:
-  void add_row(double a0, double a1, double b) {
-    ++rows_;
-    double row[3] = {a0, a1, b};
-    for (int j = 0; j < 2; ++j) {
-      if (row[j] == 0.0) continue;
-      // Entries are revolution counts and metres: far from overflow, so no need for hypot's
-      // scaling, which costs as much as the rest of the rotation.
-      const double r = std::sqrt(R_(j, j) * R_(j, j) + row[j] * row[j]);
-      const double c = R_(j, j) / r, s = row[j] / r;
-      for (int col = j; col < 3; ++col) {
-        const double upper = R_(j, col);
-        R_(j, col) = c * upper + s * row[col];
-        row[col] = -s * upper + c * row[col];
-      }
-    }
-    residual_ss_ += row[2] * row[2];
-  }
-  Eigen::Matrix2d R() const { return R_.leftCols<2>(); }
-  Eigen::Vector2d d() const { return R_.col(2); }
-  double residual_ss() const { return residual_ss_; }
-  std::size_t rows() const { return rows_; }
-
- private:
-  Eigen::Matrix<double, 2, 3> R_ = Eigen::Matrix<double, 2, 3>::Zero();
-  double residual_ss_ = 0.0;
-  std::size_t rows_ = 0;
-};
-
-}  // namespace
-
 namespace {
 
 // Feeds the (windowed) rows of eq. 12 to add_row(a_rl, a_rr, z).
@@ -78,15 +45,30 @@ void for_each_row(const WheelStream& wheels, const ReferenceTrajectory& referenc
 
 }  // namespace
 
-CircumferenceFit fit_circumferences(const WheelStream& wheels, const ReferenceTrajectory& reference,
-                                    const std::vector<Pose2>& x_hat, double track_width_m,
-                                    const Eigen::Vector3d& weights, int window_samples) {
-  GivensLeastSquares ls;
+ODOCAL_HOT_LOOP CircumferenceFit fit_circumferences(const WheelStream& wheels,
+                                                    const ReferenceTrajectory& reference,
+                                                    const std::vector<Pose2>& x_hat,
+                                                    double track_width_m,
+                                                    const Eigen::Vector3d& weights,
+                                                    int window_samples) {
+  // The augmented system [sqrt(W) Phi | sqrt(W) z], one allocation per fit. Its QR factor is
+  // [[R, d], [0, rho]]: R c = d is the least-squares solution and rho^2 the residual sum.
+  const std::size_t samples = x_hat.empty() ? 0 : x_hat.size() - 1;
+  const std::size_t windows = (samples + static_cast<std::size_t>(window_samples) - 1) /
+                              static_cast<std::size_t>(window_samples);
+  Eigen::Matrix<double, Eigen::Dynamic, 3> system =
+      Eigen::Matrix<double, Eigen::Dynamic, 3>::Zero(static_cast<Eigen::Index>(3 * windows), 3);
+  Eigen::Index rows = 0;
   for_each_row(wheels, reference, x_hat, track_width_m, weights, window_samples,
-               [&](double a0, double a1, double b) { ls.add_row(a0, a1, b); });
+               [&](double a0, double a1, double b) { system.row(rows++) << a0, a1, b; });
+  // Zero rows change nothing; they give a short system the three rows the factor needs.
+  if (system.rows() < 3) system.conservativeResizeLike(Eigen::MatrixX3d::Zero(3, 3));
+  const Eigen::HouseholderQR<Eigen::MatrixX3d> qr(system);
+  const Eigen::Matrix3d factor = qr.matrixQR().topRows<3>().triangularView<Eigen::Upper>();
+
   CircumferenceFit fit;
-  fit.rows = ls.rows();
-  const Eigen::Matrix2d R = ls.R();
+  fit.rows = static_cast<std::size_t>(rows);
+  const Eigen::Matrix2d R = factor.topLeftCorner<2, 2>();
   const Eigen::JacobiSVD<Eigen::Matrix2d> svd(R);
   const double smallest = svd.singularValues()(1);
   fit.condition_number = smallest > 0.0 ? svd.singularValues()(0) / smallest : INFINITY;
@@ -95,10 +77,11 @@ CircumferenceFit fit_circumferences(const WheelStream& wheels, const ReferenceTr
     fit.covariance.setConstant(NAN);
     return fit;
   }
-  fit.circumference_m = R.triangularView<Eigen::Upper>().solve(ls.d());
+  fit.circumference_m = R.triangularView<Eigen::Upper>().solve(factor.col(2).head<2>());
+  const double residual_ss = factor(2, 2) * factor(2, 2);
   const double dof = static_cast<double>(fit.rows) - 2.0;
-  const double variance = dof > 0 ? ls.residual_ss() / dof : NAN;
-  fit.residual_rms = std::sqrt(ls.residual_ss() / static_cast<double>(fit.rows));
+  const double variance = dof > 0 ? residual_ss / dof : NAN;
+  fit.residual_rms = std::sqrt(residual_ss / static_cast<double>(fit.rows));
   const Eigen::Matrix2d R_inv = R.triangularView<Eigen::Upper>().solve(Eigen::Matrix2d::Identity());
   fit.covariance = variance * R_inv * R_inv.transpose();
   return fit;

@@ -1,5 +1,6 @@
 #include "odocal/estimation/dead_reckoning.hpp"
 
+#include "hot_loop.hpp"
 #include "odocal/model/stepwise_cos_sin.hpp"
 
 namespace odocal {
@@ -15,8 +16,8 @@ PoseStream dead_reckon(const WheelStream& wheels, const OdometryParams& params,
   return trajectory;
 }
 
-void dead_reckon_into(const WheelStream& wheels, std::size_t first_sample,
-                      const OdometryParams& params, std::vector<Pose2>& path) {
+ODOCAL_HOT_LOOP void dead_reckon_into(const WheelStream& wheels, std::size_t first_sample,
+                                      const OdometryParams& params, std::vector<Pose2>& path) {
   StepwiseCosSin course_cos_sin;
   for (std::size_t i = 1; i < path.size(); ++i) {
     const WheelIncrement increment = wheels.increment(first_sample + i);

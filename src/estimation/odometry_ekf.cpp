@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "hot_loop.hpp"
 #include "odocal/model/angle.hpp"
 #include "odocal/model/odometry_model.hpp"
 
@@ -68,9 +69,10 @@ Eigen::Vector3d decaying_process_diagonal(int iteration, double q) {
   return Eigen::Vector3d(150.0, 150.0, 15.0) * scale;
 }
 
-void run_odometry_ekf(const WheelStream& wheels, const ReferenceTrajectory& reference,
-                      const OdometryParams& params, const OdometryEkfNoise& noise,
-                      std::vector<Pose2>& out) {
+ODOCAL_HOT_LOOP void run_odometry_ekf(const WheelStream& wheels,
+                                      const ReferenceTrajectory& reference,
+                                      const OdometryParams& params, const OdometryEkfNoise& noise,
+                                      std::vector<Pose2>& out) {
   const std::size_t n = reference.poses.size();
   out.resize(n);
   const Eigen::Matrix3d M = noise.measurement_diagonal.asDiagonal();

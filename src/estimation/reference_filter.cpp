@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hot_loop.hpp"
 #include "odocal/error.hpp"
 #include "odocal/model/angle.hpp"
 
@@ -60,7 +61,7 @@ class ReferenceEkf {
   }
 
   // Propagates to t_s; returns the transition Jacobian (for the smoother).
-  Covariance predict(double t_s) {
+  ODOCAL_HOT_LOOP Covariance predict(double t_s) {
     const double dt = t_s - t_s_;
     if (dt <= 0.0) return Covariance::Identity();
     // Rotate by the midpoint heading (as eq. 1 does): the start heading would leak v w^2 dt / 2 of
@@ -127,7 +128,7 @@ class ReferenceEkf {
     wz_ = log_.imu->wz_radps[k];
   }
 
-  bool update_gnss(std::size_t k) {
+  ODOCAL_HOT_LOOP bool update_gnss(std::size_t k) {
     const Eigen::Vector2d innovation =
         Eigen::Vector2d(log_.gnss.x_m[k], log_.gnss.y_m[k]) - x_.head<2>();
     const Eigen::Matrix2d S =
@@ -148,7 +149,7 @@ class ReferenceEkf {
   }
 
   // Doppler speed over ground: h(x) = |v|.
-  void update_speed(double measured_mps) {
+  ODOCAL_HOT_LOOP void update_speed(double measured_mps) {
     const double speed = x_.segment<2>(2).norm();
     if (speed < options_.gnss_speed_min_mps || measured_mps < options_.gnss_speed_min_mps) return;
     Eigen::Matrix<double, 1, kStates> H = Eigen::Matrix<double, 1, kStates>::Zero();
@@ -161,7 +162,7 @@ class ReferenceEkf {
     joseph_update(K, H, Eigen::Matrix<double, 1, 1>(R));
   }
 
-  void update_yaw(double measured_rad, double sigma_rad) {
+  ODOCAL_HOT_LOOP void update_yaw(double measured_rad, double sigma_rad) {
     const double innovation = angle_difference(measured_rad, x_(4));
     const double S = P_(4, 4) + square(sigma_rad);
     const State K = P_.col(4) / S;
@@ -270,6 +271,9 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
   }
 
   ReferenceTrajectory reference;
+  reference.poses.t_s.reserve(log.wheels.size());
+  reference.poses.pose.reserve(log.wheels.size());
+  reference.covariance.reserve(log.wheels.size());
   reference.heading_source = log.heading ? "heading.csv" : "GNSS course";
   const bool smooth = options.mode == ReferenceMode::kSmoother;
   // Per node of the timeline: filtered and predicted state/covariance and the transition into it.

@@ -8,8 +8,8 @@
 // W = diag(1, 1, 10) per sample. Rows may be summed over windows of `window_samples` samples
 // (1 = the paper): a sum of rows of eq. 9 is still exact, and the encoder quantisation in the
 // summed increments telescopes to one tick per window instead of one tick per sample, which
-// removes the errors-in-variables bias of the per-sample fit (docs/calibration.md). Solved by
-// Givens-rotation QR accumulated row by row (no normal equations, no per-sample allocation).
+// removes the errors-in-variables bias of the per-sample fit (docs/calibration.md). Solved by a
+// Householder QR of the weighted rows (no normal equations, one allocation per fit).
 
 #include <Eigen/Core>
 #include <vector>
