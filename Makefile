@@ -41,7 +41,7 @@ bench: build
 PAPER_DIR ?= $(BUILD_DIR)/paper
 HOCKENHEIM := ../shared/data/tracks/hockenheim/track.csv
 PAPER_BENCH := $(BUILD_DIR)/bench/odocal_bench \
-  --benchmark_filter='BM_OdometryEkfPass|BM_LeastSquaresSolve|BM_Calibrate/|BM_ParseCsv'
+  --benchmark_filter='BM_ReferenceFilter/0|BM_OdometryEkfPass|BM_LeastSquaresSolve|BM_Calibrate|BM_ParseCsv'
 paper: build
 	$(ODOCAL) experiment paper --out $(PAPER_DIR) \
 	  $(if $(wildcard $(HOCKENHEIM)),--track $(HOCKENHEIM)) $(if $(FRESH),--fresh)

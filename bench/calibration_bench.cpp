@@ -1,4 +1,4 @@
-// Speed of the calibration's pieces on a 3-lap, 50 Hz log of the built-in circuit (25 775
+// Speed of the calibration's pieces on a 3-lap, 50 Hz log of the built-in circuit (30 754
 // samples): one EKF pass (layer 2), one least-squares solve (layer 3), the layer-1 reference,
 // and a whole calibration per method.
 

@@ -398,6 +398,9 @@ def speed(report, command):
     report.write()
     report.write("| what | benchmark | figure |")
     report.write("|---|---|---|")
+    if "BM_ReferenceFilter/0" in runs:
+        report.write(f"| reference filter (layer 1, once per calibration) | `BM_ReferenceFilter/0` | "
+                     f"{fmt(ms('BM_ReferenceFilter/0'), 1)} ms |")
     ekf = runs.get("BM_OdometryEkfPass")
     if ekf:
         report.write(f"| EKF step (layer 2) | `BM_OdometryEkfPass` | "
@@ -410,6 +413,9 @@ def speed(report, command):
         if name in runs:
             report.write(f"| whole calibration, {runs[name].get('label', method)} | `{name}` | "
                          f"{fmt(ms(name), 1)} ms |")
+    if "BM_CalibrateThirtyIterations" in runs:
+        report.write("| whole calibration, iterative forced through all 30 iterations | "
+                     f"`BM_CalibrateThirtyIterations` | {fmt(ms('BM_CalibrateThirtyIterations'), 1)} ms |")
     csv_run = runs.get("BM_ParseCsv/75000")
     if csv_run:
         report.write(f"| CSV reader throughput (wheels.csv, 75 000 rows) | `BM_ParseCsv/75000` | "
