@@ -30,6 +30,8 @@ struct Event {
 
 std::vector<Event> merged_events(const Log& log, double begin_s) {
   std::vector<Event> events;
+  events.reserve(log.gnss.size() + log.wheels.size() + (log.imu ? log.imu->size() : 0) +
+                 (log.heading ? log.heading->size() : 0));
   const auto add = [&](const std::vector<double>& t_s, EventKind kind) {
     for (std::size_t k = 0; k < t_s.size(); ++k) {
       if (t_s[k] >= begin_s) events.push_back({t_s[k], kind, k});
@@ -280,6 +282,7 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
   std::vector<State> filtered_x, predicted_x;
   std::vector<Covariance> filtered_P, predicted_P, transition;
   std::vector<std::size_t> wheel_node;
+  wheel_node.reserve(log.wheels.size());
 
   const std::vector<Event> events = merged_events(log, log.gnss.t_s[first_fix]);
   if (smooth) {  // 8x8 matrices per node: growing these vectors dominated the smoother's time
