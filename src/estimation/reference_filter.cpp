@@ -10,6 +10,7 @@
 #include "hot_loop.hpp"
 #include "odocal/error.hpp"
 #include "odocal/model/angle.hpp"
+#include "sensor_event_merge.hpp"
 
 namespace odocal {
 namespace {
@@ -20,33 +21,6 @@ constexpr int kStates = 8;
 using State = Eigen::Matrix<double, kStates, 1>;
 using Covariance = Eigen::Matrix<double, kStates, kStates>;
 using Coupling = Eigen::Matrix<double, 5, 6>;  // the transition's off-identity block
-
-enum class EventKind { kImu, kGnss, kHeading, kWheel };
-struct Event {
-  double t_s;
-  EventKind kind;
-  std::size_t index;
-};
-
-std::vector<Event> merged_events(const Log& log, double begin_s) {
-  std::vector<Event> events;
-  events.reserve(log.gnss.size() + log.wheels.size() + (log.imu ? log.imu->size() : 0) +
-                 (log.heading ? log.heading->size() : 0));
-  const auto add = [&](const std::vector<double>& t_s, EventKind kind) {
-    for (std::size_t k = 0; k < t_s.size(); ++k) {
-      if (t_s[k] >= begin_s) events.push_back({t_s[k], kind, k});
-    }
-  };
-  if (log.imu) add(log.imu->t_s, EventKind::kImu);
-  add(log.gnss.t_s, EventKind::kGnss);
-  if (log.heading) add(log.heading->t_s, EventKind::kHeading);
-  add(log.wheels.t_s, EventKind::kWheel);
-  // At equal times: new IMU input first, then measurements, then the wheel output.
-  std::stable_sort(events.begin(), events.end(), [](const Event& a, const Event& b) {
-    return a.t_s < b.t_s || (a.t_s == b.t_s && static_cast<int>(a.kind) < static_cast<int>(b.kind));
-  });
-  return events;
-}
 
 class ReferenceEkf {
  public:
@@ -281,16 +255,17 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
   // Per node of the timeline: filtered and predicted state/covariance and the transition into it.
   std::vector<State> filtered_x, predicted_x;
   std::vector<Covariance> filtered_P, predicted_P, transition;
-  std::vector<std::size_t> wheel_node;
-  wheel_node.reserve(log.wheels.size());
-
-  const std::vector<Event> events = merged_events(log, log.gnss.t_s[first_fix]);
+  std::vector<std::size_t> wheel_node;  // smoother only: the node of each wheel sample
+  SensorEventMerge events(log, log.gnss.t_s[first_fix]);
   if (smooth) {  // 8x8 matrices per node: growing these vectors dominated the smoother's time
-    for (auto* v : {&filtered_x, &predicted_x}) v->reserve(events.size());
-    for (auto* v : {&filtered_P, &predicted_P, &transition}) v->reserve(events.size());
+    const std::size_t nodes = events.remaining();
+    for (auto* v : {&filtered_x, &predicted_x}) v->reserve(nodes);
+    for (auto* v : {&filtered_P, &predicted_P, &transition}) v->reserve(nodes);
+    wheel_node.reserve(log.wheels.size());
   }
   bool first_fix_consumed = false;
-  for (const Event& event : events) {
+  while (const std::optional<SensorEvent> next = events.next()) {
+    const SensorEvent& event = *next;
     const Covariance F = ekf.predict(event.t_s);
     if (smooth) {
       predicted_x.push_back(ekf.state());
@@ -298,10 +273,10 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
       transition.push_back(F);
     }
     switch (event.kind) {
-      case EventKind::kImu:
+      case SensorEventKind::kImu:
         ekf.set_imu(event.index);
         break;
-      case EventKind::kGnss:
+      case SensorEventKind::kGnss:
         if (event.index == first_fix && !first_fix_consumed) {
           first_fix_consumed = true;  // it initialised the filter
           ++reference.gnss_used;
@@ -314,12 +289,12 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
           ++reference.gnss_rejected;
         }
         break;
-      case EventKind::kHeading:
+      case SensorEventKind::kHeading:
         ekf.update_yaw(log.heading->heading_rad[event.index], options.heading_sigma_rad);
         break;
-      case EventKind::kWheel:
+      case SensorEventKind::kWheel:
         if (reference.poses.size() == 0) reference.first_wheel_index = event.index;
-        wheel_node.push_back(smooth ? filtered_x.size() : 0);
+        if (smooth) wheel_node.push_back(filtered_x.size());
         reference.poses.t_s.push_back(event.t_s);
         reference.poses.pose.emplace_back(ekf.state()(0), ekf.state()(1), ekf.state()(4));
         reference.covariance.push_back((Eigen::Matrix3d() << ekf.covariance().block<2, 2>(0, 0),
