@@ -4,7 +4,7 @@ ASAN_DIR ?= build-asan
 JOBS ?= $(shell nproc)
 ODOCAL := $(BUILD_DIR)/apps/odocal/odocal
 
-.PHONY: all deps build demo test sanitize bench paper clean
+.PHONY: all deps build demo test sanitize bench paper format format-check clean
 
 all: build
 
@@ -52,6 +52,14 @@ paper: build
 	else echo "benchmarks: reusing $(PAPER_DIR)/bench.json"; fi
 	/usr/bin/python3 tools/paper_report.py $(PAPER_DIR) --markdown docs/results.md \
 	  --figures docs/figures/results --bench-command "$(PAPER_BENCH)"
+
+# C++ sources as .clang-format says (CI runs format-check; `make format` rewrites them).
+FORMAT_FILES = $(shell git ls-files '*.cpp' '*.hpp')
+format-check: deps
+	@clang-format --dry-run --Werror $(FORMAT_FILES) && echo "format-check: $(words $(FORMAT_FILES)) files formatted"
+
+format: deps
+	clang-format -i $(FORMAT_FILES)
 
 clean:
 	rm -rf $(BUILD_DIR) $(ASAN_DIR)

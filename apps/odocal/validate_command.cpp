@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -10,6 +9,7 @@
 #include "odocal/estimation/drift_validation.hpp"
 #include "odocal/io/calibration_export.hpp"
 #include "odocal/io/log_reader.hpp"
+#include "odocal/io/output_file.hpp"
 
 namespace odocal::cli {
 namespace {
@@ -59,15 +59,14 @@ void run_validate(const ValidateArgs& args) {
                          {"nominal_end_error_m", v.nominal[i].end_error_m},
                          {"calibrated_end_error_m", v.calibrated[i].end_error_m}});
     }
-    std::ofstream out(args.json_file);
-    out << nlohmann::json{{"window_s", args.options.window_s},
-                          {"reference", args.reference},
-                          {"nominal", statistics_json(v.nominal_statistics)},
-                          {"calibrated", statistics_json(v.calibrated_statistics)},
-                          {"windows", windows}}
-               .dump(2)
-        << "\n";
-    if (!out) throw Error("cannot write " + args.json_file);
+    write_output_file(args.json_file,
+                      nlohmann::json{{"window_s", args.options.window_s},
+                                     {"reference", args.reference},
+                                     {"nominal", statistics_json(v.nominal_statistics)},
+                                     {"calibrated", statistics_json(v.calibrated_statistics)},
+                                     {"windows", windows}}
+                              .dump(2) +
+                          "\n");
   }
 }
 

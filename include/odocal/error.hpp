@@ -1,6 +1,7 @@
 #pragma once
 // Errors thrown by the odocal library. The library never exits the process: the CLI maps
-// InputError to exit status 2, InsufficientDataError to 3 and anything else to 1.
+// InputError to exit status 2, InsufficientDataError to 3 and anything else (OutputError among
+// them) to 1.
 
 #include <cstddef>
 #include <stdexcept>
@@ -36,6 +37,12 @@ class InputError : public Error {
 // Well-formed data that cannot determine what was asked (the vehicle barely moves, no heading
 // reference where one is needed, too short). The CLI maps it to exit status 3.
 class InsufficientDataError : public Error {
+ public:
+  using Error::Error;
+};
+
+// An output file could not be written; what() names the path and the system's reason.
+class OutputError : public Error {
  public:
   using Error::Error;
 };

@@ -2,13 +2,13 @@
 
 #include <fstream>
 
-#include "io/text_file_writer.hpp"
 #include "odocal/error.hpp"
+#include "odocal/io/text_output.hpp"
 
 namespace odocal::experiments {
 
 void write_json_file(const std::filesystem::path& path, const nlohmann::json& value) {
-  detail::write_text_file(path, [&](fmt::ostream& out) { out.print("{}\n", value.dump(2)); });
+  write_text_file(path, [&](TextBuffer& out) { out.print("{}\n", value.dump(2)); });
 }
 
 nlohmann::json read_json_file(const std::filesystem::path& path) {

@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "experiments/truth_comparison.hpp"
-#include "io/text_file_writer.hpp"
 #include "odocal/error.hpp"
 #include "odocal/io/simulation_writer.hpp"
+#include "odocal/io/text_output.hpp"
 #include "odocal/sim/simulator.hpp"
 
 namespace odocal::experiments {
@@ -138,7 +138,7 @@ void write_monte_carlo_summary_csv(const nlohmann::json& summary,
                                  "mean_dr_heading_deg",
                                  "mean_milliseconds",
                                  "paper_mean_abs_error_mm"};
-  detail::write_text_file(path, [&](fmt::ostream& out) {
+  write_text_file(path, [&](TextBuffer& out) {
     out.print("method");
     for (const char* column : columns) out.print(",{}", column);
     out.print("\n");

@@ -3,7 +3,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "io/text_file_writer.hpp"
+#include "odocal/io/text_output.hpp"
 
 namespace odocal::experiments {
 namespace {
@@ -24,8 +24,7 @@ void PieceCache::open(const std::filesystem::path& piece_dir) const {
 }
 
 void PieceCache::mark_done(const std::filesystem::path& piece_dir, const std::string& stamp) const {
-  detail::write_text_file(piece_dir / kStampFile,
-                          [&](fmt::ostream& out) { out.print("{}", stamp); });
+  write_text_file(piece_dir / kStampFile, [&](TextBuffer& out) { out.print("{}", stamp); });
 }
 
 }  // namespace odocal::experiments

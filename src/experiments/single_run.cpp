@@ -2,8 +2,8 @@
 
 #include "experiments/json_file.hpp"
 #include "experiments/truth_comparison.hpp"
-#include "io/text_file_writer.hpp"
 #include "odocal/io/simulation_writer.hpp"
+#include "odocal/io/text_output.hpp"
 #include "odocal/model/angle.hpp"
 #include "odocal/sim/simulator.hpp"
 
@@ -17,7 +17,7 @@ constexpr std::size_t kParameterStride = 10;
 
 void write_speed_and_path(const PoseStream& truth, const GnssStream& gnss,
                           const std::filesystem::path& dir) {
-  detail::write_text_file(dir / "speed.csv", [&](fmt::ostream& out) {
+  write_text_file(dir / "speed.csv", [&](TextBuffer& out) {
     out.print("t_s,speed_mps\n");
     for (std::size_t k = kSpeedStride; k < truth.size(); k += kSpeedStride) {
       const double dt = truth.t_s[k] - truth.t_s[k - 1];
@@ -25,12 +25,12 @@ void write_speed_and_path(const PoseStream& truth, const GnssStream& gnss,
       out.print("{:.2f},{:.3f}\n", truth.t_s[k], speed);
     }
   });
-  detail::write_text_file(dir / "path.csv", [&](fmt::ostream& out) {
+  write_text_file(dir / "path.csv", [&](TextBuffer& out) {
     out.print("t_s,x_m,y_m\n");
     for (std::size_t k = 0; k < truth.size(); k += kPathStride)
       out.print("{:.2f},{:.3f},{:.3f}\n", truth.t_s[k], truth.pose[k].x(), truth.pose[k].y());
   });
-  detail::write_text_file(dir / "gnss.csv", [&](fmt::ostream& out) {
+  write_text_file(dir / "gnss.csv", [&](TextBuffer& out) {
     out.print("t_s,x_m,y_m\n");
     for (std::size_t k = 0; k < gnss.size(); k += kGnssStride)
       out.print("{:.2f},{:.3f},{:.3f}\n", gnss.t_s[k], gnss.x_m[k], gnss.y_m[k]);
@@ -39,7 +39,7 @@ void write_speed_and_path(const PoseStream& truth, const GnssStream& gnss,
 
 void write_iterations(const std::vector<const CalibrationResult*>& results,
                       const std::filesystem::path& path) {
-  detail::write_text_file(path, [&](fmt::ostream& out) {
+  write_text_file(path, [&](TextBuffer& out) {
     out.print(
         "method,iteration,c_rl_m,c_rr_m,mean_position_m,max_position_m,mean_heading_deg,"
         "max_heading_deg,score\n");
@@ -56,7 +56,7 @@ void write_iterations(const std::vector<const CalibrationResult*>& results,
 }
 
 void write_parameter_series(const CalibrationResult& augmented, const std::filesystem::path& path) {
-  detail::write_text_file(path, [&](fmt::ostream& out) {
+  write_text_file(path, [&](TextBuffer& out) {
     out.print("t_s,c_rl_m,c_rr_m\n");
     for (std::size_t k = 0; k < augmented.parameter_t_s.size(); k += kParameterStride) {
       out.print("{:.2f},{:.7f},{:.7f}\n", augmented.parameter_t_s[k], augmented.parameter_c_rl_m[k],

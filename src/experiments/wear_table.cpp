@@ -2,11 +2,11 @@
 
 #include <vector>
 
-#include "io/text_file_writer.hpp"
 #include "odocal/estimation/dead_reckoning.hpp"
 #include "odocal/estimation/trajectory_errors.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
+#include "odocal/io/text_output.hpp"
 #include "odocal/model/angle.hpp"
 #include "odocal/sim/simulator.hpp"
 
@@ -38,7 +38,7 @@ void run_wear_table(SimMode mode, const std::filesystem::path& dir) {
     if (truth.size() == 0) truth = *log.truth;
   }
 
-  detail::write_text_file(dir / "table1.csv", [&](fmt::ostream& out) {
+  write_text_file(dir / "table1.csv", [&](TextBuffer& out) {
     out.print(
         "wear_rl_mm,wear_rr_mm,mean_position_m,max_position_m,mean_heading_deg,max_heading_deg,"
         "paper_mean_position_m,paper_max_position_m,paper_mean_heading_deg,"
@@ -53,7 +53,7 @@ void run_wear_table(SimMode mode, const std::filesystem::path& dir) {
                 paper.max_heading_deg);
     }
   });
-  detail::write_text_file(dir / "paths.csv", [&](fmt::ostream& out) {
+  write_text_file(dir / "paths.csv", [&](TextBuffer& out) {
     out.print("case,x_m,y_m\n");
     const auto write_path = [&](int label, const PoseStream& path) {
       for (std::size_t k = 0; k < path.size(); k += kPathStride)

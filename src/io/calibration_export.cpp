@@ -6,8 +6,8 @@
 #include <numbers>
 
 #include "odocal/error.hpp"
+#include "odocal/io/text_output.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
-#include "text_file_writer.hpp"
 
 namespace odocal {
 
@@ -26,7 +26,7 @@ void write_ros2_diff_drive_parameters(const VehicleConfig& nominal,
   const double radius_m =
       (nominal.circumference_rl_m + nominal.circumference_rr_m) / (4.0 * std::numbers::pi);
   const double nominal_circumference = 2.0 * std::numbers::pi * radius_m;
-  detail::write_text_file(path, [&](fmt::ostream& out) {
+  write_text_file(path, [&](TextBuffer& out) {
     out.print(
         "# ROS 2 diff_drive_controller parameters from odocal's calibration: the nominal geometry\n"
         "# and the multipliers that give the calibrated rear wheels and track.\n"

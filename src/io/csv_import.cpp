@@ -1,7 +1,6 @@
 #include "odocal/io/csv_import.hpp"
 
 #include <fmt/format.h>
-#include <fmt/os.h>
 
 #include <GeographicLib/Geocentric.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
@@ -16,6 +15,7 @@
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/io/csv_table.hpp"
 #include "odocal/io/log_reader.hpp"
+#include "odocal/io/text_output.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
 #include "odocal/model/angle.hpp"
 #include "units.hpp"
@@ -155,14 +155,15 @@ std::vector<std::size_t> complete_rows(const std::vector<const std::vector<doubl
 void write_csv(const fs::path& path, const std::string& header, const std::vector<double>& t_s,
                const std::vector<const std::vector<double>*>& columns,
                const std::vector<std::size_t>& rows, const std::vector<int>& decimals) {
-  auto out = fmt::output_file(path.string());
-  out.print("{}\n", header);
-  for (std::size_t k : rows) {
-    out.print("{:.6f}", t_s[k]);
-    for (std::size_t c = 0; c < columns.size(); ++c)
-      out.print(",{:.{}f}", (*columns[c])[k], decimals[c]);
-    out.print("\n");
-  }
+  write_text_file(path, [&](TextBuffer& out) {
+    out.print("{}\n", header);
+    for (std::size_t k : rows) {
+      out.print("{:.6f}", t_s[k]);
+      for (std::size_t c = 0; c < columns.size(); ++c)
+        out.print(",{:.{}f}", (*columns[c])[k], decimals[c]);
+      out.print("\n");
+    }
+  });
 }
 
 ImportedStreamSummary summarise(const std::string& name, const std::vector<double>& t_s) {

@@ -1,19 +1,15 @@
 #include "odocal/io/simulation_writer.hpp"
 
-#include <fmt/os.h>
-
-#include <fstream>
-
 #include "odocal/error.hpp"
 #include "odocal/io/csv_table.hpp"
+#include "odocal/io/output_file.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/stream_readers.hpp"
+#include "odocal/io/text_output.hpp"
 #include "odocal/io/trajectory_writer.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
-#include "text_file_writer.hpp"
 
 namespace odocal {
-namespace {}  // namespace
 
 void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& scenario,
                          const std::filesystem::path& directory) {
@@ -22,7 +18,7 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
   if (error) throw Error("cannot create " + directory.string() + ": " + error.message());
 
   write_vehicle_config(drive.nominal_vehicle, directory / "vehicle.yaml");
-  detail::write_text_file(directory / "wheels.csv", [&](fmt::ostream& out) {
+  write_text_file(directory / "wheels.csv", [&](TextBuffer& out) {
     const char* unit = wheel_unit_name(drive.wheel_unit);
     out.print("t,rl_{0},rr_{0}\n", unit);
     const bool ticks = drive.wheel_unit == WheelUnit::kTicks;
@@ -36,7 +32,7 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
       }
     }
   });
-  detail::write_text_file(directory / "gnss.csv", [&](fmt::ostream& out) {
+  write_text_file(directory / "gnss.csv", [&](TextBuffer& out) {
     // sigma_m must be positive in the log format: error-free fixes leave the column out.
     const bool has_sigma = drive.gnss_sigma_m > 0.0;
     out.print("{}{}\n", drive.gnss_latlon ? "t,lat,lon" : "t,x,y", has_sigma ? ",sigma_m" : "");
@@ -51,21 +47,21 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
       }
     }
   });
-  detail::write_text_file(directory / "imu.csv", [&](fmt::ostream& out) {
+  write_text_file(directory / "imu.csv", [&](TextBuffer& out) {
     out.print("t,ax,ay,wz\n");
     for (std::size_t k = 0; k < drive.imu.size(); ++k) {
       out.print("{:.4f},{:.6f},{:.6f},{:.7f}\n", drive.imu.t_s[k], drive.imu.ax_mps2[k],
                 drive.imu.ay_mps2[k], drive.imu.wz_radps[k]);
     }
   });
-  detail::write_text_file(directory / "heading.csv", [&](fmt::ostream& out) {
+  write_text_file(directory / "heading.csv", [&](TextBuffer& out) {
     out.print("t,heading\n");
     for (std::size_t k = 0; k < drive.heading.size(); ++k) {
       out.print("{:.4f},{:.7f}\n", drive.heading.t_s[k], drive.heading.heading_rad[k]);
     }
   });
   write_trajectory_csv(drive.truth, directory / "truth.csv");
-  detail::write_text_file(directory / "truth.yaml", [&](fmt::ostream& out) {
+  write_text_file(directory / "truth.yaml", [&](TextBuffer& out) {
     out.print("# The simulator's true parameters; estimators never read this file.\n");
     out.print("circumference_rl_m: {:.9f}\ncircumference_rr_m: {:.9f}\ntrack_width_m: {:.9f}\n",
               drive.true_params.circumference_rl_m, drive.true_params.circumference_rr_m,
@@ -75,7 +71,7 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
     out.print("seeds: {{trajectory: {}, noise: {}}}\n", scenario.seeds.trajectory,
               scenario.seeds.noise);
   });
-  std::ofstream(directory / "scenario.yaml") << scenario_to_yaml(scenario);
+  write_output_file(directory / "scenario.yaml", scenario_to_yaml(scenario));
 }
 
 Log simulated_log(const sim::SimulatedDrive& drive, bool with_truth) {

@@ -5,12 +5,12 @@
 #include <cmath>
 
 #include "odocal/error.hpp"
+#include "odocal/io/text_output.hpp"
 #include "odocal/model/angle.hpp"
-#include "text_file_writer.hpp"
 
 namespace odocal {
 void write_trajectory_csv(const PoseStream& trajectory, const std::filesystem::path& path) {
-  detail::write_text_file(path, [&](fmt::ostream& out) {
+  write_text_file(path, [&](TextBuffer& out) {
     out.print("t,x,y,heading\n");
     for (std::size_t k = 0; k < trajectory.size(); ++k) {
       const Pose2& pose = trajectory.pose[k];
@@ -21,7 +21,7 @@ void write_trajectory_csv(const PoseStream& trajectory, const std::filesystem::p
 }
 
 void write_trajectory_tum(const PoseStream& trajectory, const std::filesystem::path& path) {
-  detail::write_text_file(path, [&](fmt::ostream& out) {
+  write_text_file(path, [&](TextBuffer& out) {
     for (std::size_t k = 0; k < trajectory.size(); ++k) {
       const Pose2& pose = trajectory.pose[k];
       const double half_yaw = 0.5 * wrap_angle(pose.z());

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "odocal/error.hpp"
+#include "odocal/io/output_file.hpp"
 #include "vehicle_config_parse.hpp"
 
 namespace odocal {
@@ -79,9 +80,7 @@ void write_vehicle_config(const VehicleConfig& vehicle, const std::filesystem::p
     out << YAML::Key << "circumference_fr_m" << YAML::Value << *vehicle.circumference_fr_m;
   }
   out << YAML::EndMap;
-  std::ofstream stream(path);
-  stream << out.c_str() << "\n";
-  if (!stream) throw Error("cannot write " + path.string());
+  write_output_file(path, std::string(out.c_str()) + "\n");
 }
 
 }  // namespace odocal

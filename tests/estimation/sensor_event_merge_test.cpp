@@ -59,12 +59,24 @@ void expect_same_order(const std::vector<SensorEvent>& actual,
   }
 }
 
+ImuStream imu_at(std::vector<double> t_s) {
+  ImuStream imu;
+  imu.t_s = std::move(t_s);
+  return imu;
+}
+
+HeadingStream heading_at(std::vector<double> t_s) {
+  HeadingStream heading;
+  heading.t_s = std::move(t_s);
+  return heading;
+}
+
 Log random_log(std::mt19937& rng, bool with_imu, bool with_heading) {
   Log log;
   log.wheels.t_s = random_times(rng, 300);
   log.gnss.t_s = random_times(rng, 120);
-  if (with_imu) log.imu = ImuStream{.t_s = random_times(rng, 250)};
-  if (with_heading) log.heading = HeadingStream{.t_s = random_times(rng, 80)};
+  if (with_imu) log.imu = imu_at(random_times(rng, 250));
+  if (with_heading) log.heading = heading_at(random_times(rng, 80));
   return log;
 }
 
@@ -86,8 +98,8 @@ TEST(SensorEventMerge, SharedInstantsPutInputBeforeMeasurementsBeforeTheWheel) {
   Log log;
   log.wheels.t_s = {1.0};
   log.gnss.t_s = {1.0};
-  log.imu = ImuStream{.t_s = {1.0}};
-  log.heading = HeadingStream{.t_s = {1.0}};
+  log.imu = imu_at({1.0});
+  log.heading = heading_at({1.0});
   const std::vector<SensorEvent> events = merged_events(log, 0.0);
   ASSERT_EQ(events.size(), 4u);
   EXPECT_EQ(events[0].kind, SensorEventKind::kImu);
@@ -100,7 +112,7 @@ TEST(SensorEventMerge, RejectsATimeBaseThatIsNotStrictlyIncreasing) {
   Log log;
   log.wheels.t_s = {0.0, 0.1, 0.2};
   log.gnss.t_s = {0.0, 0.5};
-  log.imu = ImuStream{.t_s = {0.0, 0.1, 0.1, 0.3}};
+  log.imu = imu_at({0.0, 0.1, 0.1, 0.3});
   try {
     SensorEventMerge merge(log, 0.0);
     FAIL() << "a repeated IMU time was accepted";
