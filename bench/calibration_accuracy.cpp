@@ -49,8 +49,8 @@ double rms(const std::vector<double>& v) {
 int main(int argc, char** argv) {
   CLI::App app{"Monte-Carlo accuracy of odocal's calibration methods"};
   int seeds = 10;
-  double q = CalibrationOptions{}.decay_exponent_q;
-  int window = CalibrationOptions{}.ls_window_samples;
+  double q = IterativeOptions{}.decay_exponent_q;
+  int window = IterativeOptions{}.ls_window_samples;
   std::string start = "aligned-window", reference = "filter", wheels = "ticks";
   std::string track =
       std::string(ODOCAL_SOURCE_DIR) + "/../shared/data/tracks/hockenheim/track.csv";
@@ -61,16 +61,15 @@ int main(int argc, char** argv) {
   app.add_option("--seeds", seeds);
   app.add_option("--q", q);
   app.add_option("--window", window);
-  app.add_option("--start", start)
-      ->check(CLI::IsMember({"first-reference", "aligned-window", "aligned-whole"}));
-  app.add_option("--reference", reference)->check(CLI::IsMember({"filter", "smoother"}));
+  app.add_option("--start", start)->check(CLI::IsMember(enum_name_list<DeadReckoningStart>()));
+  app.add_option("--reference", reference)->check(CLI::IsMember(enum_name_list<ReferenceMode>()));
   app.add_option("--wheels", wheels)->check(CLI::IsMember({"ticks", "rad"}));
   app.add_option("--track", track, "TUMFTM centreline, or 'builtin' for the built-in circuit");
   app.add_option("--wear-rl", wear_rl);
   app.add_option("--wear-rr", wear_rr);
   app.add_option("--methods", method_names)
       ->delimiter(',')
-      ->check(CLI::IsMember({"iterative", "fixed-p", "augmented", "batch"}));
+      ->check(CLI::IsMember(enum_name_list<CalibrationMethod>()));
   app.add_option("--config", config, "Calibration options YAML (as odocal calibrate --config)")
       ->check(CLI::ExistingFile);
   app.add_option("--laps", laps)->check(CLI::PositiveNumber);
@@ -89,26 +88,24 @@ int main(int argc, char** argv) {
   scenario.wheels.output = wheels == "ticks" ? WheelUnit::kTicks : WheelUnit::kRadians;
 
   // Without --config the batch gets the experiments' ideal-mode wheel noise (no slip to model).
-  CalibrationOptions options;
+  CalibrationConfig options;
   if (!config.empty())
-    options = read_calibration_options(config);
+    options = read_calibration_config(config);
   else
     options.batch =
         experiments::method_options(CalibrationMethod::kBatch, experiments::SimMode::kIdeal).batch;
-  options.decay_exponent_q = q;
-  options.ls_window_samples = window;
-  options.dr_start = start == "first-reference"  ? DeadReckoningStart::kFirstReference
-                     : start == "aligned-window" ? DeadReckoningStart::kAlignedWindow
-                                                 : DeadReckoningStart::kAlignedWhole;
-  options.reference.mode =
-      reference == "filter" ? ReferenceMode::kFilter : ReferenceMode::kSmoother;
+  options.iterative.decay_exponent_q = q;
+  options.iterative.ls_window_samples = window;
+  options.common.dr_start = *parse_enum<DeadReckoningStart>(start);
+  options.common.reference.mode = *parse_enum<ReferenceMode>(reference);
 
   fmt::print(
       "{}, {} laps, --ideal, wear {}/{} mm, wheels {}, {} seeds; q {}, LS window {}, start {}, "
       "reference {}\n",
       where, scenario.route.laps, wear_rl, wear_rr, wheels, seeds, q, window, start, reference);
   std::vector<CalibrationMethod> methods;
-  for (const std::string& name : method_names) methods.push_back(*parse_method(name));
+  for (const std::string& name : method_names)
+    methods.push_back(*parse_enum<CalibrationMethod>(name));
   std::vector<Stats> stats(methods.size());
   double crlb_variance = 0.0, crlb_exact_counts_variance = 0.0;
   for (int seed = 1; seed <= seeds; ++seed) {
@@ -124,7 +121,8 @@ int main(int argc, char** argv) {
     for (std::size_t m = 0; m < methods.size(); ++m) {
       options.method = methods[m];
       const auto begin = std::chrono::steady_clock::now();
-      const CalibrationResult result = calibrate(log, options);
+      const AnyCalibrationSummary summary = calibrate(log, options);
+      const CalibrationSummary& result = core(summary);
       stats[m].milliseconds.push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin)
               .count());
@@ -134,7 +132,7 @@ int main(int argc, char** argv) {
                                                      drive.true_params.circumference_rr_m));
       stats[m].mean_position_m.push_back(result.after.mean_position_m);
       stats[m].mean_heading_deg.push_back(result.after.mean_heading_rad * 180 / M_PI);
-      stats[m].reported_sigma_mm.push_back(1e3 * std::sqrt(result.covariance(0, 0)));
+      stats[m].reported_sigma_mm.push_back(1e3 * result.sigma_rl_m());
     }
   }
   const double crlb_mm = 1e3 * std::sqrt(crlb_variance);

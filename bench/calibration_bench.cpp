@@ -59,11 +59,14 @@ void BM_LeastSquaresSolve(benchmark::State& state) {
 BENCHMARK(BM_LeastSquaresSolve)->Unit(benchmark::kMillisecond);
 
 void BM_Calibrate(benchmark::State& state) {
-  CalibrationOptions options;
+  CalibrationConfig options;
   options.method = static_cast<CalibrationMethod>(state.range(0));
-  int iterations = 0;
-  for (auto _ : state)
-    iterations = static_cast<int>(calibrate(three_lap_log(), options).iterations.size());
+  std::size_t iterations = 0;
+  for (auto _ : state) {
+    const AnyCalibrationSummary summary = calibrate(three_lap_log(), options);
+    const auto* iterative = std::get_if<IterativeSummary>(&summary);
+    iterations = iterative ? iterative->iterations.size() : 0;
+  }
   state.SetLabel(std::string(method_name(options.method)) + ", " + std::to_string(iterations) +
                  " iterations");
 }
@@ -71,10 +74,10 @@ BENCHMARK(BM_Calibrate)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 
 // The iterative method forced through all 30 iterations (no early stop).
 void BM_CalibrateThirtyIterations(benchmark::State& state) {
-  CalibrationOptions options;
+  IterativeOptions options;
   options.max_iterations = options.patience = 30;
   for (auto _ : state)
-    benchmark::DoNotOptimize(calibrate(three_lap_log(), options).iterations.size());
+    benchmark::DoNotOptimize(calibrate_iterative(three_lap_log(), options).iterations.size());
 }
 BENCHMARK(BM_CalibrateThirtyIterations)->Unit(benchmark::kMillisecond);
 

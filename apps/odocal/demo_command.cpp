@@ -5,7 +5,8 @@
 #include <filesystem>
 #include <memory>
 
-#include "calibrate_command.hpp"
+#include "exit_codes.hpp"
+#include "odocal/estimation/iterative_calibration.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
@@ -37,8 +38,9 @@ void run_demo(const DemoArgs& args) {
 
   LogReadOptions read_options;
   read_options.read_truth = false;
-  const CalibrationResult result = calibrate(read_log(args.out_dir, read_options));
-  print_calibration_report(result);
+  const IterativeSummary result = calibrate_iterative(read_log(args.out_dir, read_options));
+  fmt::print("{}", result.full_report());
+  if (!result.usable()) throw NotUsableResult(result.message);
 
   fmt::print("\n{:<6} {:>12} {:>12} {:>12} {:>10}\n", "", "nominal [m]", "estimate [m]", "true [m]",
              "error [mm]");

@@ -19,8 +19,7 @@ void run_paper(ExperimentArgs& args) {
   if (!args.track.empty()) args.options.setup.track_csv = args.track;
   args.options.modes.clear();
   for (const std::string& mode : args.modes) {
-    args.options.modes.push_back(mode == "ideal" ? experiments::SimMode::kIdeal
-                                                 : experiments::SimMode::kRealistic);
+    args.options.modes.push_back(*parse_enum<experiments::SimMode>(mode));
   }
   experiments::run_paper_experiment(args.options, stderr);
 }
@@ -49,7 +48,7 @@ void add_experiment_command(CLI::App& app, int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   paper->add_option("--modes", args->modes, "Simulator modes")
       ->capture_default_str()
-      ->check(CLI::IsMember({"ideal", "realistic"}))
+      ->check(CLI::IsMember(enum_name_list<experiments::SimMode>()))
       ->delimiter(',');
   paper
       ->add_option("--wear-rl", args->options.setup.wear_rl_mm,

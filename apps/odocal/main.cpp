@@ -34,6 +34,9 @@ int main(int argc, char** argv) {
   } catch (const odocal::InputError& e) {
     fmt::print(stderr, "odocal: error: {}\n", e.what());
     return kExitBadInput;
+  } catch (const NotUsableResult& e) {
+    fmt::print(stderr, "odocal: not usable: {}\n", e.what());
+    return kExitNotIdentifiable;
   } catch (const odocal::InsufficientDataError& e) {
     fmt::print(stderr, "odocal: cannot identify: {}\n", e.what());
     return kExitNotIdentifiable;

@@ -42,7 +42,7 @@ void run_simulate(const SimulateArgs& args) {
   if (args.trajectory_seed) scenario.seeds.trajectory = *args.trajectory_seed;
   if (args.gnss_sigma_m) scenario.gnss.sigma_m = *args.gnss_sigma_m;
   if (args.gnss_output) scenario.gnss.output_latlon = *args.gnss_output == "latlon";
-  if (args.wheel_output) scenario.wheels.output = *parse_wheel_unit_name(*args.wheel_output);
+  if (args.wheel_output) scenario.wheels.output = *parse_enum<WheelUnit>(*args.wheel_output);
 
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   write_simulated_log(drive, scenario, args.out_dir);
@@ -82,7 +82,7 @@ void add_simulate_command(CLI::App& app) {
   command->add_option("--gnss-output", args->gnss_output, "GNSS as local x,y or lat,lon")
       ->check(CLI::IsMember({"local", "latlon"}));
   command->add_option("--wheel-output", args->wheel_output, "Wheel columns' unit")
-      ->check(CLI::IsMember({"ticks", "rad", "radps", "mps"}));
+      ->check(CLI::IsMember(enum_name_list<WheelUnit>()));
   command->callback([args] { run_simulate(*args); });
 }
 

@@ -36,8 +36,7 @@ void run_validate(const ValidateArgs& args) {
   read_options.read_truth = false;
   const Log log = read_log(args.log_dir, read_options);
   ReferenceOptions reference_options;
-  reference_options.mode =
-      args.reference == "smoother" ? ReferenceMode::kSmoother : ReferenceMode::kFilter;
+  reference_options.mode = *parse_enum<ReferenceMode>(args.reference);
   const ReferenceTrajectory reference = compute_reference(log, reference_options);
   const DriftValidation v =
       validate_drift(log.wheels, reference, log.vehicle.nominal_params(), calibrated, args.options);
@@ -90,7 +89,7 @@ void add_validate_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--reference", args->reference, "Reference pose: smoother or filter")
       ->capture_default_str()
-      ->check(CLI::IsMember({"filter", "smoother"}));
+      ->check(CLI::IsMember(enum_name_list<ReferenceMode>()));
   command->add_option("--json", args->json_file, "Write the statistics and every window as JSON");
   command->callback([args] { run_validate(*args); });
 }

@@ -1,4 +1,4 @@
-#include "batch_calibration.hpp"
+#include "odocal/estimation/batch_calibration.hpp"
 
 #include <ceres/ceres.h>
 #include <fmt/format.h>
@@ -13,6 +13,8 @@
 
 #include "batch_observability.hpp"
 #include "batch_residuals.hpp"
+#include "calibration_report.hpp"
+#include "calibration_run.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/odometry_preintegration.hpp"
 
@@ -44,9 +46,9 @@ double median_step_s(const std::vector<double>& t_s) {
 // Ceres problem around the current pre-integration.
 class BatchProblem {
  public:
-  BatchProblem(const Log& log, const ReferenceTrajectory& reference,
-               const CalibrationOptions& options, const OdometryParams& nominal)
-      : log_(log), options_(options), batch_(options.batch) {
+  BatchProblem(const Log& log, const ReferenceTrajectory& reference, const BatchOptions& options,
+               const CalibrationOptions& common, const OdometryParams& nominal)
+      : log_(log), sensors_(common.reference), batch_(options) {
     keyframes_ =
         keyframe_samples(log.wheels, reference.first_wheel_index, batch_.keyframe_interval_s);
     if (keyframes_.size() < 3) {
@@ -235,7 +237,7 @@ class BatchProblem {
   }
 
   double white_gnss_sigma(std::size_t j) const {
-    if (log_.gnss.sigma_m.empty()) return options_.reference.gnss_sigma_m;
+    if (log_.gnss.sigma_m.empty()) return sensors_.gnss_sigma_m;
     const double total = log_.gnss.sigma_m[j];
     if (!gauss_markov()) return total;
     const double gm = batch_.gnss_gauss_markov_sigma_m;
@@ -280,7 +282,7 @@ class BatchProblem {
       const auto at = motion_at(heading.t_s[j]);
       if (!at) continue;
       auto* residual = new batch::HeadingResidual{at->motion, heading.heading_rad[j],
-                                                  options_.reference.heading_sigma_rad};
+                                                  sensors_.heading_sigma_rad};
       problem_->AddResidualBlock(
           new ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, 3, 1, 2>(residual), nullptr,
           poses_[at->segment].data(), params_.data(), &heading_bias_,
@@ -307,8 +309,7 @@ class BatchProblem {
       if (largest_gap > 5.0 * step_s) continue;  // an IMU dropout inside the interval
       const double duration = end - begin;
       auto* residual = new batch::GyroResidual{
-          integrated, duration,
-          options_.reference.yaw_rate_sigma_radps * std::sqrt(step_s * duration)};
+          integrated, duration, sensors_.yaw_rate_sigma_radps * std::sqrt(step_s * duration)};
       problem_->AddResidualBlock(
           new ceres::AutoDiffCostFunction<batch::GyroResidual, 1, 3, 3, 1>(residual), nullptr,
           poses_[i].data(), poses_[i + 1].data(), &gyro_bias_);
@@ -345,7 +346,7 @@ class BatchProblem {
   }
 
   const Log& log_;
-  const CalibrationOptions& options_;
+  const ReferenceOptions& sensors_;  // the sensors' noise
   const BatchOptions& batch_;
   std::vector<std::size_t> keyframes_;
   std::vector<int> segment_of_sample_;
@@ -367,34 +368,17 @@ class BatchProblem {
   Block2 zero_bias_{0.0, 0.0};  // stands in for the GNSS bias when it is not modelled
 };
 
-}  // namespace
-
-void run_batch(const Log& log, const ReferenceTrajectory& reference,
-               const CalibrationOptions& options, CalibrationResult& result) {
-  if (const std::string problem = options.batch.validate(); !problem.empty())
-    throw Error("invalid batch options: " + problem);
-  BatchProblem batch(log, reference, options, result.nominal);
-  ceres::Solver::Summary summary;
-  int solves = 0;
-  constexpr double kCoarseNoise = 1e-3;  // m per sqrt(m), slip and lateral
-  do {
-    batch.preintegrate_all(solves == 0 ? kCoarseNoise : 0.0);
-    summary = batch.solve();
-    ++solves;
-  } while (solves == 1 || (batch.relative_change() > options.batch.relinearise_relative_change &&
-                           solves <= options.batch.max_relinearisations));
-  if (!summary.IsSolutionUsable()) {
-    throw InsufficientDataError("the batch solver found no usable solution: " + summary.message);
-  }
-
+// Fills the summary from the solved problem: every parameter with its sigma and verdict, and
+// the termination (a circumference that is not identified makes the result unusable).
+void summarise(const Log& log, const ReferenceTrajectory& reference, const BatchOptions& b,
+               BatchProblem& batch, const ceres::Solver::Summary& solver, BatchSummary& summary) {
   const auto& p = batch.params();
-  result.estimate = {p[0], p[1], p[2]};
+  summary.estimate = {p[0], p[1], p[2]};
   const auto uncertainty = batch.uncertainty();
   const double inf = std::numeric_limits<double>::infinity();
   const auto sigma = [&](double variance) { return uncertainty ? std::sqrt(variance) : inf; };
-  const BatchOptions& b = options.batch;
   const BatchProblem::Uncertainty u = uncertainty.value_or(BatchProblem::Uncertainty{});
-  result.parameters = {
+  summary.parameters = {
       {"circumference_rl_m", p[0], sigma(u.params(0, 0)), true, true, ""},
       {"circumference_rr_m", p[1], sigma(u.params(1, 1)), true, true, ""},
       {"track_width_m", p[2], sigma(u.params(2, 2)), b.estimate_track_width, true, ""},
@@ -409,17 +393,12 @@ void run_batch(const Log& log, const ReferenceTrajectory& reference,
                                b.max_sigma_heading_bias_rad, b.max_sigma_lever_arm_m,
                                b.max_sigma_lever_arm_m,      b.max_sigma_latency_s};
   const LogCoverage coverage = log_coverage(log, reference);
-  const bool block_used[] = {true,
-                             true,
-                             true,
-                             log.imu.has_value() && options.batch.use_gyro,
-                             log.heading.has_value() && options.batch.use_heading,
-                             true,
-                             true,
-                             true};
+  const bool block_used[] = {
+      true, true, true, log.imu.has_value() && b.use_gyro, log.heading.has_value() && b.use_heading,
+      true, true, true};
   std::vector<std::string> problems;
-  for (std::size_t i = 0; i < result.parameters.size(); ++i) {
-    EstimatedParameter& parameter = result.parameters[i];
+  for (std::size_t i = 0; i < summary.parameters.size(); ++i) {
+    EstimatedParameter& parameter = summary.parameters[i];
     if (!parameter.estimated) {
       parameter.sigma = 0.0;
       continue;
@@ -431,24 +410,77 @@ void run_batch(const Log& log, const ReferenceTrajectory& reference,
       problems.push_back(parameter.name + ": " + parameter.verdict);
     }
   }
-  result.covariance = u.params.topLeftCorner<2, 2>();
+  summary.covariance = u.params.topLeftCorner<2, 2>();
   if (uncertainty) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(result.covariance);
-    result.condition_number =
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(summary.covariance);
+    summary.condition_number =
         std::sqrt(eigen.eigenvalues()(1) / std::max(eigen.eigenvalues()(0), 1e-300));
   } else {
-    result.condition_number = inf;
+    summary.condition_number = inf;
+    summary.covariance.setConstant(inf);
     problems.insert(problems.begin(),
                     "the problem is rank-deficient: some unknowns cannot be told apart");
   }
-  result.identifiability = problems.empty()
-                               ? "every requested parameter identified"
-                               : fmt::format("not identified: {}", fmt::join(problems, "; "));
-  result.solver_report = summary.BriefReport();
-  result.termination =
+  summary.identifiability = problems.empty()
+                                ? "every requested parameter identified"
+                                : fmt::format("not identified: {}", fmt::join(problems, "; "));
+  summary.solver_report = solver.BriefReport();
+  summary.keyframes = batch.keyframes();
+  summary.gnss_fixes = batch.gnss_residuals();
+
+  const std::string solved =
       fmt::format("batch maximum likelihood over {} keyframes and {} GNSS fixes; {} solve(s); {}",
-                  batch.keyframes(), batch.gnss_residuals(), solves,
-                  ceres::TerminationTypeToString(summary.termination_type));
+                  summary.keyframes, summary.gnss_fixes, summary.solves,
+                  ceres::TerminationTypeToString(solver.termination_type));
+  const bool circumferences_identified =
+      uncertainty && summary.parameters[0].identified && summary.parameters[1].identified;
+  if (solver.termination_type == ceres::NO_CONVERGENCE) {
+    summary.termination = Termination::kNoConvergence;
+    summary.message =
+        fmt::format("{}: the solver reached max_solver_iterations ({}) before converging", solved,
+                    b.max_solver_iterations);
+  } else if (!solver.IsSolutionUsable()) {
+    summary.termination = Termination::kFailure;
+    summary.message = fmt::format("{}: {}", solved, solver.message);
+  } else if (!circumferences_identified) {
+    summary.termination = Termination::kNotIdentifiable;
+    summary.message = fmt::format("{}: {}", solved, summary.identifiability);
+  } else {
+    summary.message = solved;
+  }
+}
+
+}  // namespace
+
+BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
+                             const CalibrationOptions& common) {
+  require_valid("batch", options.validate());
+  BatchSummary summary;
+  CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
+  BatchProblem batch(log, run.reference(), options, common, summary.nominal);
+  ceres::Solver::Summary solver;
+  constexpr double kCoarseNoise = 1e-3;  // m per sqrt(m), slip and lateral
+  do {
+    batch.preintegrate_all(summary.solves == 0 ? kCoarseNoise : 0.0);
+    solver = batch.solve();
+    ++summary.solves;
+  } while (summary.solves == 1 || (batch.relative_change() > options.relinearise_relative_change &&
+                                   summary.solves <= options.max_relinearisations));
+  summarise(log, run.reference(), options, batch, solver, summary);
+  run.finish(summary);
+  return summary;
+}
+
+std::string BatchSummary::full_report() const {
+  std::string text = report_heading(*this);
+  for (const EstimatedParameter& p : parameters) {
+    if (!p.estimated || p.name.starts_with("circumference")) continue;
+    text +=
+        fmt::format("{:<13}{} = {:.6g} (1-sigma {:.3g})\n", "parameter", p.name, p.value, p.sigma);
+  }
+  text += fmt::format("{:<13}{}\n", "observable", identifiability);
+  text += fmt::format("{:<13}{}\n", "solver", message);
+  return text + report_ending(*this);
 }
 
 }  // namespace odocal

@@ -1,29 +1,63 @@
 #include "odocal/estimation/batch_options.hpp"
 
+#include <array>
+
 namespace odocal {
 
-const char* robust_loss_name(RobustLoss loss) {
-  switch (loss) {
-    case RobustLoss::kNone:
-      return "none";
-    case RobustLoss::kHuber:
-      return "huber";
-    case RobustLoss::kCauchy:
-      return "cauchy";
-  }
-  return "none";
+OptionTable<BatchOptions> BatchOptions::fields() {
+  using O = BatchOptions;
+  static const std::array<OptionField<O>, 24> kFields{{
+      {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
+       &O::keyframe_interval_s},
+      {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
+       "wheel slip as a random walk in arc length", &O::slip_sigma_m_per_sqrt_m},
+      {"quantisation_sigma_rev", "rev", -1.0, 1.0,
+       "encoder quantisation per count; negative: 1/sqrt(12) tick from ticks_per_rev; 0: exact",
+       &O::quantisation_sigma_rev},
+      {"lateral_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
+       "side slip and model error across the course", &O::lateral_sigma_m_per_sqrt_m},
+      {"gnss_gauss_markov_sigma_m", "m", 0.0, 1e3,
+       "time-correlated GNSS error (first-order Gauss-Markov) per axis; 0: white only",
+       &O::gnss_gauss_markov_sigma_m},
+      {"gnss_gauss_markov_tau_s", "s", 1e-3, 1e6, "its correlation time",
+       &O::gnss_gauss_markov_tau_s},
+      {"gnss_loss", "", 0, 0, "robust loss on the GNSS residuals", enum_member<&O::gnss_loss>()},
+      {"gnss_loss_scale", "sigma", 1e-3, 1e3, "where the robust loss bends, in fix sigmas",
+       &O::gnss_loss_scale},
+      {"use_heading", "", 0, 0, "heading.csv residuals", &O::use_heading},
+      {"use_gyro", "", 0, 0, "imu.csv yaw-rate residuals", &O::use_gyro},
+      {"estimate_track_width", "", 0, 0, "also estimate the rear track width",
+       &O::estimate_track_width},
+      {"estimate_gyro_bias", "", 0, 0, "also estimate a constant gyro bias",
+       &O::estimate_gyro_bias},
+      {"estimate_heading_bias", "", 0, 0, "also estimate a constant heading.csv bias",
+       &O::estimate_heading_bias},
+      {"estimate_lever_arm", "", 0, 0, "also estimate the GNSS antenna's lever arm",
+       &O::estimate_lever_arm},
+      {"estimate_latency", "", 0, 0, "also estimate the GNSS latency", &O::estimate_latency},
+      {"max_solver_iterations", "1", 1.0, 1e5, "Ceres iterations per solve",
+       &O::max_solver_iterations},
+      {"relinearise_relative_change", "1", 1e-12, 1.0,
+       "integrate the odometry again when a parameter moves by more than this fraction",
+       &O::relinearise_relative_change},
+      {"max_relinearisations", "1", 0.0, 100.0, "at most this many re-linearisations",
+       &O::max_relinearisations},
+      {"max_sigma_circumference_m", "m", 0.0, 1.0,
+       "a circumference with a larger 1-sigma counts as not identified",
+       &O::max_sigma_circumference_m},
+      {"max_sigma_track_width_m", "m", 0.0, 1.0, "the same for the track width",
+       &O::max_sigma_track_width_m},
+      {"max_sigma_gyro_bias_radps", "rad/s", 0.0, 1.0, "the same for the gyro bias",
+       &O::max_sigma_gyro_bias_radps},
+      {"max_sigma_heading_bias_rad", "rad", 0.0, 10.0, "the same for the heading bias",
+       &O::max_sigma_heading_bias_rad},
+      {"max_sigma_lever_arm_m", "m", 0.0, 100.0, "the same for the lever arm",
+       &O::max_sigma_lever_arm_m},
+      {"max_sigma_latency_s", "s", 0.0, 100.0, "the same for the latency", &O::max_sigma_latency_s},
+  }};
+  return kFields;
 }
 
-std::string BatchOptions::validate() const {
-  if (!(keyframe_interval_s > 0.0)) return "keyframe_interval_s must be positive";
-  if (slip_sigma_m_per_sqrt_m < 0.0) return "slip_sigma_m_per_sqrt_m must not be negative";
-  if (gnss_gauss_markov_sigma_m < 0.0 || !(gnss_gauss_markov_tau_s > 0.0))
-    return "the Gauss-Markov GNSS sigma must not be negative and its tau must be positive";
-  if (!(gnss_loss_scale > 0.0)) return "gnss_loss_scale must be positive";
-  if (max_solver_iterations < 1) return "max_solver_iterations must be at least 1";
-  if (!(relinearise_relative_change > 0.0) || max_relinearisations < 0)
-    return "relinearise_relative_change must be positive, max_relinearisations not negative";
-  return "";
-}
+std::string BatchOptions::validate() const { return check_option_ranges(fields(), *this); }
 
 }  // namespace odocal

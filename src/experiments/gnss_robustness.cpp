@@ -11,7 +11,7 @@ namespace odocal::experiments {
 namespace {
 
 nlohmann::json calibrate_json(const Log& log, const OdometryParams& truth,
-                              const CalibrationOptions& options) {
+                              const CalibrationConfig& options) {
   return method_run_to_json(run_method(log, truth, options));
 }
 
@@ -30,8 +30,8 @@ nlohmann::json run_robustness_seed(const PaperSetup& setup, const DegradedGnss& 
   scenario.gnss.outages = {{gnss.outage_start_s, gnss.outage_duration_s}};
   const sim::SimulatedDrive degraded = sim::simulate(scenario);
 
-  const CalibrationOptions batch = method_options(CalibrationMethod::kBatch, SimMode::kIdeal);
-  CalibrationOptions batch_told = batch;
+  const CalibrationConfig batch = method_options(CalibrationMethod::kBatch, SimMode::kIdeal);
+  CalibrationConfig batch_told = batch;
   batch_told.batch.gnss_gauss_markov_sigma_m = gnss.gauss_markov_sigma_m;
   batch_told.batch.gnss_gauss_markov_tau_s = gnss.gauss_markov_tau_s;
   const Log clean_log = simulated_log(clean, true);

@@ -28,7 +28,7 @@ std::string stamp(const std::string& piece, const sim::Scenario& scenario) {
   return nlohmann::json{{"version", kExperimentVersion},
                         {"piece", piece},
                         {"scenario", scenario_to_yaml(scenario)},
-                        {"calibration", options_to_json(CalibrationOptions{})}}
+                        {"calibration", config_to_json(CalibrationConfig{})}}
       .dump();
 }
 

@@ -4,8 +4,6 @@
 
 namespace odocal::experiments {
 
-const char* mode_name(SimMode mode) { return mode == SimMode::kIdeal ? "ideal" : "realistic"; }
-
 sim::Scenario parking_scenario(SimMode mode) {
   sim::Scenario scenario = load_scenario("parking");
   scenario.ideal = mode == SimMode::kIdeal;
@@ -26,8 +24,8 @@ sim::Scenario paper_scenario(const PaperSetup& setup, SimMode mode, std::uint64_
   return scenario;
 }
 
-CalibrationOptions method_options(CalibrationMethod method, SimMode mode) {
-  CalibrationOptions options;
+CalibrationConfig method_options(CalibrationMethod method, SimMode mode) {
+  CalibrationConfig options;
   options.method = method;
   if (method == CalibrationMethod::kBatch && mode == SimMode::kIdeal) {
     options.batch.slip_sigma_m_per_sqrt_m = 1e-6;

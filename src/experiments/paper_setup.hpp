@@ -11,12 +11,26 @@
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/sim/scenario.hpp"
 
-namespace odocal::experiments {
+namespace odocal {
+namespace experiments {
 
 // kIdeal: the paper's model assumptions (exact path, no slip, constant radius); kRealistic: the
 // dynamic vehicle with slip, load-dependent radius and side slip.
 enum class SimMode { kIdeal, kRealistic };
-const char* mode_name(SimMode mode);
+
+}  // namespace experiments
+
+template <>
+struct EnumNames<experiments::SimMode> {
+  static constexpr std::array<EnumName<experiments::SimMode>, 2> kTable{
+      {{experiments::SimMode::kIdeal, "ideal"}, {experiments::SimMode::kRealistic, "realistic"}}};
+};
+
+}  // namespace odocal
+
+namespace odocal::experiments {
+
+inline const char* mode_name(SimMode mode) { return enum_name(mode); }
 
 struct PaperSetup {
   std::optional<std::filesystem::path> track_csv;  // TUMFTM centreline; empty: built-in circuit
@@ -34,7 +48,7 @@ sim::Scenario paper_scenario(const PaperSetup& setup, SimMode mode, std::uint64_
 // The options each method runs with. Defaults throughout, except that the batch estimator's
 // wheel noise matches the simulator mode: in ideal mode the truth has no slip and no side slip,
 // so its odometry noise is set near zero (1e-6 m per sqrt(m)); realistic mode keeps the defaults.
-CalibrationOptions method_options(CalibrationMethod method, SimMode mode);
+CalibrationConfig method_options(CalibrationMethod method, SimMode mode);
 
 // Table 1: rear tyre wear [mm of radius] and the paper's dead-reckoning errors.
 struct PaperWearRow {

@@ -37,13 +37,13 @@ void write_speed_and_path(const PoseStream& truth, const GnssStream& gnss,
   });
 }
 
-void write_iterations(const std::vector<const CalibrationResult*>& results,
+void write_iterations(const std::vector<const IterativeSummary*>& results,
                       const std::filesystem::path& path) {
   write_text_file(path, [&](TextBuffer& out) {
     out.print(
         "method,iteration,c_rl_m,c_rr_m,mean_position_m,max_position_m,mean_heading_deg,"
         "max_heading_deg,score\n");
-    for (const CalibrationResult* result : results) {
+    for (const IterativeSummary* result : results) {
       for (const IterationRecord& r : result->iterations) {
         out.print("{},{},{:.7f},{:.7f},{:.4f},{:.4f},{:.5f},{:.5f},{:.5f}\n",
                   method_name(result->method), r.iteration, r.circumference_rl_m,
@@ -55,7 +55,7 @@ void write_iterations(const std::vector<const CalibrationResult*>& results,
   });
 }
 
-void write_parameter_series(const CalibrationResult& augmented, const std::filesystem::path& path) {
+void write_parameter_series(const AugmentedSummary& augmented, const std::filesystem::path& path) {
   write_text_file(path, [&](TextBuffer& out) {
     out.print("t_s,c_rl_m,c_rr_m\n");
     for (std::size_t k = 0; k < augmented.parameter_t_s.size(); k += kParameterStride) {
@@ -76,22 +76,22 @@ void run_single(const PaperSetup& setup, SimMode mode, std::uint64_t seed,
   write_speed_and_path(*log.truth, log.gnss, dir);
 
   nlohmann::json methods = nlohmann::json::object();
-  std::vector<MethodRun> illustrations;  // run on through max_iterations
+  std::vector<IterativeSummary> illustrations;  // run on through max_iterations
   for (const CalibrationMethod method :
        {CalibrationMethod::kIterative, CalibrationMethod::kFixedP, CalibrationMethod::kAugmented}) {
-    CalibrationOptions options = method_options(method, mode);
+    CalibrationConfig options = method_options(method, mode);
     const MethodRun run = run_method(log, truth, options);
     methods[method_name(method)] = method_run_to_json(run);
     if (method == CalibrationMethod::kAugmented) {
-      write_parameter_series(run.result, dir / "augmented.csv");
+      write_parameter_series(std::get<AugmentedSummary>(run.result), dir / "augmented.csv");
       continue;
     }
-    options.patience = options.max_iterations;
-    illustrations.push_back(run_method(log, truth, options));
+    options.iterative.patience = options.iterative.max_iterations;
+    illustrations.push_back(std::get<IterativeSummary>(calibrate(log, options)));
     // Iterations are deterministic: the illustration repeats the stopped run's first ones.
-    illustrations.back().result.chosen_iteration = run.result.chosen_iteration;
+    illustrations.back().chosen_iteration = std::get<IterativeSummary>(run.result).chosen_iteration;
   }
-  write_iterations({&illustrations[0].result, &illustrations[1].result}, dir / "iterations.csv");
+  write_iterations({&illustrations[0], &illustrations[1]}, dir / "iterations.csv");
 
   const CramerRaoBound bound = scenario_cramer_rao_bound(scenario, log, truth);
   write_json_file(dir / "summary.json",
@@ -104,8 +104,8 @@ void run_single(const PaperSetup& setup, SimMode mode, std::uint64_t seed,
                    {"nominal_circumference_rl_m", log.vehicle.nominal_params().circumference_rl_m},
                    {"nominal_circumference_rr_m", log.vehicle.nominal_params().circumference_rr_m},
                    {"chosen_iteration",
-                    {{"iterative", illustrations[0].result.chosen_iteration},
-                     {"fixed-p", illustrations[1].result.chosen_iteration}}},
+                    {{"iterative", illustrations[0].chosen_iteration},
+                     {"fixed-p", illustrations[1].chosen_iteration}}},
                    {"crlb_sigma_rl_mm", 1e3 * bound.sigma_c_rl_m},
                    {"crlb_sigma_rr_mm", 1e3 * bound.sigma_c_rr_m},
                    {"methods", methods},

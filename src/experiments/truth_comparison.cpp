@@ -18,14 +18,14 @@ const PoseStream& truth_of(const Log& log) {
 
 }  // namespace
 
-TruthComparison compare_with_truth(const CalibrationResult& result, const Log& log,
+TruthComparison compare_with_truth(const CalibrationSummary& result, const Log& log,
                                    const OdometryParams& truth) {
   const PoseStream& truth_path = truth_of(log);
   TruthComparison c;
   c.error_rl_mm = 1e3 * (result.estimate.circumference_rl_m - truth.circumference_rl_m);
   c.error_rr_mm = 1e3 * (result.estimate.circumference_rr_m - truth.circumference_rr_m);
-  c.reported_sigma_rl_mm = 1e3 * std::sqrt(std::max(0.0, result.covariance(0, 0)));
-  c.reported_sigma_rr_mm = 1e3 * std::sqrt(std::max(0.0, result.covariance(1, 1)));
+  c.reported_sigma_rl_mm = 1e3 * result.sigma_rl_m();
+  c.reported_sigma_rr_mm = 1e3 * result.sigma_rr_m();
   const PoseStream path = dead_reckon(log.wheels, result.estimate, truth_path.pose.front());
   c.dead_reckoning = trajectory_errors(path, reference_from_poses(truth_path, "truth"));
   return c;
@@ -44,28 +44,31 @@ CramerRaoBound scenario_cramer_rao_bound(const sim::Scenario& scenario, const Lo
 }
 
 MethodRun run_method(const Log& log, const OdometryParams& truth,
-                     const CalibrationOptions& options) {
+                     const CalibrationConfig& options) {
   MethodRun run;
   const auto begin = std::chrono::steady_clock::now();
   run.result = calibrate(log, options);
   run.milliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count();
-  run.comparison = compare_with_truth(run.result, log, truth);
+  run.comparison = compare_with_truth(core(run.result), log, truth);
   return run;
 }
 
 nlohmann::json method_run_to_json(const MethodRun& run) {
-  const CalibrationResult& result = run.result;
+  const CalibrationSummary& result = core(run.result);
+  const auto* iterative = std::get_if<IterativeSummary>(&run.result);
   const TruthComparison& c = run.comparison;
   return {{"method", method_name(result.method)},
+          {"termination", enum_name(result.termination)},
+          {"usable", result.usable()},
           {"circumference_rl_m", result.estimate.circumference_rl_m},
           {"circumference_rr_m", result.estimate.circumference_rr_m},
           {"error_rl_mm", c.error_rl_mm},
           {"error_rr_mm", c.error_rr_mm},
           {"reported_sigma_rl_mm", c.reported_sigma_rl_mm},
           {"reported_sigma_rr_mm", c.reported_sigma_rr_mm},
-          {"chosen_iteration", result.chosen_iteration},
-          {"iterations_run", result.iterations.size()},
+          {"chosen_iteration", iterative ? iterative->chosen_iteration : 0},
+          {"iterations_run", iterative ? iterative->iterations.size() : 0},
           {"dr_mean_position_m", c.dead_reckoning.mean_position_m},
           {"dr_max_position_m", c.dead_reckoning.max_position_m},
           {"dr_mean_heading_deg", deg_from_rad(c.dead_reckoning.mean_heading_rad)},

@@ -20,7 +20,7 @@ struct TruthComparison {
 };
 
 // `log` must carry its truth; `truth` are the true parameters.
-TruthComparison compare_with_truth(const CalibrationResult& result, const Log& log,
+TruthComparison compare_with_truth(const CalibrationSummary& result, const Log& log,
                                    const OdometryParams& truth);
 
 // The bound for the scenario's GNSS (white and Gauss-Markov; outliers left out) and heading
@@ -33,12 +33,11 @@ CramerRaoBound scenario_cramer_rao_bound(const sim::Scenario& scenario, const Lo
 
 // One calibration, timed and judged.
 struct MethodRun {
-  CalibrationResult result;
+  AnyCalibrationSummary result;
   TruthComparison comparison;
   double milliseconds{};
 };
-MethodRun run_method(const Log& log, const OdometryParams& truth,
-                     const CalibrationOptions& options);
+MethodRun run_method(const Log& log, const OdometryParams& truth, const CalibrationConfig& options);
 
 nlohmann::json method_run_to_json(const MethodRun& run);
 

@@ -52,6 +52,10 @@ OdometryParams read_calibrated_parameters(const std::filesystem::path& json_path
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError({json_path.string(), 0, ""}, std::string("not valid JSON: ") + e.what());
   }
+  if (json.contains("usable") && json["usable"] == false) {
+    throw InputError({json_path.string(), 0, "usable"},
+                     "this calibration is not usable: " + json.value("message", std::string()));
+  }
   const auto positive = [&](const char* key) {
     if (!json.contains(key) || !json[key].is_number() || !(json[key].get<double>() > 0.0) ||
         !std::isfinite(json[key].get<double>())) {

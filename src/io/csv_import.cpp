@@ -223,10 +223,10 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
       auto [column, quantity] = wheels->values(
           wheel, {Quantity::kTicks, Quantity::kAngle, Quantity::kAngularSpeed, Quantity::kSpeed});
       const std::string this_kind =
-          wheel_unit_name(quantity == Quantity::kTicks          ? WheelUnit::kTicks
-                          : quantity == Quantity::kAngle        ? WheelUnit::kRadians
-                          : quantity == Quantity::kAngularSpeed ? WheelUnit::kRadiansPerSecond
-                                                                : WheelUnit::kMetresPerSecond);
+          enum_name(quantity == Quantity::kTicks          ? WheelUnit::kTicks
+                    : quantity == Quantity::kAngle        ? WheelUnit::kRadians
+                    : quantity == Quantity::kAngularSpeed ? WheelUnit::kRadiansPerSecond
+                                                          : WheelUnit::kMetresPerSecond);
       if (rear && !kind.empty() && kind != this_kind) {
         throw InputError(wheels->map().location(wheel),
                          "rl and rr must be the same kind of value (both ticks, angles, angular "

@@ -82,7 +82,7 @@ WheelUnit parse_wheel_unit(YamlMap& map, const std::string& key, WheelUnit fallb
   std::string text;
   map.read(key, text);
   if (text.empty()) return fallback;
-  if (const auto unit = parse_wheel_unit_name(text)) return *unit;
+  if (const auto unit = parse_enum<WheelUnit>(text)) return *unit;
   throw InputError(map.location(key), "expected one of ticks, rad, radps, mps");
 }
 
@@ -361,7 +361,7 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   out << YAML::EndMap;
   out << YAML::Key << "wheels" << YAML::Value << YAML::BeginMap;
   key("rate_hz", s.wheels.rate_hz);
-  key("output", wheel_unit_name(s.wheels.output));
+  key("output", enum_name(s.wheels.output));
   key("ticks_per_rev", s.wheels.ticks_per_rev);
   key("counter_bits", s.wheels.counter_bits);
   key("start_phase", s.wheels.start_phase);

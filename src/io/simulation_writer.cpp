@@ -19,7 +19,7 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
 
   write_vehicle_config(drive.nominal_vehicle, directory / "vehicle.yaml");
   write_text_file(directory / "wheels.csv", [&](TextBuffer& out) {
-    const char* unit = wheel_unit_name(drive.wheel_unit);
+    const char* unit = enum_name(drive.wheel_unit);
     out.print("t,rl_{0},rr_{0}\n", unit);
     const bool ticks = drive.wheel_unit == WheelUnit::kTicks;
     for (std::size_t k = 0; k < drive.wheel_t_s.size(); ++k) {
@@ -88,7 +88,7 @@ Log simulated_log(const sim::SimulatedDrive& drive, bool with_truth) {
   Log log;
   log.source = "simulation";
   log.vehicle = drive.nominal_vehicle;
-  const std::string unit = wheel_unit_name(drive.wheel_unit);
+  const std::string unit = enum_name(drive.wheel_unit);
   log.wheels = wheel_stream_from_table(table("wheels.csv", {"t", "rl_" + unit, "rr_" + unit},
                                              {drive.wheel_t_s, drive.wheel_rl, drive.wheel_rr}),
                                        log.vehicle);

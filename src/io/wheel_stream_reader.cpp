@@ -19,8 +19,8 @@ struct WheelColumn {
 // The single column that gives wheel `prefix`, if any.
 std::optional<WheelColumn> find_wheel_column(const CsvTable& table, std::string_view prefix) {
   std::optional<WheelColumn> found;
-  for (WheelUnit unit : kWheelUnits) {
-    std::string name = fmt::format("{}_{}", prefix, wheel_unit_name(unit));
+  for (const auto& [unit, unit_name] : EnumNames<WheelUnit>::kTable) {
+    std::string name = fmt::format("{}_{}", prefix, unit_name);
     if (!table.has(name)) continue;
     if (found) {
       throw InputError({table.file, 1, name},

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "odocal/options/option_fields.hpp"
+
 namespace odocal::detail {
 
 YAML::Node parse_yaml(const std::string& text, const std::string& file) {
@@ -42,9 +44,10 @@ void YamlMap::read(const std::string& key, double& value, double min, double max
                                  node.IsScalar() ? node.Scalar() : "<not a scalar>"));
   }
   if (!std::isfinite(parsed) || parsed < min || parsed > max) {
-    throw InputError(location(key),
-                     fmt::format("{} is out of range: expected a finite number from {} to {}",
-                                 node.Scalar(), min, max));
+    throw InputError(
+        location(key),
+        fmt::format("{} is out of range: expected a finite number from {} to {}", node.Scalar(),
+                    format_option_number(min), format_option_number(max)));
   }
   value = parsed;
 }
@@ -81,6 +84,25 @@ void YamlMap::read(const std::string& key, std::string& value) {
   if (!node.IsDefined()) return;
   if (!node.IsScalar()) throw InputError(location(key), "expected a string");
   value = node.Scalar();
+}
+
+void YamlMap::read(const std::string& key, Eigen::Vector3d& value, double min, double max) {
+  const YAML::Node node = take(key);
+  if (!node.IsDefined()) return;
+  const std::string expected = fmt::format("expected a list of 3 numbers, each from {} to {}",
+                                           format_option_number(min), format_option_number(max));
+  if (!node.IsSequence() || node.size() != 3) throw InputError(location(key), expected);
+  Eigen::Vector3d parsed;
+  for (std::size_t i = 0; i < 3; ++i) {
+    try {
+      parsed(static_cast<Eigen::Index>(i)) = node[i].as<double>();
+    } catch (const YAML::Exception&) {
+      throw InputError(location(key), expected);
+    }
+    const double element = parsed(static_cast<Eigen::Index>(i));
+    if (!(element >= min && element <= max)) throw InputError(location(key), expected);
+  }
+  value = parsed;
 }
 
 std::optional<YamlMap> YamlMap::map(const std::string& key) {

@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <Eigen/Core>
 #include <optional>
 #include <set>
 #include <string>
@@ -24,6 +25,8 @@ class YamlMap {
   void read(const std::string& key, std::uint64_t& value);
   void read(const std::string& key, bool& value);
   void read(const std::string& key, std::string& value);
+  // A list of 3 numbers, each from min to max.
+  void read(const std::string& key, Eigen::Vector3d& value, double min, double max);
   std::optional<YamlMap> map(const std::string& key);
   // The sequence under `key` (empty when absent); throws when it is not a sequence.
   std::vector<YAML::Node> sequence(const std::string& key);

@@ -50,23 +50,25 @@ Log circuit_log(int laps) {
   return simulated_log(sim::simulate(scenario));
 }
 
-long allocations_of_calibration(const Log& log, const CalibrationOptions& options) {
+long allocations_of_calibration(const Log& log, const CalibrationConfig& options) {
   const long before = allocations.load();
-  const CalibrationResult result = calibrate(log, options);
+  const AnyCalibrationSummary result = calibrate(log, options);
   const long during = allocations.load() - before;
   // The augmented KF is one filter pass, no loop.
+  const auto* iterative = std::get_if<IterativeSummary>(&result);
   const bool loops = options.method != CalibrationMethod::kAugmented;
-  EXPECT_EQ(result.iterations.size(), loops ? static_cast<std::size_t>(options.max_iterations) : 0);
+  EXPECT_EQ(iterative ? iterative->iterations.size() : 0,
+            loops ? static_cast<std::size_t>(options.iterative.max_iterations) : 0);
   return during;
 }
 
 class PerSampleAllocation : public testing::TestWithParam<CalibrationMethod> {};
 
 TEST_P(PerSampleAllocation, DoublingTheLogAddsNoAllocation) {
-  CalibrationOptions options;
+  CalibrationConfig options;
   options.method = GetParam();
   // Every method through the same number of iterations on both logs (the stop rule off).
-  options.max_iterations = options.patience = 8;
+  options.iterative.max_iterations = options.iterative.patience = 8;
   const Log one_lap = circuit_log(1), two_laps = circuit_log(2);
   ASSERT_GT(two_laps.wheels.size(), one_lap.wheels.size() * 19 / 10);
   const long short_log = allocations_of_calibration(one_lap, options);

@@ -43,6 +43,9 @@ TEST_F(CalibrateCli, PrintsAReportAndWritesJson) {
     EXPECT_TRUE(json.contains(key)) << key;
   }
   EXPECT_EQ(json["method"], "iterative");
+  EXPECT_EQ(json["termination"], "converged");
+  EXPECT_EQ(json["usable"], true);
+  EXPECT_NE(run.out.find("outcome      usable (converged)"), std::string::npos) << run.out;
   EXPECT_NEAR(json["circumference_rl_m"].get<double>(), 2 * M_PI * (0.3126 - 0.0015), 0.002);
   const auto& first = json["iterations"][0];
   for (const char* key : {"circumference_rl_m", "circumference_rr_m", "errors"})
@@ -89,6 +92,43 @@ TEST_F(CalibrateCli, ConfigFileOverridesDefaultsAndBadKeysExitTwo) {
   EXPECT_NE(run_cli("calibrate " + log() + " --config " + dir_->file("typo.yaml"))
                 .err.find("'reference.gnss_sigma': unknown key"),
             std::string::npos);
+}
+
+TEST_F(CalibrateCli, PrintedConfigFedBackGivesTheSameResult) {
+  const auto printed = run_cli("calibrate --method fixed-p --reference smoother --print-config");
+  ASSERT_EQ(printed.status, 0) << printed.err;
+  EXPECT_NE(printed.out.find("method: fixed-p"), std::string::npos) << printed.out;
+  EXPECT_NE(printed.out.find("  mode: smoother"), std::string::npos) << printed.out;
+  EXPECT_NE(printed.out.find("# m, 1e-06 to 10000: GNSS horizontal 1-sigma"), std::string::npos)
+      << printed.out;
+  dir_->write("printed.yaml", printed.out);
+  const auto fed_back = run_cli("calibrate " + log() + " --config " + dir_->file("printed.yaml") +
+                                " --json " + dir_->file("fed.json"));
+  const auto direct = run_cli("calibrate " + log() + " --method fixed-p --reference smoother" +
+                              " --json " + dir_->file("direct.json"));
+  ASSERT_EQ(fed_back.status, 0) << fed_back.err;
+  EXPECT_EQ(fed_back.out, direct.out);
+  EXPECT_EQ(read_text_file(dir_->file("fed.json")), read_text_file(dir_->file("direct.json")));
+}
+
+TEST_F(CalibrateCli, AResultThatIsNotUsableExitsThreeWritesItsJsonButNoExports) {
+  dir_->write("limit.yaml", "max_iterations: 1\n");
+  const std::string vehicle = dir_->file("not-written.yaml");
+  const auto run = run_cli("calibrate " + log() + " --config " + dir_->file("limit.yaml") +
+                           " --json " + dir_->file("unusable.json") + " --vehicle-out " + vehicle);
+  EXPECT_EQ(run.status, 3) << run.err;
+  EXPECT_NE(run.err.find("odocal: not usable: the estimate still moved by"), std::string::npos)
+      << run.err;
+  EXPECT_NE(run.out.find("outcome      NOT USABLE (no_convergence)"), std::string::npos) << run.out;
+  EXPECT_FALSE(std::filesystem::exists(vehicle));
+  const auto json = nlohmann::json::parse(read_text_file(dir_->file("unusable.json")));
+  EXPECT_EQ(json["usable"], false);
+  EXPECT_EQ(json["termination"], "no_convergence");
+  // validate refuses to use it.
+  const auto validate = run_cli("validate " + log() + " --params " + dir_->file("unusable.json"));
+  EXPECT_EQ(validate.status, 2);
+  EXPECT_NE(validate.err.find("'usable': this calibration is not usable"), std::string::npos)
+      << validate.err;
 }
 
 TEST_F(CalibrateCli, UnidentifiableLogExitsWithStatusThree) {

@@ -24,13 +24,7 @@ sim::Scenario ideal_lap() {
   return scenario;
 }
 
-CalibrationOptions batch_options() {
-  CalibrationOptions options;
-  options.method = CalibrationMethod::kBatch;
-  return options;
-}
-
-void expect_within_3_sigma(const CalibrationResult& result, const OdometryParams& truth) {
+void expect_within_3_sigma(const BatchSummary& result, const OdometryParams& truth) {
   const double error_rl = result.estimate.circumference_rl_m - truth.circumference_rl_m;
   const double error_rr = result.estimate.circumference_rr_m - truth.circumference_rr_m;
   EXPECT_LT(std::abs(error_rl), 3.0 * std::sqrt(result.covariance(0, 0)));
@@ -44,9 +38,11 @@ TEST(BatchCalibration, RecoversTheWearWithinItsReportedUncertainty) {
     sim::Scenario scenario = ideal_lap();
     scenario.seeds.noise = seed;
     const sim::SimulatedDrive drive = sim::simulate(scenario);
-    const CalibrationResult result = calibrate(simulated_log(drive), batch_options());
-    SCOPED_TRACE(result.termination);
-    EXPECT_NE(result.termination.find("CONVERGENCE"), std::string::npos);
+    const BatchSummary result = calibrate_batch(simulated_log(drive));
+    SCOPED_TRACE(result.message);
+    EXPECT_EQ(result.termination, Termination::kConverged);
+    EXPECT_TRUE(result.usable());
+    EXPECT_NE(result.message.find("CONVERGENCE"), std::string::npos);
     expect_within_3_sigma(result, drive.true_params);
     EXPECT_EQ(result.identifiability, "every requested parameter identified");
     EXPECT_LT(result.after.mean_position_m, result.before.mean_position_m);
@@ -60,9 +56,9 @@ TEST(BatchCalibration, ReportsTheUncertaintyOfTheQuantisationLimitedBound) {
   sim::Scenario scenario = ideal_lap();
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   const Log log = simulated_log(drive, true);
-  CalibrationOptions options = batch_options();
-  options.batch.slip_sigma_m_per_sqrt_m = options.batch.lateral_sigma_m_per_sqrt_m = 1e-6;
-  const CalibrationResult result = calibrate(log, options);
+  BatchOptions options;
+  options.slip_sigma_m_per_sqrt_m = options.lateral_sigma_m_per_sqrt_m = 1e-6;
+  const BatchSummary result = calibrate_batch(log, options);
   const CramerRaoBound bound = circumference_cramer_rao_bound(
       log, drive.true_params, log.truth->pose.front(),
       {.gnss_sigma_m = scenario.gnss.sigma_m,
@@ -84,11 +80,11 @@ TEST(BatchCalibration, EstimatesTrackWidthGyroBiasAndLatencyWhenAsked) {
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   Log log = simulated_log(drive);
   log.vehicle.track_width_m = 1.55;  // vehicle.yaml is 5 cm off
-  CalibrationOptions options = batch_options();
-  options.batch.estimate_track_width = true;
-  options.batch.estimate_gyro_bias = true;
-  options.batch.estimate_latency = true;
-  const CalibrationResult result = calibrate(log, options);
+  BatchOptions options;
+  options.estimate_track_width = true;
+  options.estimate_gyro_bias = true;
+  options.estimate_latency = true;
+  const BatchSummary result = calibrate_batch(log, options);
   const auto find = [&](const std::string& name) {
     for (const EstimatedParameter& p : result.parameters)
       if (p.name == name) return p;
@@ -114,21 +110,35 @@ TEST(BatchCalibration, RobustLossKeepsGnssOutliersOut) {
   Log log = clean;
   const std::size_t first = log.gnss.size() / 3, count = log.gnss.size() / 50;
   for (std::size_t j = first; j < first + count; ++j) log.gnss.x_m[j] += 30.0;
-  const CalibrationResult reference = calibrate(clean, batch_options());
-  const auto moved = [&](const CalibrationOptions& options) {
-    const CalibrationResult r = calibrate(log, options);
+  const BatchSummary reference = calibrate_batch(clean);
+  const auto moved = [&](const BatchOptions& options) {
+    const BatchSummary r = calibrate_batch(log, options);
     return std::hypot(r.estimate.circumference_rl_m - reference.estimate.circumference_rl_m,
                       r.estimate.circumference_rr_m - reference.estimate.circumference_rr_m);
   };
-  const double cauchy = moved(batch_options());
-  CalibrationOptions options = batch_options();
-  options.batch.gnss_loss = RobustLoss::kNone;
+  const double cauchy = moved({});
+  BatchOptions options;
+  options.gnss_loss = RobustLoss::kNone;
   const double squared = moved(options);
-  options.batch.gnss_loss = RobustLoss::kHuber;
+  options.gnss_loss = RobustLoss::kHuber;
   const double huber = moved(options);
   EXPECT_LT(cauchy, 0.75 * std::sqrt(reference.covariance(0, 0)));
   EXPECT_GT(squared, 3.0 * cauchy);
   EXPECT_LT(huber, squared);
+}
+
+TEST(BatchCalibrationOutcome, CircumferencesLooserThanRequiredAreNotIdentifiedAndNotUsable) {
+  const sim::SimulatedDrive drive = sim::simulate(ideal_lap());
+  BatchOptions options;
+  options.max_sigma_circumference_m = 1e-7;  // far below what one lap can give
+  const BatchSummary result = calibrate_batch(simulated_log(drive), options);
+  EXPECT_EQ(result.termination, Termination::kNotIdentifiable);
+  EXPECT_FALSE(result.usable());
+  EXPECT_NE(result.message.find("circumference_rl_m: "), std::string::npos) << result.message;
+  EXPECT_FALSE(result.parameters[0].identified);
+  // The numbers are still reported, for the record.
+  EXPECT_GT(result.sigma_rl_m(), 1e-7);
+  EXPECT_NE(result.estimate.circumference_rl_m, result.nominal.circumference_rl_m);
 }
 
 }  // namespace

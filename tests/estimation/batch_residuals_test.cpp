@@ -113,23 +113,18 @@ TEST(BatchResiduals, VanishAtTheirClosedFormSolutions) {
   EXPECT_NEAR(std::hypot(residual[0], residual[1]), 0.0, 1e-12);
 }
 
-CalibrationOptions batch_options() {
-  CalibrationOptions options;
-  options.method = CalibrationMethod::kBatch;
-  return options;
-}
-
 TEST(BatchCalibration, SaysWhatAStraightDriveCannotIdentify) {
   sim::Scenario scenario =
       parse_scenario("route:\n  segments:\n    - straight: 3000\n", "straight.yaml");
   scenario.ideal = true;
   Log log = simulated_log(sim::simulate(scenario));
   log.heading.reset();
-  CalibrationOptions options = batch_options();
-  options.batch.estimate_track_width = true;
-  options.batch.estimate_heading_bias = true;
-  options.min_heading_range_for_difference_rad = 0.0;
-  const CalibrationResult result = calibrate(log, options);
+  BatchOptions options;
+  options.estimate_track_width = true;
+  options.estimate_heading_bias = true;
+  CalibrationOptions common;
+  common.min_heading_range_for_difference_rad = 0.0;
+  const BatchSummary result = calibrate_batch(log, options, common);
   bool track_said = false, heading_said = false;
   for (const EstimatedParameter& p : result.parameters) {
     if (p.name == "track_width_m") {

@@ -64,9 +64,10 @@ TEST(Comma2k19, ImportedAndCalibratedScaleMatchesTheReferencePose) {
   without_truth.read_truth = false;
   const Log input = read_log(out.path(), without_truth);
   for (CalibrationMethod method : {CalibrationMethod::kIterative, CalibrationMethod::kFixedP}) {
-    CalibrationOptions options;
-    options.method = method;
-    const CalibrationResult result = calibrate(input, options);
+    CalibrationConfig config;
+    config.method = method;
+    const CalibrationSummary result = core(calibrate(input, config));
+    EXPECT_TRUE(result.usable()) << result.message;
     const double scale_rl = result.estimate.circumference_rl_m / result.nominal.circumference_rl_m;
     const double scale_rr = result.estimate.circumference_rr_m / result.nominal.circumference_rr_m;
     EXPECT_NEAR(scale_rl, expected_scale, 0.002 * expected_scale) << method_name(method);

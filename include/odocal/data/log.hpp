@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "odocal/model/odometry_model.hpp"
+#include "odocal/options/enum_names.hpp"
 
 namespace odocal {
 
@@ -30,33 +31,17 @@ struct VehicleConfig {
   }
 };
 
-// How the wheel columns of wheels.csv were given.
+// How the wheel columns of wheels.csv were given. The name is the suffix of its wheels.csv
+// columns ("ticks", "rad", "radps", "mps").
 enum class WheelUnit { kTicks, kRadians, kRadiansPerSecond, kMetresPerSecond };
-inline constexpr std::array<WheelUnit, 4> kWheelUnits = {WheelUnit::kTicks, WheelUnit::kRadians,
-                                                         WheelUnit::kRadiansPerSecond,
-                                                         WheelUnit::kMetresPerSecond};
-
-// The unit's name: the suffix of its wheels.csv columns ("ticks", "rad", "radps", "mps").
-constexpr const char* wheel_unit_name(WheelUnit unit) {
-  switch (unit) {
-    case WheelUnit::kTicks:
-      return "ticks";
-    case WheelUnit::kRadians:
-      return "rad";
-    case WheelUnit::kRadiansPerSecond:
-      return "radps";
-    case WheelUnit::kMetresPerSecond:
-      return "mps";
-  }
-  return "ticks";
-}
-
-inline std::optional<WheelUnit> parse_wheel_unit_name(std::string_view name) {
-  for (WheelUnit unit : kWheelUnits) {
-    if (name == wheel_unit_name(unit)) return unit;
-  }
-  return std::nullopt;
-}
+template <>
+struct EnumNames<WheelUnit> {
+  static constexpr std::array<EnumName<WheelUnit>, 4> kTable{
+      {{WheelUnit::kTicks, "ticks"},
+       {WheelUnit::kRadians, "rad"},
+       {WheelUnit::kRadiansPerSecond, "radps"},
+       {WheelUnit::kMetresPerSecond, "mps"}}};
+};
 
 // Wheel revolution increments on the wheel time base (eq. 2): rev_*[k] is the number of
 // revolutions between t_s[k-1] and t_s[k]; rev_*[0] = 0.

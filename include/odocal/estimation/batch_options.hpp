@@ -4,11 +4,20 @@
 // Sensor noise comes from CalibrationOptions::reference (gnss_sigma_m when gnss.csv has no
 // sigma_m, heading_sigma_rad, yaw_rate_sigma_radps).
 
+#include <array>
 #include <string>
+
+#include "odocal/options/option_fields.hpp"
 
 namespace odocal {
 
 enum class RobustLoss { kNone, kHuber, kCauchy };
+template <>
+struct EnumNames<RobustLoss> {
+  static constexpr std::array<EnumName<RobustLoss>, 3> kTable{{{RobustLoss::kNone, "none"},
+                                                               {RobustLoss::kHuber, "huber"},
+                                                               {RobustLoss::kCauchy, "cauchy"}}};
+};
 
 struct BatchOptions {
   double keyframe_interval_s = 1.0;
@@ -46,9 +55,8 @@ struct BatchOptions {
   double max_sigma_lever_arm_m = 0.2;
   double max_sigma_latency_s = 0.02;
 
+  static OptionTable<BatchOptions> fields();
   std::string validate() const;  // empty when valid
 };
-
-const char* robust_loss_name(RobustLoss loss);
 
 }  // namespace odocal

@@ -11,14 +11,21 @@
 // speed |v|: it fixes the along-track scale of the reference far better than position differences
 // of noisy fixes.
 
+#include <array>
 #include <string>
 #include <vector>
 
 #include "odocal/data/log.hpp"
+#include "odocal/options/option_fields.hpp"
 
 namespace odocal {
 
 enum class ReferenceMode { kFilter, kSmoother };  // smoother: Rauch-Tung-Striebel, off-line
+template <>
+struct EnumNames<ReferenceMode> {
+  static constexpr std::array<EnumName<ReferenceMode>, 2> kTable{
+      {{ReferenceMode::kFilter, "filter"}, {ReferenceMode::kSmoother, "smoother"}}};
+};
 
 struct ReferenceOptions {
   ReferenceMode mode = ReferenceMode::kFilter;  // the paper's filter
@@ -43,6 +50,9 @@ struct ReferenceOptions {
   bool use_gnss_speed = true;  // gnss.csv speed_mps (Doppler) updates |v| when present
   double gnss_speed_sigma_mps = 0.1;
   double gnss_speed_min_mps = 1.0;  // below this the speed direction is undefined
+
+  static OptionTable<ReferenceOptions> fields();  // keys, units, ranges, docs
+  std::string validate() const;                   // empty when valid
 };
 
 // The reference on the wheel time base: pose[i] belongs to wheels.t_s[first_wheel_index + i].

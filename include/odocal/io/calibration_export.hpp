@@ -20,7 +20,8 @@ void write_ros2_diff_drive_parameters(const VehicleConfig& nominal,
                                       const std::filesystem::path& path);
 
 // circumference_rl_m, circumference_rr_m and track_width_m of a calibration result JSON; throws
-// InputError naming the file and field when one is missing or not a positive number.
+// InputError naming the file and field when one is missing or not a positive number, or when the
+// result says it is not usable.
 OdometryParams read_calibrated_parameters(const std::filesystem::path& json_path);
 
 }  // namespace odocal

@@ -1,8 +1,10 @@
 #pragma once
-// Calibration options as YAML (`odocal calibrate --config FILE.yaml`) and results as JSON.
+// The calibration config as YAML (`odocal calibrate --config FILE.yaml`, `--print-config`) and
+// JSON, and a calibration summary as JSON (`--json`). The config's layout is
+// for_each_config_section (odocal/estimation/calibration.hpp); each field's key, range and doc
+// come from its options struct's table.
 
 #include <nlohmann/json_fwd.hpp>
-#include <optional>
 #include <string>
 
 #include "odocal/estimation/calibration.hpp"
@@ -10,14 +12,18 @@
 namespace odocal {
 
 // Every key optional; unknown keys and bad values are InputErrors naming file, line and key.
-CalibrationOptions parse_calibration_options(const std::string& yaml_text, const std::string& file,
-                                             CalibrationOptions defaults = {});
-CalibrationOptions read_calibration_options(const std::string& path,
-                                            CalibrationOptions defaults = {});
+CalibrationConfig parse_calibration_config(const std::string& yaml_text, const std::string& file,
+                                           CalibrationConfig defaults = {});
+CalibrationConfig read_calibration_config(const std::string& path, CalibrationConfig defaults = {});
 
-nlohmann::json options_to_json(const CalibrationOptions& options);
-nlohmann::json result_to_json(const CalibrationResult& result, const CalibrationOptions& options);
+nlohmann::json config_to_json(const CalibrationConfig& config);
+// Commented YAML with every key: unit, range and a line of doc each. Parsed back, it gives
+// `config` exactly.
+std::string config_to_yaml(const CalibrationConfig& config);
 
-std::optional<CalibrationMethod> parse_method(const std::string& name);
+// The summary of any method, with `termination`, `usable` and `message`, and the configuration
+// it ran with.
+nlohmann::json summary_to_json(const AnyCalibrationSummary& summary,
+                               const CalibrationConfig& config);
 
 }  // namespace odocal

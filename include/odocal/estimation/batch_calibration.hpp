@@ -1,0 +1,42 @@
+#pragma once
+// The batch maximum-likelihood calibration (docs/batch-calibration.md): keyframe poses and the
+// parameters fitted by Ceres to all wheel, GNSS, heading and gyro data at once, with the
+// covariance of every parameter and an observability verdict in words.
+
+#include <string>
+#include <vector>
+
+#include "odocal/data/log.hpp"
+#include "odocal/estimation/batch_options.hpp"
+#include "odocal/estimation/calibration_options.hpp"
+#include "odocal/estimation/calibration_summary.hpp"
+
+namespace odocal {
+
+// One unknown of the batch calibration besides the poses.
+struct EstimatedParameter {
+  std::string name;  // e.g. "circumference_rl_m", "gyro_bias_radps"
+  double value{};
+  double sigma{};         // 1-sigma from the covariance; infinity when it could not be computed
+  bool estimated{};       // false: held at its configured value (not asked for)
+  bool identified{true};  // false: this log cannot pin it down (see the verdict)
+  std::string verdict;    // in words a user can act on, when not identified
+};
+
+struct BatchSummary : CalibrationSummary {
+  std::vector<EstimatedParameter> parameters;  // every unknown besides the poses
+  std::string solver_report;                   // Ceres' brief report of the last solve
+  std::size_t keyframes{};
+  std::size_t gnss_fixes{};  // GNSS residuals in the problem
+  int solves{};              // the first, coarse one and the re-linearisations
+
+  std::string full_report() const;
+};
+
+// Throws for invalid options and for a log too short to try; every other outcome (not
+// converged, not identified) is in the summary. Poses start from the layer-1 reference,
+// parameters from the nominal vehicle. Never reads log.truth.
+BatchSummary calibrate_batch(const Log& log, const BatchOptions& options = {},
+                             const CalibrationOptions& common = {});
+
+}  // namespace odocal

@@ -1,0 +1,47 @@
+#pragma once
+// What every calibration method shares (docs/calibration.md): the layer-1 reference, how far the
+// odometry filters trust it, how the whole-log dead reckoning that judges an estimate starts,
+// and when a log is too short or too straight to identify the circumferences.
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <string>
+
+#include "odocal/estimation/reference_filter.hpp"
+#include "odocal/options/option_fields.hpp"
+
+namespace odocal {
+
+// Where the whole-log dead reckoning of each estimate starts (the paper is silent): the first
+// reference pose; the rigid alignment (Umeyama) of the dead-reckoned path to the reference over
+// the first dr_align_window_s; or over the whole log.
+enum class DeadReckoningStart { kFirstReference, kAlignedWindow, kAlignedWhole };
+template <>
+struct EnumNames<DeadReckoningStart> {
+  static constexpr std::array<EnumName<DeadReckoningStart>, 3> kTable{
+      {{DeadReckoningStart::kFirstReference, "first-reference"},
+       {DeadReckoningStart::kAlignedWindow, "aligned-window"},
+       {DeadReckoningStart::kAlignedWhole, "aligned-whole"}}};
+};
+
+struct CalibrationOptions {
+  ReferenceOptions reference;
+  // M of the paper (eq. 13a): the covariance of the reference pose [x m^2, y m^2, yaw rad^2] in
+  // the odometry filters (layer 2 and the augmented KF).
+  Eigen::Vector3d measurement_diagonal{1.0, 1.0, 0.01};
+  DeadReckoningStart dr_start = DeadReckoningStart::kAlignedWindow;
+  double dr_align_window_s = 60.0;
+  // Too little data: refused before any estimate (InsufficientDataError).
+  double min_distance_m = 100.0;
+  std::size_t min_reference_samples = 100;
+  // Below this range of the reference heading (max - min), a left/right circumference difference
+  // cannot be told from a gyro or heading bias: only a common scale of the nominal
+  // circumferences is estimated, and the summary says so.
+  double min_heading_range_for_difference_rad = 0.785;  // 45 deg
+
+  static OptionTable<CalibrationOptions> fields();  // without `reference` (its own table)
+  std::string validate() const;                     // empty when valid; includes `reference`
+};
+
+}  // namespace odocal

@@ -1,0 +1,79 @@
+#pragma once
+// What every calibration method reports (the common core of its summary, as Ceres'
+// Solver::Summary): the estimate with its covariance, how the method ended, whether the result
+// can be used, and the whole-log dead reckoning before and after. Each method's summary adds its
+// own details (iterative_calibration.hpp, augmented_calibration.hpp, batch_calibration.hpp).
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <string>
+
+#include "odocal/model/odometry_model.hpp"
+#include "odocal/options/enum_names.hpp"
+
+namespace odocal {
+
+enum class CalibrationMethod { kIterative, kFixedP, kAugmented, kBatch };
+template <>
+struct EnumNames<CalibrationMethod> {
+  static constexpr std::array<EnumName<CalibrationMethod>, 4> kTable{
+      {{CalibrationMethod::kIterative, "iterative"},
+       {CalibrationMethod::kFixedP, "fixed-p"},
+       {CalibrationMethod::kAugmented, "augmented"},
+       {CalibrationMethod::kBatch, "batch"}}};
+};
+inline const char* method_name(CalibrationMethod method) { return enum_name(method); }
+
+// How a calibration ended. Only kConverged is a usable result; for the others the summary's
+// message says why, in words a user can act on.
+enum class Termination {
+  kConverged,        // the method reached its answer
+  kNoConvergence,    // an iteration limit ended it while the estimate was still improving
+  kNotIdentifiable,  // this log cannot determine the circumferences (to the required sigma)
+  kImplausible,      // the numbers make no physical sense (not finite, ...)
+  kFailure,          // the solver failed numerically
+};
+template <>
+struct EnumNames<Termination> {
+  static constexpr std::array<EnumName<Termination>, 5> kTable{
+      {{Termination::kConverged, "converged"},
+       {Termination::kNoConvergence, "no_convergence"},
+       {Termination::kNotIdentifiable, "not_identifiable"},
+       {Termination::kImplausible, "implausible"},
+       {Termination::kFailure, "failure"}}};
+};
+
+// Whole-log dead reckoning against the reference.
+struct DeadReckoningSummary {
+  double mean_position_m{};
+  double max_position_m{};
+  double mean_heading_rad{};
+  double max_heading_rad{};
+};
+
+struct CalibrationSummary {
+  CalibrationMethod method{};
+  Termination termination = Termination::kConverged;
+  std::string message;  // why it stopped, or why the result is not usable
+  OdometryParams nominal;
+  OdometryParams estimate;  // the nominal parameters where no estimate was reached
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();  // of [c_RL, c_RR], m^2
+  double condition_number{};                             // of the circumference problem
+  // false: c_RL / c_RR kept at the nominal ratio, only their common scale estimated.
+  bool difference_identifiable = true;
+  std::string identifiability;  // in words, for the user
+  DeadReckoningSummary before;  // nominal parameters
+  DeadReckoningSummary after;   // the estimate
+  double distance_m{};          // wheel odometry distance with the nominal parameters
+  std::size_t reference_samples{};
+  std::string reference_heading_source;
+
+  bool usable() const { return termination == Termination::kConverged; }
+  double sigma_rl_m() const;  // 1-sigma from the covariance
+  double sigma_rr_m() const;
+  // One line: method, estimates with 1-sigma, termination.
+  std::string brief_report() const;
+};
+
+}  // namespace odocal

@@ -1,0 +1,80 @@
+#include "odocal/estimation/calibration_options.hpp"
+
+#include <array>
+
+namespace odocal {
+
+OptionTable<ReferenceOptions> ReferenceOptions::fields() {
+  using O = ReferenceOptions;
+  static const std::array<OptionField<O>, 19> kFields{{
+      {"mode", "", 0, 0, "filter (the paper's causal filter) or smoother (off-line RTS pass)",
+       enum_member<&O::mode>()},
+      {"gnss_sigma_m", "m", 1e-6, 1e4, "GNSS horizontal 1-sigma when gnss.csv has no sigma_m",
+       &O::gnss_sigma_m},
+      {"heading_sigma_rad", "rad", 1e-6, 10.0, "heading.csv 1-sigma", &O::heading_sigma_rad},
+      {"acc_sigma_mps2", "m/s^2", 1e-6, 100.0, "IMU acceleration noise per sample",
+       &O::acc_sigma_mps2},
+      {"yaw_rate_sigma_radps", "rad/s", 1e-6, 10.0, "IMU yaw-rate noise per sample",
+       &O::yaw_rate_sigma_radps},
+      {"acc_random_walk_mps2", "m/s^2/sqrt(s)", 0.0, 100.0,
+       "extra acceleration random walk for what the IMU model misses", &O::acc_random_walk_mps2},
+      {"yaw_random_walk_radps", "rad/s/sqrt(s)", 0.0, 10.0,
+       "extra yaw-rate random walk for what the IMU model misses", &O::yaw_random_walk_radps},
+      {"no_imu_acc_psd", "m^2/s^3", 1e-6, 1e4,
+       "without imu.csv: white acceleration spectral density", &O::no_imu_acc_psd},
+      {"no_imu_yaw_rate_psd", "rad^2/s", 1e-6, 100.0,
+       "without imu.csv: white yaw-rate spectral density", &O::no_imu_yaw_rate_psd},
+      {"course_min_speed_mps", "m/s", 0.0, 100.0,
+       "without heading.csv: the GNSS course corrects yaw above this speed",
+       &O::course_min_speed_mps},
+      {"course_sigma_rad", "rad", 1e-6, 10.0, "1-sigma of the GNSS course as a heading",
+       &O::course_sigma_rad},
+      {"gnss_gate_chi2", "1", 0.0, 1e6, "> 0: reject GNSS fixes whose NIS (2 dof) exceeds this",
+       &O::gnss_gate_chi2},
+      {"acc_bias_sigma_mps2", "m/s^2", 0.0, 100.0, "initial 1-sigma of the accelerometer biases",
+       &O::acc_bias_sigma_mps2},
+      {"gyro_bias_sigma_radps", "rad/s", 0.0, 10.0, "initial 1-sigma of the gyro bias",
+       &O::gyro_bias_sigma_radps},
+      {"acc_bias_random_walk_mps2", "m/s^2/sqrt(s)", 0.0, 100.0, "accelerometer bias random walk",
+       &O::acc_bias_random_walk_mps2},
+      {"gyro_bias_random_walk_radps", "rad/s/sqrt(s)", 0.0, 10.0, "gyro bias random walk",
+       &O::gyro_bias_random_walk_radps},
+      {"use_gnss_speed", "", 0, 0, "gnss.csv speed_mps (Doppler) updates |v| when present",
+       &O::use_gnss_speed},
+      {"gnss_speed_sigma_mps", "m/s", 1e-6, 100.0, "1-sigma of the Doppler speed",
+       &O::gnss_speed_sigma_mps},
+      {"gnss_speed_min_mps", "m/s", 0.0, 100.0, "no speed update below this speed",
+       &O::gnss_speed_min_mps},
+  }};
+  return kFields;
+}
+
+std::string ReferenceOptions::validate() const { return check_option_ranges(fields(), *this); }
+
+OptionTable<CalibrationOptions> CalibrationOptions::fields() {
+  using O = CalibrationOptions;
+  static const std::array<OptionField<O>, 6> kFields{{
+      {"measurement_diagonal", "[m^2, m^2, rad^2]", 1e-12, 1e12,
+       "M (eq. 13a): covariance of the reference pose in the odometry filters",
+       &O::measurement_diagonal},
+      {"dr_start", "", 0, 0, "start of the whole-log dead reckoning that scores an estimate",
+       enum_member<&O::dr_start>()},
+      {"dr_align_window_s", "s", 1.0, 1e6, "aligned-window: length of the alignment window",
+       &O::dr_align_window_s},
+      {"min_distance_m", "m", 0.0, 1e9, "refuse logs with less wheel odometry than this",
+       &O::min_distance_m},
+      {"min_reference_samples", "1", 2.0, 1e9, "refuse logs with fewer reference samples",
+       &O::min_reference_samples},
+      {"min_heading_range_for_difference_rad", "rad", 0.0, 1e3,
+       "below this heading range only the common scale of c_RL and c_RR is estimated",
+       &O::min_heading_range_for_difference_rad},
+  }};
+  return kFields;
+}
+
+std::string CalibrationOptions::validate() const {
+  if (std::string problem = reference.validate(); !problem.empty()) return "reference." + problem;
+  return check_option_ranges(fields(), *this);
+}
+
+}  // namespace odocal

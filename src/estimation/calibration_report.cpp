@@ -1,0 +1,57 @@
+#include "calibration_report.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "odocal/model/angle.hpp"
+
+namespace odocal {
+namespace {
+
+std::string errors_line(const char* label, const DeadReckoningSummary& s) {
+  return fmt::format("{:<13}mean {:.3f} m / {:.3f} deg, max {:.3f} m / {:.3f} deg\n", label,
+                     s.mean_position_m, deg_from_rad(s.mean_heading_rad), s.max_position_m,
+                     deg_from_rad(s.max_heading_rad));
+}
+
+std::string estimate_line(const char* name, double estimate, double nominal, double sigma) {
+  return fmt::format("{}         {:.6f} m ({:+.3f} mm from nominal, 1-sigma {:.3f} mm)\n", name,
+                     estimate, 1e3 * (estimate - nominal), 1e3 * sigma);
+}
+
+}  // namespace
+
+double CalibrationSummary::sigma_rl_m() const { return std::sqrt(std::max(0.0, covariance(0, 0))); }
+double CalibrationSummary::sigma_rr_m() const { return std::sqrt(std::max(0.0, covariance(1, 1))); }
+
+std::string CalibrationSummary::brief_report() const {
+  return fmt::format("{}: c_RL {:.6f} m (1-sigma {:.3f} mm), c_RR {:.6f} m (1-sigma {:.3f} mm), {}",
+                     method_name(method), estimate.circumference_rl_m, 1e3 * sigma_rl_m(),
+                     estimate.circumference_rr_m, 1e3 * sigma_rr_m(),
+                     usable()
+                         ? enum_name(termination)
+                         : fmt::format("not usable ({}): {}", enum_name(termination), message));
+}
+
+std::string report_heading(const CalibrationSummary& s) {
+  return fmt::format("method       {} ({} reference samples, {:.1f} m, heading from {})\n",
+                     method_name(s.method), s.reference_samples, s.distance_m,
+                     s.reference_heading_source) +
+         estimate_line("c_RL", s.estimate.circumference_rl_m, s.nominal.circumference_rl_m,
+                       s.sigma_rl_m()) +
+         estimate_line("c_RR", s.estimate.circumference_rr_m, s.nominal.circumference_rr_m,
+                       s.sigma_rr_m());
+}
+
+std::string report_ending(const CalibrationSummary& s) {
+  std::string text = "dead reckoning of the whole log against the reference:\n";
+  text += errors_line("  before", s.before);
+  text += errors_line("  after", s.after);
+  text += s.usable() ? fmt::format("{:<13}usable ({})\n", "outcome", enum_name(s.termination))
+                     : fmt::format("{:<13}NOT USABLE ({}): {}\n", "outcome",
+                                   enum_name(s.termination), s.message);
+  return text;
+}
+
+}  // namespace odocal

@@ -1,0 +1,67 @@
+#include "whole_log_evaluator.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "hot_loop.hpp"
+#include "odocal/estimation/dead_reckoning.hpp"
+#include "odocal/model/angle.hpp"
+#include "odocal/model/path_length.hpp"
+
+namespace odocal {
+
+WholeLogEvaluator::WholeLogEvaluator(const WheelStream& wheels,
+                                     const ReferenceTrajectory& reference,
+                                     const CalibrationOptions& options)
+    : wheels_(wheels), reference_(reference), options_(options), path_(reference.poses.size()) {
+  const double window_end = reference.poses.t_s.front() + options.dr_align_window_s;
+  align_count_ =
+      options.dr_start == DeadReckoningStart::kAlignedWhole
+          ? reference.poses.size()
+          : static_cast<std::size_t>(std::upper_bound(reference.poses.t_s.begin(),
+                                                      reference.poses.t_s.end(), window_end) -
+                                     reference.poses.t_s.begin());
+  source_.resize(2, static_cast<Eigen::Index>(align_count_));
+  target_.resize(2, static_cast<Eigen::Index>(align_count_));
+  for (std::size_t i = 0; i < align_count_; ++i)
+    target_.col(static_cast<Eigen::Index>(i)) = reference.poses.pose[i].head<2>();
+}
+
+ODOCAL_HOT_LOOP DeadReckoningSummary WholeLogEvaluator::evaluate(const OdometryParams& params) {
+  path_[0] = reference_.poses.pose[0];
+  dead_reckon_into(wheels_, reference_.first_wheel_index, params, path_);
+  if (options_.dr_start != DeadReckoningStart::kFirstReference && align_count_ >= 2) align_start();
+  DeadReckoningSummary summary;
+  for (std::size_t i = 0; i < path_.size(); ++i) {
+    const Pose2& reference = reference_.poses.pose[i];
+    const double position_m = (path_[i].head<2>() - reference.head<2>()).norm();
+    const double heading_rad = std::abs(angle_difference(path_[i].z(), reference.z()));
+    summary.mean_position_m += position_m;
+    summary.mean_heading_rad += heading_rad;
+    summary.max_position_m = std::max(summary.max_position_m, position_m);
+    summary.max_heading_rad = std::max(summary.max_heading_rad, heading_rad);
+  }
+  summary.mean_position_m /= static_cast<double>(path_.size());
+  summary.mean_heading_rad /= static_cast<double>(path_.size());
+  return summary;
+}
+
+double WholeLogEvaluator::distance_m(const OdometryParams& params) {
+  path_[0] = Pose2::Zero();
+  dead_reckon_into(wheels_, reference_.first_wheel_index, params, path_);
+  return path_length_m(path_);
+}
+
+void WholeLogEvaluator::align_start() {
+  for (std::size_t i = 0; i < align_count_; ++i)
+    source_.col(static_cast<Eigen::Index>(i)) = path_[i].head<2>();
+  const Eigen::Matrix3d T = Eigen::umeyama(source_, target_, false);
+  const double rotation = std::atan2(T(1, 0), T(0, 0));
+  for (Pose2& pose : path_) {
+    pose.head<2>() = T.topLeftCorner<2, 2>() * pose.head<2>() + T.topRightCorner<2, 1>();
+    pose.z() += rotation;
+  }
+}
+
+}  // namespace odocal

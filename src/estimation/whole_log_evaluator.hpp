@@ -1,0 +1,39 @@
+#pragma once
+// Dead reckoning of the whole log with given parameters, compared with the reference (paper
+// section 4: "the two-wheel vehicle model with the new parameters is simulated on the whole
+// dataset"). The start pose follows CalibrationOptions::dr_start. Both live on the wheel time
+// base, so the comparison is index by index; the buffers are allocated once.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "odocal/data/log.hpp"
+#include "odocal/estimation/calibration_options.hpp"
+#include "odocal/estimation/calibration_summary.hpp"
+#include "odocal/estimation/reference_filter.hpp"
+
+namespace odocal {
+
+class WholeLogEvaluator {
+ public:
+  // Keeps references to all three: they must outlive the evaluator.
+  WholeLogEvaluator(const WheelStream& wheels, const ReferenceTrajectory& reference,
+                    const CalibrationOptions& options);
+
+  DeadReckoningSummary evaluate(const OdometryParams& params);
+  // Length of the dead-reckoned path over the reference span.
+  double distance_m(const OdometryParams& params);
+
+ private:
+  // Moves the whole path rigidly so that its first align_count_ positions best fit the reference.
+  void align_start();
+
+  const WheelStream& wheels_;
+  const ReferenceTrajectory& reference_;
+  const CalibrationOptions& options_;
+  std::vector<Pose2> path_;
+  Eigen::Matrix2Xd source_, target_;
+  std::size_t align_count_{};
+};
+
+}  // namespace odocal
