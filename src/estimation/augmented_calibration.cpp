@@ -9,6 +9,7 @@
 
 #include "calibration_report.hpp"
 #include "calibration_run.hpp"
+#include "covariance_update.hpp"
 #include "odocal/model/angle.hpp"
 #include "odocal/model/odometry_model.hpp"
 
@@ -37,6 +38,8 @@ void run_filter(const Log& log, const ReferenceTrajectory& reference,
   summary.parameter_c_rr_m.reserve(n);
   OdometryJacobianPose J_pose;
   OdometryJacobianParams J_params;
+  Eigen::Matrix<double, 3, 5> H = Eigen::Matrix<double, 3, 5>::Zero();  // the pose is measured
+  H.leftCols<3>().setIdentity();
   for (std::size_t i = 1; i < n; ++i) {
     const OdometryParams params{x(3), x(4), summary.nominal.track_width_m};
     const Pose2 predicted =
@@ -53,10 +56,7 @@ void run_filter(const Log& log, const ReferenceTrajectory& reference,
     const Eigen::LLT<Eigen::Matrix3d> S_llt(S);
     const Eigen::Matrix<double, 5, 3> K = S_llt.solve(sigma.topRows<3>()).transpose();
     x += K * innovation;
-    Matrix5 I_KH = Matrix5::Identity();
-    I_KH.leftCols<3>() -= K;
-    sigma = I_KH * sigma * I_KH.transpose() + K * M * K.transpose();
-    sigma = 0.5 * (sigma + sigma.transpose());
+    sigma = joseph_update(sigma, K, H, M);
     summary.parameter_t_s.push_back(reference.poses.t_s[i]);
     summary.parameter_c_rl_m.push_back(x(3));
     summary.parameter_c_rr_m.push_back(x(4));

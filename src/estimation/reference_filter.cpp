@@ -7,19 +7,22 @@
 #include <algorithm>
 #include <cmath>
 
+#include "covariance_update.hpp"
 #include "hot_loop.hpp"
 #include "odocal/error.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/model/reference_motion.hpp"
 #include "sensor_event_merge.hpp"
 
 namespace odocal {
 namespace {
 
-// [x, y, vx, vy, yaw, accelerometer bias x, y, gyro bias]: the biases absorb a mounted (e.g.
-// tilted phone) IMU's misalignment and drift; GNSS and Doppler make them observable.
-constexpr int kStates = 8;
-using State = Eigen::Matrix<double, kStates, 1>;
-using Covariance = Eigen::Matrix<double, kStates, kStates>;
+// [x, y, vx, vy, yaw, accelerometer bias x, y, gyro bias] (odocal/model/reference_motion.hpp):
+// the biases absorb a mounted (e.g. tilted phone) IMU's misalignment and drift; GNSS and Doppler
+// make them observable.
+constexpr int kStates = kReferenceStates;
+using State = ReferenceState;
+using Covariance = ReferenceJacobian;
 using Coupling = Eigen::Matrix<double, 5, 6>;  // the transition's off-identity block
 
 class ReferenceEkf {
@@ -30,6 +33,7 @@ class ReferenceEkf {
     t_s_ = t_s;
     x_ << position, 0.0, 0.0, yaw_rad, 0.0, 0.0, 0.0;
     P_ = Covariance::Zero();
+    // Without an IMU the biases have no input to act on: zero variance freezes them at zero.
     const double acc_bias = log_.imu ? square(options_.acc_bias_sigma_mps2) : 0.0;
     const double gyro_bias = log_.imu ? square(options_.gyro_bias_sigma_radps) : 0.0;
     P_.diagonal() << square(gnss_sigma(0)), square(gnss_sigma(0)), 100.0, 100.0, square(yaw_sigma),
@@ -40,30 +44,14 @@ class ReferenceEkf {
   ODOCAL_HOT_LOOP Covariance predict(double t_s) {
     const double dt = t_s - t_s_;
     if (dt <= 0.0) return Covariance::Identity();
-    // Rotate by the midpoint heading (as eq. 1 does): the start heading would leak v w^2 dt / 2 of
-    // the centripetal acceleration into the along-track direction in every turn.
-    const double ax = ax_ - x_(5), ay = ay_ - x_(6), wz = wz_ - x_(7);
-    const double yaw_mid = x_(4) + 0.5 * wz * dt;
-    const double c = std::cos(yaw_mid), s = std::sin(yaw_mid);
-    const Eigen::Vector2d a_world(c * ax - s * ay, s * ax + c * ay);
-    const Eigen::Vector2d d_a_d_yaw(-s * ax - c * ay, c * ax - s * ay);
-    Eigen::Matrix2d rotation;
-    rotation << c, -s, s, c;
-    // The transition is F = I + E, where E couples rows 0-4 (position, velocity, yaw) to
-    // columns 2-7 (velocity, yaw, biases) only.
-    Coupling E = Coupling::Zero();
-    E(0, 0) = E(1, 1) = dt;
-    E.block<2, 1>(0, 2) = 0.5 * dt * dt * d_a_d_yaw;
-    E.block<2, 1>(2, 2) = dt * d_a_d_yaw;
-    if (log_.imu) {
-      E.block<2, 2>(0, 3) = -0.5 * dt * dt * rotation;
-      E.block<2, 2>(2, 3) = -dt * rotation;
-      E(4, 5) = -dt;
-    }
-
-    x_.head<2>() += dt * x_.segment<2>(2) + 0.5 * dt * dt * a_world;
-    x_.segment<2>(2) += dt * a_world;
-    x_(4) += dt * wz;
+    Covariance F;
+    x_ = predict_reference(x_, imu_, dt, &F);
+    // F = I + E with E on rows 0-4 and columns 2-7 only.
+    Coupling E = F.block<5, 6>(0, 2);
+    E(2, 0) -= 1.0;
+    E(3, 1) -= 1.0;
+    E(4, 2) -= 1.0;
+    propagate_coupled_block(P_, E);
 
     // Variance of the acceleration (yaw rate) held over this step: the IMU sample's own noise, or
     // without an IMU the spectral density over dt; plus the random walk for unmodelled effects.
@@ -79,12 +67,6 @@ class ReferenceEkf {
     G.block<2, 2>(2, 0) = dt * Eigen::Matrix2d::Identity();
     G(4, 2) = dt;
     const Eigen::Vector3d noise(acc_var, acc_var, yaw_rate_var);
-    // F P F^T = (P + E P) + (P + E P) E^T, touching only E's rows and columns: a quarter of two
-    // full 8x8 products. lazyProduct: for fixed operands of this size Eigen's default product
-    // takes its blocked GEMM path, several times slower than the coefficient-based one.
-    // The blocks overlap (rows and columns 2-4), hence the eval() before each write.
-    P_.topRows<5>() += E.lazyProduct(P_.bottomRows<6>()).eval();
-    P_.leftCols<5>() += P_.rightCols<6>().lazyProduct(E.transpose()).eval();
     P_.topLeftCorner<5, 5>() += (G * noise.asDiagonal()).lazyProduct(G.transpose());
     if (log_.imu) {  // slow bias drift
       P_(5, 5) += square(options_.acc_bias_random_walk_mps2) * dt;
@@ -93,22 +75,21 @@ class ReferenceEkf {
     }
     P_ = 0.5 * (P_ + P_.transpose());
     t_s_ = t_s;
-    Covariance F = Covariance::Identity();
-    F.block<5, 6>(0, 2) += E;
     return F;
   }
 
   void set_imu(std::size_t k) {
-    ax_ = log_.imu->ax_mps2[k];
-    ay_ = log_.imu->ay_mps2[k];
-    wz_ = log_.imu->wz_radps[k];
+    imu_ = {log_.imu->ax_mps2[k], log_.imu->ay_mps2[k], log_.imu->wz_radps[k]};
   }
 
+  // The GNSS and heading models select states (reference_position, reference_yaw: H = [0 I 0]),
+  // so their updates take P's rows and columns directly (joseph_update_selected).
   ODOCAL_HOT_LOOP bool update_gnss(std::size_t k) {
     const Eigen::Vector2d innovation =
-        Eigen::Vector2d(log_.gnss.x_m[k], log_.gnss.y_m[k]) - x_.head<2>();
-    const Eigen::Matrix2d S =
-        P_.topLeftCorner<2, 2>() + square(gnss_sigma(k)) * Eigen::Matrix2d::Identity();
+        Eigen::Vector2d(log_.gnss.x_m[k], log_.gnss.y_m[k]) - reference_position(x_);
+    const Eigen::Matrix2d R = square(gnss_sigma(k)) * Eigen::Matrix2d::Identity();
+    // H P H^T and P H^T are P's top-left block and first two columns (H = [I 0]).
+    const Eigen::Matrix2d S = P_.topLeftCorner<2, 2>() + R;
     // S >= R = sigma^2 I is well conditioned: the closed-form inverse is as accurate as a
     // Cholesky solve, without the latter's dynamic-size kernels for the 2x8 right-hand side.
     const Eigen::Matrix2d S_inverse = S.inverse();
@@ -118,39 +99,38 @@ class ReferenceEkf {
     }
     const Eigen::Matrix<double, kStates, 2> K = P_.leftCols<2>().lazyProduct(S_inverse);
     x_ += K * innovation;
-    Eigen::Matrix<double, 2, kStates> H = Eigen::Matrix<double, 2, kStates>::Zero();
-    H.leftCols<2>().setIdentity();
-    joseph_update(K, H, Eigen::Matrix2d(square(gnss_sigma(k)) * Eigen::Matrix2d::Identity()));
+    P_ = joseph_update_selected(P_, K, kReferencePositionIndex, R);
     return true;
   }
 
-  // Doppler speed over ground: h(x) = |v|.
+  // Doppler speed over ground.
   ODOCAL_HOT_LOOP void update_speed(double measured_mps) {
-    const double speed = x_.segment<2>(2).norm();
-    if (speed < options_.gnss_speed_min_mps || measured_mps < options_.gnss_speed_min_mps) return;
-    Eigen::Matrix<double, 1, kStates> H = Eigen::Matrix<double, 1, kStates>::Zero();
-    H(0, 2) = x_(2) / speed;
-    H(0, 3) = x_(3) / speed;
+    if (x_.segment<2>(2).norm() < options_.gnss_speed_min_mps ||
+        measured_mps < options_.gnss_speed_min_mps) {
+      return;
+    }
+    ReferenceRowJacobian H;
+    const double innovation = measured_mps - reference_speed(x_, &H);
     const double R = square(options_.gnss_speed_sigma_mps);
-    const double S = (H * P_ * H.transpose())(0, 0) + R;
-    const State K = P_ * H.transpose() / S;
-    x_ += K * (measured_mps - speed);
-    joseph_update(K, H, Eigen::Matrix<double, 1, 1>(R));
+    const double S = H.lazyProduct(P_).dot(H) + R;
+    const Eigen::Matrix<double, kStates, 1> K = P_.lazyProduct(H.transpose()) / S;
+    x_ += K * innovation;
+    P_ = joseph_update_thin(P_, K, H, Eigen::Matrix<double, 1, 1>(R));
   }
 
   ODOCAL_HOT_LOOP void update_yaw(double measured_rad, double sigma_rad) {
-    const double innovation = angle_difference(measured_rad, x_(4));
-    const double S = P_(4, 4) + square(sigma_rad);
-    const State K = P_.col(4) / S;
+    const double innovation = angle_difference(measured_rad, reference_yaw(x_));
+    const double R = square(sigma_rad);
+    const double S = P_(kReferenceYawIndex, kReferenceYawIndex) + R;
+    const Eigen::Matrix<double, kStates, 1> K = P_.col(kReferenceYawIndex) / S;
     x_ += K * innovation;
-    Eigen::Matrix<double, 1, kStates> H = Eigen::Matrix<double, 1, kStates>::Zero();
-    H(0, 4) = 1.0;
-    joseph_update(K, H, Eigen::Matrix<double, 1, 1>(square(sigma_rad)));
+    P_ = joseph_update_selected(P_, K, kReferenceYawIndex, Eigen::Matrix<double, 1, 1>(R));
   }
 
+  // The velocity's course as a heading pseudo-measurement (no heading.csv): vehicles move where
+  // they point, up to side slip.
   void update_course() {
-    const double speed = x_.segment<2>(2).norm();
-    if (speed < options_.course_min_speed_mps) return;
+    if (x_.segment<2>(2).norm() < options_.course_min_speed_mps) return;
     update_yaw(std::atan2(x_(3), x_(2)), options_.course_sigma_rad);
   }
 
@@ -163,25 +143,12 @@ class ReferenceEkf {
     return log_.gnss.sigma_m.empty() ? options_.gnss_sigma_m : log_.gnss.sigma_m[k];
   }
 
-  template <int M>
-  void joseph_update(const Eigen::Matrix<double, kStates, M>& K,
-                     const Eigen::Matrix<double, M, kStates>& H,
-                     const Eigen::Matrix<double, M, M>& R) {
-    // (I - KH) P (I - KH)^T + K R K^T with the products taken through the M-row H:
-    // A = P - K (H P), then A (I - KH)^T = A - (A H^T) K^T. The same product form at a third of
-    // the cost of forming I - KH and two 8x8 products.
-    const Covariance A = P_ - K.lazyProduct(H.lazyProduct(P_));
-    P_ = A - A.lazyProduct(H.transpose()).lazyProduct(K.transpose()) +
-         (K * R).lazyProduct(K.transpose());
-    P_ = 0.5 * (P_ + P_.transpose());
-  }
-
   const Log& log_;
   const ReferenceOptions& options_;
   double t_s_{};
   State x_ = State::Zero();
   Covariance P_ = Covariance::Identity();
-  double ax_{}, ay_{}, wz_{};
+  ImuSample imu_;
 };
 
 // Initial yaw without wheel data: the first heading sample; else the course of a straight-line
@@ -257,7 +224,7 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
   std::vector<Covariance> filtered_P, predicted_P, transition;
   std::vector<std::size_t> wheel_node;  // smoother only: the node of each wheel sample
   SensorEventMerge events(log, log.gnss.t_s[first_fix]);
-  if (smooth) {  // 8x8 matrices per node: growing these vectors dominated the smoother's time
+  if (smooth) {  // 8x8 matrices per node: reserved once instead of grown
     const std::size_t nodes = events.remaining();
     for (auto* v : {&filtered_x, &predicted_x}) v->reserve(nodes);
     for (auto* v : {&filtered_P, &predicted_P, &transition}) v->reserve(nodes);

@@ -1,8 +1,9 @@
 #pragma once
 // cos and sin of a heading that moves in small steps along a trajectory. The calibration loop
 // needs three per sample and iteration (EKF prediction, eq. 12's phi_k, whole-log dead
-// reckoning); a libm sincos costs 15-25 ns, about half an iteration. Rotating the previous value
-// by the small step costs a dozen multiplications and is exact to rounding (see below).
+// reckoning), where a libm sincos is a large share of the work (docs/calibration.md, "Speed").
+// Rotating the previous value by the small step takes a dozen multiplications and is exact to
+// rounding (see below).
 
 #include <cmath>
 
