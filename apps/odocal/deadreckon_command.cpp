@@ -7,6 +7,7 @@
 
 #include "odocal/error.hpp"
 #include "odocal/estimation/dead_reckoning.hpp"
+#include "odocal/estimation/motion_coverage.hpp"
 #include "odocal/estimation/start_pose.hpp"
 #include "odocal/estimation/trajectory_errors.hpp"
 #include "odocal/io/log_reader.hpp"
@@ -52,8 +53,11 @@ void run_deadreckon(const DeadreckonArgs& args) {
   const TrajectoryErrors errors = trajectory_errors(trajectory, reference);
 
   const double duration_s = log.wheels.t_s.back() - log.wheels.t_s.front();
-  fmt::print("log          {} ({} wheel samples, {:.1f} s, {:.1f} m)\n", log.source,
-             log.wheels.size(), duration_s, errors.distance_m);
+  // The one distance figure: wheel odometry while moving (motion_coverage.hpp).
+  const double distance_m =
+      motion_coverage(log, params, log.wheels.t_s.front(), log.wheels.t_s.back()).distance_m;
+  fmt::print("log          {} ({} wheel samples, {:.1f} s, {:.1f} m driven)\n", log.source,
+             log.wheels.size(), duration_s, distance_m);
   fmt::print("parameters   c_RL {:.6f} m, c_RR {:.6f} m, t_R {:.4f} m\n", params.circumference_rl_m,
              params.circumference_rr_m, params.track_width_m);
   fmt::print("start pose   x {:.3f} m, y {:.3f} m, heading {:.2f} deg (from {})\n", start.x(),
@@ -68,8 +72,8 @@ void run_deadreckon(const DeadreckonArgs& args) {
   } else {
     fmt::print("heading      no heading reference in this log\n");
   }
-  fmt::print("final drift  {:.3f} m = {:.3f} % of {:.1f} m travelled\n", errors.final_position_m,
-             errors.final_drift_percent, errors.distance_m);
+  fmt::print("final drift  {:.3f} m = {:.3f} % of {:.1f} m driven\n", errors.final_position_m,
+             distance_m > 0.0 ? 100.0 * errors.final_position_m / distance_m : 0.0, distance_m);
 
   if (!args.out_csv.empty()) write_trajectory_csv(trajectory, args.out_csv);
   if (!args.out_tum.empty()) write_trajectory_tum(trajectory, args.out_tum);

@@ -8,6 +8,7 @@
 #include "odocal/error.hpp"
 #include "odocal/estimation/drift_validation.hpp"
 #include "odocal/io/calibration_export.hpp"
+#include "odocal/io/calibration_io.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/io/output_file.hpp"
 
@@ -19,6 +20,7 @@ struct ValidateArgs {
   std::string params_file;
   DriftValidationOptions options;
   std::string reference = "smoother";
+  std::string config_file;
   std::string json_file;
 };
 
@@ -36,6 +38,8 @@ void run_validate(const ValidateArgs& args) {
   read_options.read_truth = false;
   const Log log = read_log(args.log_dir, read_options);
   ReferenceOptions reference_options;
+  if (!args.config_file.empty())
+    reference_options = read_calibration_config(args.config_file).common.reference;
   reference_options.mode = *parse_enum<ReferenceMode>(args.reference);
   const ReferenceTrajectory reference = compute_reference(log, reference_options);
   const DriftValidation v =
@@ -90,6 +94,9 @@ void add_validate_command(CLI::App& app) {
   command->add_option("--reference", args->reference, "Reference pose: smoother or filter")
       ->capture_default_str()
       ->check(CLI::IsMember(enum_name_list<ReferenceMode>()));
+  command->add_option("--config", args->config_file,
+                      "Calibration options YAML (as calibrate --config): its reference options "
+                      "are used; the mode is --reference");
   command->add_option("--json", args->json_file, "Write the statistics and every window as JSON");
   command->callback([args] { run_validate(*args); });
 }

@@ -370,8 +370,8 @@ class BatchProblem {
 
 // Fills the summary from the solved problem: every parameter with its sigma and verdict, and
 // the termination (a circumference that is not identified makes the result unusable).
-void summarise(const Log& log, const ReferenceTrajectory& reference, const BatchOptions& b,
-               BatchProblem& batch, const ceres::Solver::Summary& solver, BatchSummary& summary) {
+void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
+               const ceres::Solver::Summary& solver, BatchSummary& summary) {
   const auto& p = batch.params();
   summary.estimate = {p[0], p[1], p[2]};
   const auto uncertainty = batch.uncertainty();
@@ -392,7 +392,7 @@ void summarise(const Log& log, const ReferenceTrajectory& reference, const Batch
                                b.max_sigma_track_width_m,    b.max_sigma_gyro_bias_radps,
                                b.max_sigma_heading_bias_rad, b.max_sigma_lever_arm_m,
                                b.max_sigma_lever_arm_m,      b.max_sigma_latency_s};
-  const LogCoverage coverage = log_coverage(log, reference);
+  const LogCoverage coverage = log_coverage(log, summary.coverage);
   const bool block_used[] = {
       true, true, true, log.imu.has_value() && b.use_gyro, log.heading.has_value() && b.use_heading,
       true, true, true};
@@ -466,7 +466,7 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
     ++summary.solves;
   } while (summary.solves == 1 || (batch.relative_change() > options.relinearise_relative_change &&
                                    summary.solves <= options.max_relinearisations));
-  summarise(log, run.reference(), options, batch, solver, summary);
+  summarise(log, options, batch, solver, summary);
   run.finish(summary);
   return summary;
 }
@@ -479,7 +479,7 @@ std::string BatchSummary::full_report() const {
         fmt::format("{:<13}{} = {:.6g} (1-sigma {:.3g})\n", "parameter", p.name, p.value, p.sigma);
   }
   text += fmt::format("{:<13}{}\n", "observable", identifiability);
-  text += fmt::format("{:<13}{}\n", "solver", message);
+  text += fmt::format("{:<13}{}\n", "solver", usable() ? message : solver_report);
   return text + report_ending(*this);
 }
 

@@ -8,15 +8,12 @@
 
 namespace odocal {
 
-LogCoverage log_coverage(const Log& log, const ReferenceTrajectory& reference) {
+LogCoverage log_coverage(const Log& log, const MotionCoverage& motion) {
   LogCoverage coverage;
-  const auto& poses = reference.poses;
-  for (std::size_t i = 1; i < poses.size(); ++i) {
-    coverage.distance_m += (poses.pose[i].head<2>() - poses.pose[i - 1].head<2>()).norm();
-    const double turn = deg_from_rad(angle_difference(poses.pose[i].z(), poses.pose[i - 1].z()));
-    (turn > 0 ? coverage.left_turning_deg : coverage.right_turning_deg) += std::abs(turn);
-  }
-  if (poses.size() > 1) coverage.duration_s = poses.t_s.back() - poses.t_s.front();
+  coverage.distance_m = motion.distance_m;
+  coverage.duration_s = motion.moving_s;
+  coverage.left_turning_deg = deg_from_rad(motion.left_turning_rad);
+  coverage.right_turning_deg = deg_from_rad(motion.right_turning_rad);
   coverage.has_heading = log.heading.has_value() && log.heading->size() > 0;
   coverage.has_gyro = log.imu.has_value() && log.imu->size() > 1;
   return coverage;

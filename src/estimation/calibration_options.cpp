@@ -53,7 +53,7 @@ std::string ReferenceOptions::validate() const { return check_option_ranges(fiel
 
 OptionTable<CalibrationOptions> CalibrationOptions::fields() {
   using O = CalibrationOptions;
-  static const std::array<OptionField<O>, 6> kFields{{
+  static const std::array<OptionField<O>, 8> kFields{{
       {"measurement_diagonal", "[m^2, m^2, rad^2]", 1e-12, 1e12,
        "M (eq. 13a): covariance of the reference pose in the odometry filters",
        &O::measurement_diagonal},
@@ -61,19 +61,26 @@ OptionTable<CalibrationOptions> CalibrationOptions::fields() {
        enum_member<&O::dr_start>()},
       {"dr_align_window_s", "s", 1.0, 1e6, "aligned-window: length of the alignment window",
        &O::dr_align_window_s},
+      {"max_relative_change", "1", 1e-4, 10.0,
+       "an estimate further than this fraction from nominal is implausible (not a result)",
+       &O::max_relative_change},
+      {"max_dead_reckoning_increase", "1", 0.0, 100.0,
+       "implausible when the estimate dead-reckons worse than nominal by more than this",
+       &O::max_dead_reckoning_increase},
       {"min_distance_m", "m", 0.0, 1e9, "refuse logs with less wheel odometry than this",
        &O::min_distance_m},
       {"min_reference_samples", "1", 2.0, 1e9, "refuse logs with fewer reference samples",
        &O::min_reference_samples},
-      {"min_heading_range_for_difference_rad", "rad", 0.0, 1e3,
-       "below this heading range only the common scale of c_RL and c_RR is estimated",
-       &O::min_heading_range_for_difference_rad},
+      {"min_turning_for_difference_rad", "rad", 0.0, 1e4,
+       "below this much turning while moving only the common scale of c_RL and c_RR is estimated",
+       &O::min_turning_for_difference_rad},
   }};
   return kFields;
 }
 
 std::string CalibrationOptions::validate() const {
   if (std::string problem = reference.validate(); !problem.empty()) return "reference." + problem;
+  if (std::string problem = coverage.validate(); !problem.empty()) return "coverage." + problem;
   return check_option_ranges(fields(), *this);
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "input_mistake_hint.hpp"
 #include "odocal/error.hpp"
 #include "odocal/model/angle.hpp"
 
@@ -22,29 +23,71 @@ ReferenceTrajectory checked_reference(const Log& log, const CalibrationOptions& 
   return reference;
 }
 
-void decide_difference_identifiability(const ReferenceTrajectory& reference,
-                                       const CalibrationOptions& options,
+void decide_difference_identifiability(const CalibrationOptions& options,
                                        CalibrationSummary& summary) {
-  double lowest = reference.poses.pose[0].z(), highest = lowest;
-  for (const Pose2& pose : reference.poses.pose) {
-    lowest = std::min(lowest, pose.z());
-    highest = std::max(highest, pose.z());
-  }
-  summary.difference_identifiable =
-      highest - lowest >= options.min_heading_range_for_difference_rad;
+  const MotionCoverage& c = summary.coverage;
+  summary.difference_identifiable = c.turning_rad() >= options.min_turning_for_difference_rad;
+  const std::string turned =
+      fmt::format("{:.0f} deg of turning while moving (left {:.0f}, right {:.0f}, from the {})",
+                  deg_from_rad(c.turning_rad()), deg_from_rad(c.left_turning_rad),
+                  deg_from_rad(c.right_turning_rad), c.turning_source);
   summary.identifiability =
       summary.difference_identifiable
-          ? fmt::format("c_RL and c_RR identified separately (heading range {:.0f} deg)",
-                        deg_from_rad(highest - lowest))
+          ? fmt::format("c_RL and c_RR identified separately ({})", turned)
           : fmt::format(
-                "the left/right difference is not identifiable: the heading only spans {:.1f} deg "
-                "(needs {:.0f} deg of turning to tell it from a gyro or heading bias); only the "
-                "common scale of the nominal circumferences was estimated",
-                deg_from_rad(highest - lowest),
-                deg_from_rad(options.min_heading_range_for_difference_rad));
+                "the left/right difference is not identifiable: {}, needs {:.0f} deg to tell it "
+                "from a gyro or heading bias; only the common scale of the nominal circumferences "
+                "was estimated",
+                turned, deg_from_rad(options.min_turning_for_difference_rad));
+}
+
+// Mean position error plus the paper's 10 m/rad of mean heading error.
+double dead_reckoning_score(const DeadReckoningSummary& s) {
+  return s.mean_position_m + 10.0 * s.mean_heading_rad;
 }
 
 }  // namespace
+
+void check_plausibility(const Log& log, const CalibrationOptions& options,
+                        CalibrationSummary& summary) {
+  const OdometryParams& e = summary.estimate;
+  const OdometryParams& n = summary.nominal;
+  const bool finite = std::isfinite(e.circumference_rl_m) && std::isfinite(e.circumference_rr_m) &&
+                      std::isfinite(e.track_width_m) && summary.covariance.allFinite();
+  if (!finite) {
+    summary.termination = Termination::kImplausible;
+    summary.message =
+        fmt::format("the estimate or its covariance is not a finite number (c_RL {}, c_RR {}): {}",
+                    e.circumference_rl_m, e.circumference_rr_m, likely_input_mistake(-1.0, log));
+    return;
+  }
+  const double change_rl = e.circumference_rl_m / n.circumference_rl_m - 1.0;
+  const double change_rr = e.circumference_rr_m / n.circumference_rr_m - 1.0;
+  if (std::max(std::abs(change_rl), std::abs(change_rr)) > options.max_relative_change) {
+    const double ratio = 0.5 * (e.circumference_rl_m / n.circumference_rl_m +
+                                e.circumference_rr_m / n.circumference_rr_m);
+    summary.termination = Termination::kImplausible;
+    summary.message = fmt::format(
+        "c_RL {:.6f} m and c_RR {:.6f} m are {:+.1f} % and {:+.1f} % from the nominal "
+        "circumferences, more than max_relative_change ({:.0f} %): {}",
+        e.circumference_rl_m, e.circumference_rr_m, 100.0 * change_rl, 100.0 * change_rr,
+        100.0 * options.max_relative_change, likely_input_mistake(ratio, log));
+    return;
+  }
+  const double before = dead_reckoning_score(summary.before);
+  const double after = dead_reckoning_score(summary.after);
+  constexpr double kNoiseFloorM = 0.5;
+  if (after > before * (1.0 + options.max_dead_reckoning_increase) + kNoiseFloorM) {
+    summary.termination = Termination::kImplausible;
+    summary.message = fmt::format(
+        "the estimate dead-reckons the log worse than the nominal parameters (mean position error "
+        "{:.2f} m -> {:.2f} m, mean heading error {:.2f} -> {:.2f} deg): the model does not fit "
+        "this log; look for gaps, a clock offset between wheels and GNSS, or wrong signs",
+        summary.before.mean_position_m, summary.after.mean_position_m,
+        deg_from_rad(summary.before.mean_heading_rad),
+        deg_from_rad(summary.after.mean_heading_rad));
+  }
+}
 
 void require_valid(const char* kind, const std::string& problem) {
   if (!problem.empty()) throw Error(fmt::format("invalid {} options: {}", kind, problem));
@@ -52,19 +95,25 @@ void require_valid(const char* kind, const std::string& problem) {
 
 CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options,
                                CalibrationMethod method, CalibrationSummary& summary)
-    : reference_(checked_reference(log, options)), evaluator_(log.wheels, reference_, options) {
+    : log_(log),
+      options_(options),
+      reference_(checked_reference(log, options)),
+      evaluator_(log.wheels, reference_, options) {
   summary.method = method;
   summary.nominal = log.vehicle.nominal_params();
   summary.estimate = summary.nominal;
   summary.reference_samples = reference_.poses.size();
   summary.reference_heading_source = reference_.heading_source;
-  summary.distance_m = evaluator_.distance_m(summary.nominal);
+  summary.coverage = motion_coverage(log, summary.nominal, reference_.poses.t_s.front(),
+                                     reference_.poses.t_s.back(), options.coverage);
+  summary.distance_m = summary.coverage.distance_m;
   if (summary.distance_m < options.min_distance_m) {
     throw InsufficientDataError(fmt::format(
-        "the vehicle barely moves: {:.1f} m of wheel odometry, at least {} m are needed",
+        "the vehicle barely moves: {:.1f} m of wheel odometry while moving, at least {} m are "
+        "needed",
         summary.distance_m, options.min_distance_m));
   }
-  decide_difference_identifiability(reference_, options, summary);
+  decide_difference_identifiability(options, summary);
   summary.before = evaluator_.evaluate(summary.nominal);
 }
 
@@ -74,14 +123,7 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
                                std::isfinite(e.circumference_rr_m) &&
                                std::isfinite(e.track_width_m);
   summary.after = finite_estimate ? evaluator_.evaluate(e) : summary.before;
-  if (summary.termination == Termination::kConverged &&
-      !(finite_estimate && summary.covariance.allFinite())) {
-    summary.termination = Termination::kImplausible;
-    summary.message = fmt::format(
-        "the estimate or its covariance is not a finite number (c_RL {}, c_RR {}): an input "
-        "value is far outside its physical range; check the log's values and units",
-        e.circumference_rl_m, e.circumference_rr_m);
-  }
+  if (summary.termination == Termination::kConverged) check_plausibility(log_, options_, summary);
 }
 
 }  // namespace odocal

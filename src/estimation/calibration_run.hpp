@@ -15,7 +15,8 @@ namespace odocal {
 class CalibrationRun {
  public:
   // Validates `options`, then fills the summary's method, nominal (and estimate = nominal),
-  // reference facts, distance, identifiability and `before`.
+  // reference facts, motion coverage and distance, identifiability and `before`. Keeps
+  // references to `log` and `options`.
   CalibrationRun(const Log& log, const CalibrationOptions& options, CalibrationMethod method,
                  CalibrationSummary& summary);
   CalibrationRun(const CalibrationRun&) = delete;
@@ -25,13 +26,21 @@ class CalibrationRun {
   WholeLogEvaluator& evaluator() { return evaluator_; }
 
   // Scores the estimate (`after`; with a non-finite estimate `after` stays `before`) and turns
-  // a converged result with a non-finite estimate or covariance into Termination::kImplausible.
+  // a converged result that makes no physical sense into Termination::kImplausible: not finite,
+  // further than max_relative_change from nominal, or dead-reckoning worse than nominal.
   void finish(CalibrationSummary& summary);
 
  private:
+  const Log& log_;
+  const CalibrationOptions& options_;
   ReferenceTrajectory reference_;
   WholeLogEvaluator evaluator_;
 };
+
+// Turns a summary whose estimate makes no physical sense into Termination::kImplausible, with
+// the likely input mistake in its message (called by finish()).
+void check_plausibility(const Log& log, const CalibrationOptions& options,
+                        CalibrationSummary& summary);
 
 // Throws odocal::Error naming the options' kind when `problem` (a validate() result) is not
 // empty.

@@ -171,8 +171,8 @@ std::string IterativeOptions::validate() const { return check_option_ranges(fiel
 std::string IterativeSummary::full_report() const {
   std::string text = report_heading(*this);
   if (!difference_identifiable) text += fmt::format("{:<13}{}\n", "note", identifiability);
-  text += fmt::format("{:<13}{} of {}: {}\n", "iteration", chosen_iteration, iterations.size(),
-                      message);
+  text += fmt::format("{:<13}{} of {}{}\n", "iteration", chosen_iteration, iterations.size(),
+                      usable() ? ": " + message : std::string());
   return text + report_ending(*this);
 }
 

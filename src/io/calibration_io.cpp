@@ -49,6 +49,12 @@ json core_json(const CalibrationSummary& s, const CalibrationConfig& config) {
           {"dead_reckoning_before", errors_json(s.before)},
           {"dead_reckoning_after", errors_json(s.after)},
           {"distance_m", s.distance_m},
+          {"coverage",
+           {{"distance_m", s.coverage.distance_m},
+            {"moving_s", s.coverage.moving_s},
+            {"left_turning_deg", deg_from_rad(s.coverage.left_turning_rad)},
+            {"right_turning_deg", deg_from_rad(s.coverage.right_turning_rad)},
+            {"turning_source", s.coverage.turning_source}}},
           {"reference_samples", s.reference_samples},
           {"reference_heading_source", s.reference_heading_source},
           {"configuration", config_to_json(config)}};

@@ -13,6 +13,7 @@
 
 #include "odocal/error.hpp"
 #include "odocal/estimation/interpolation.hpp"
+#include "odocal/estimation/motion_coverage.hpp"
 #include "odocal/io/csv_table.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/io/text_output.hpp"
@@ -388,11 +389,9 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
   if (log.imu) summary.streams.push_back(summarise("imu", log.imu->t_s));
   if (log.heading) summary.streams.push_back(summarise("heading", log.heading->t_s));
   if (log.truth) summary.streams.push_back(summarise("truth", log.truth->t_s));
-  const OdometryParams nominal = log.vehicle.nominal_params();
-  for (std::size_t k = 1; k < log.wheels.size(); ++k) {
-    summary.wheel_distance_m +=
-        std::abs(body_increment(log.wheels.increment(k), nominal).distance_m);
-  }
+  summary.wheel_distance_m = motion_coverage(log, log.vehicle.nominal_params(),
+                                             log.wheels.t_s.front(), log.wheels.t_s.back())
+                                 .distance_m;
   return summary;
 }
 

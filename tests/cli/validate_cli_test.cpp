@@ -47,6 +47,20 @@ TEST(ValidateCli, CalibrationOnOneDriveCutsDriftOnAnother) {
   EXPECT_LT(v["calibrated"]["median_drift_percent"].get<double>(),
             0.5 * v["nominal"]["median_drift_percent"].get<double>());
 
+  // --config gives the reference options: looser heading and IMU noise change the reference, a bad
+  // key is exit 2 naming the file.
+  dir.write("config.yaml", "reference: {heading_sigma_rad: 3, acc_sigma_mps2: 5}\n");
+  const auto configured = run_cli("validate " + urban + " --params " + dir.file("result.json") +
+                                  " --config " + dir.file("config.yaml"));
+  ASSERT_EQ(configured.status, 0) << configured.err;
+  EXPECT_NE(configured.out, validate.out);
+  dir.write("typo.yaml", "reference: {gnss_sigma: 10}\n");
+  const auto typo = run_cli("validate " + urban + " --params " + dir.file("result.json") +
+                            " --config " + dir.file("typo.yaml"));
+  EXPECT_EQ(typo.status, 2);
+  EXPECT_NE(typo.err.find("typo.yaml:1: 'reference.gnss_sigma': unknown key"), std::string::npos)
+      << typo.err;
+
   const auto bad = run_cli("validate " + urban + " --params " + dir.file("ros2.yaml"));
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("ros2.yaml"), std::string::npos) << bad.err;

@@ -123,7 +123,7 @@ TEST(BatchCalibration, SaysWhatAStraightDriveCannotIdentify) {
   options.estimate_track_width = true;
   options.estimate_heading_bias = true;
   CalibrationOptions common;
-  common.min_heading_range_for_difference_rad = 0.0;
+  common.min_turning_for_difference_rad = 0.0;
   const BatchSummary result = calibrate_batch(log, options, common);
   bool track_said = false, heading_said = false;
   for (const EstimatedParameter& p : result.parameters) {

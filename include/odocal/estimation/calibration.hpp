@@ -34,6 +34,8 @@ void for_each_config_section(Config& config, Visit&& visit) {
   visit("", "every method", CalibrationOptions::fields(), config.common);
   visit("reference", "layer 1: the GNSS/IMU reference (every method)", ReferenceOptions::fields(),
         config.common.reference);
+  visit("coverage", "what counts as moving and turning (every method)",
+        MotionCoverageOptions::fields(), config.common.coverage);
   visit("", "iterative and fixed-p", IterativeOptions::fields(), config.iterative);
   visit("augmented", "the augmented Kalman filter", AugmentedOptions::fields(), config.augmented);
   visit("batch", "the batch maximum-likelihood estimator", BatchOptions::fields(), config.batch);

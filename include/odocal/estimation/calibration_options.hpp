@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <string>
 
+#include "odocal/estimation/motion_coverage.hpp"
 #include "odocal/estimation/reference_filter.hpp"
 #include "odocal/options/option_fields.hpp"
 
@@ -32,13 +33,20 @@ struct CalibrationOptions {
   Eigen::Vector3d measurement_diagonal{1.0, 1.0, 0.01};
   DeadReckoningStart dr_start = DeadReckoningStart::kAlignedWindow;
   double dr_align_window_s = 60.0;
+  // Plausibility: an estimate further than this fraction from the nominal circumference is not a
+  // result (units, ticks_per_rev, a time scale); nor is one that dead-reckons the log worse than
+  // the nominal parameters by more than max_dead_reckoning_increase (relative, above 0.5 m).
+  double max_relative_change = 0.05;
+  double max_dead_reckoning_increase = 0.05;
   // Too little data: refused before any estimate (InsufficientDataError).
   double min_distance_m = 100.0;
   std::size_t min_reference_samples = 100;
-  // Below this range of the reference heading (max - min), a left/right circumference difference
-  // cannot be told from a gyro or heading bias: only a common scale of the nominal
-  // circumferences is estimated, and the summary says so.
-  double min_heading_range_for_difference_rad = 0.785;  // 45 deg
+  // Below this much turning while moving (left and right together, measured on the gyro or the
+  // wheels: motion_coverage.hpp), a left/right circumference difference cannot be told from a
+  // gyro or heading bias: only a common scale of the nominal circumferences is estimated, and the
+  // summary says so.
+  double min_turning_for_difference_rad = 0.785;  // 45 deg
+  MotionCoverageOptions coverage;
 
   static OptionTable<CalibrationOptions> fields();  // without `reference` (its own table)
   std::string validate() const;                     // empty when valid; includes `reference`

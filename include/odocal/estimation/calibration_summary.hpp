@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <string>
 
+#include "odocal/estimation/motion_coverage.hpp"
 #include "odocal/model/odometry_model.hpp"
 #include "odocal/options/enum_names.hpp"
 
@@ -65,7 +66,8 @@ struct CalibrationSummary {
   std::string identifiability;  // in words, for the user
   DeadReckoningSummary before;  // nominal parameters
   DeadReckoningSummary after;   // the estimate
-  double distance_m{};          // wheel odometry distance with the nominal parameters
+  double distance_m{};          // wheel odometry distance while moving (= coverage.distance_m)
+  MotionCoverage coverage;      // over the reference's span
   std::size_t reference_samples{};
   std::string reference_heading_source;
 

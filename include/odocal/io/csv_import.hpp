@@ -19,7 +19,7 @@ struct ImportedStreamSummary {
 
 struct ImportSummary {
   std::vector<ImportedStreamSummary> streams;
-  double wheel_distance_m{};  // rear wheels with the nominal circumferences
+  double wheel_distance_m{};  // while moving, rear wheels, nominal circumferences (motion_coverage)
 };
 
 // `source_dir` holds the logger's files (relative paths in the map are resolved against it).
