@@ -41,6 +41,17 @@ void run_filter(const Log& log, const ReferenceTrajectory& reference,
   Eigen::Matrix<double, 3, 5> H = Eigen::Matrix<double, 3, 5>::Zero();  // the pose is measured
   H.leftCols<3>().setIdentity();
   for (std::size_t i = 1; i < n; ++i) {
+    summary.parameter_t_s.push_back(reference.poses.t_s[i]);
+    if (log.wheels.breaks_at(reference.first_wheel_index + i)) {
+      // A wheel gap: the pose restarts at the reference, the parameters keep what they learnt.
+      x.head<3>() = reference.poses.pose[i];
+      sigma.topLeftCorner<3, 3>() = M;
+      sigma.topRightCorner<3, 2>().setZero();
+      sigma.bottomLeftCorner<2, 3>().setZero();
+      summary.parameter_c_rl_m.push_back(x(3));
+      summary.parameter_c_rr_m.push_back(x(4));
+      continue;
+    }
     const OdometryParams params{x(3), x(4), summary.nominal.track_width_m};
     const Pose2 predicted =
         predict_pose(x.head<3>(), log.wheels.increment(reference.first_wheel_index + i), params,
@@ -57,7 +68,6 @@ void run_filter(const Log& log, const ReferenceTrajectory& reference,
     const Eigen::Matrix<double, 5, 3> K = S_llt.solve(sigma.topRows<3>()).transpose();
     x += K * innovation;
     sigma = joseph_update(sigma, K, H, M);
-    summary.parameter_t_s.push_back(reference.poses.t_s[i]);
     summary.parameter_c_rl_m.push_back(x(3));
     summary.parameter_c_rr_m.push_back(x(4));
   }
@@ -106,7 +116,7 @@ AugmentedSummary calibrate_augmented(const Log& log, const AugmentedOptions& opt
   require_valid("augmented", options.validate());
   AugmentedSummary summary;
   CalibrationRun run(log, common, CalibrationMethod::kAugmented, summary);
-  run_filter(log, run.reference(), options, common, summary);
+  run_filter(run.log(), run.reference(), options, common, summary);
   run.finish(summary);
   return summary;
 }

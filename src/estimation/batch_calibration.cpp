@@ -15,6 +15,7 @@
 #include "batch_residuals.hpp"
 #include "calibration_report.hpp"
 #include "calibration_run.hpp"
+#include "gnss_noise_estimate.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/odometry_preintegration.hpp"
 
@@ -24,11 +25,18 @@ namespace {
 using Block3 = std::array<double, 3>;
 using Block2 = std::array<double, 2>;
 
+// Keyframes every interval_s, and on both sides of every break of the odometry chain (a wheel
+// gap), so that the gap is a segment of its own, without odometry.
 std::vector<std::size_t> keyframe_samples(const WheelStream& wheels, std::size_t first,
                                           double interval_s) {
   std::vector<std::size_t> samples{first};
   for (std::size_t k = first + 1; k < wheels.size(); ++k) {
-    if (wheels.t_s[k] - wheels.t_s[samples.back()] >= interval_s - 1e-9) samples.push_back(k);
+    if (wheels.breaks_at(k)) {
+      if (samples.back() != k - 1) samples.push_back(k - 1);
+      samples.push_back(k);
+    } else if (wheels.t_s[k] - wheels.t_s[samples.back()] >= interval_s - 1e-9) {
+      samples.push_back(k);
+    }
   }
   if (samples.back() != wheels.size() - 1) samples.push_back(wheels.size() - 1);
   return samples;
@@ -65,6 +73,11 @@ class BatchProblem {
       poses_.push_back({pose.x(), pose.y(), pose.z()});
     }
     params_ = {nominal.circumference_rl_m, nominal.circumference_rr_m, nominal.track_width_m};
+    gm_sigma_m_ = batch_.gnss_gauss_markov_sigma_m;
+    const double gnss_step_s = median_step_s(log.gnss.t_s);
+    if (gnss_step_s > 0.0)
+      gnss_fixes_per_keyframe_ = std::max(1.0, batch_.keyframe_interval_s / gnss_step_s);
+    gm_tau_s_ = batch_.gnss_gauss_markov_tau_s;
     gnss_bias_.assign(gauss_markov() ? keyframes_.size() : 0, Block2{0.0, 0.0});
     // Quantisation: the keyframes' counts are count-error states, the inner samples' counts are
     // in the segment covariance.
@@ -76,7 +89,41 @@ class BatchProblem {
     count_error_.assign(keyframes_.size(), Block2{0.0, 0.0});
   }
 
-  bool gauss_markov() const { return batch_.gnss_gauss_markov_sigma_m > 0.0; }
+  bool gauss_markov() const { return gm_sigma_m_ > 0.0; }
+
+  // The GNSS noise model from here on: every fix's white sigma scaled by `white_scale`, and a
+  // Gauss-Markov error (0: none).
+  void set_gnss_noise(double white_scale, double gm_sigma_m, double gm_tau_s) {
+    adapted_noise_ = true;
+    white_scale_ = white_scale;
+    gm_sigma_m_ = gm_sigma_m;
+    gm_tau_s_ = gm_tau_s;
+    gnss_bias_.assign(gauss_markov() ? keyframes_.size() : 0, Block2{0.0, 0.0});
+  }
+
+  // RMS of the white sigma the fixes were given (gnss.csv's sigma_m, else the configured one).
+  double gnss_sigma_rms_m() const {
+    if (log_.gnss.sigma_m.empty()) return white_scale_ * sensors_.gnss_sigma_m;
+    double sum = 0.0;
+    for (const double sigma : log_.gnss.sigma_m) sum += sigma * sigma;
+    return white_scale_ * std::sqrt(sum / static_cast<double>(log_.gnss.sigma_m.size()));
+  }
+
+  // Every fix in the problem: measured minus fitted position (metres), robust loss not applied;
+  // a modelled Gauss-Markov error counts as part of it.
+  std::vector<GnssResidualSample> gnss_errors() const {
+    std::vector<GnssResidualSample> errors;
+    errors.reserve(gnss_blocks_.size());
+    for (const auto& [block, fix, segment, sigma] : gnss_blocks_) {
+      double residual[2];
+      double cost = 0.0;
+      problem_->EvaluateResidualBlock(block, false, &cost, residual, nullptr);
+      Eigen::Vector2d error = -sigma * Eigen::Vector2d(residual[0], residual[1]);
+      if (gauss_markov()) error += Eigen::Vector2d(gnss_bias_[segment][0], gnss_bias_[segment][1]);
+      errors.push_back({log_.gnss.t_s[fix], error});
+    }
+    return errors;
+  }
 
   // Integrates the odometry of every segment at the current parameters. `slip_floor` loosens the
   // slip noise for a first, coarse solve: started from the layer-1 reference, a nearly rigid
@@ -173,6 +220,9 @@ class BatchProblem {
   double heading_bias() const { return heading_bias_; }
   double latency() const { return latency_; }
   std::size_t keyframes() const { return keyframes_.size(); }
+  double duration_s() const {
+    return log_.wheels.t_s[keyframes_.back()] - log_.wheels.t_s[keyframes_.front()];
+  }
   std::size_t gnss_residuals() const { return gnss_residuals_; }
 
  private:
@@ -189,7 +239,7 @@ class BatchProblem {
     const std::size_t k =
         static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), t_s) - t.begin()) - 1;
     const int segment = segment_of_sample_[k];
-    if (segment < 0) return std::nullopt;
+    if (segment < 0 || gap_segment(static_cast<std::size_t>(segment))) return std::nullopt;
     const PreintegratedSegment& seg = segments_[static_cast<std::size_t>(segment)];
     const std::size_t s = k - seg.first_sample;
     const double dt = t[k + 1] - t[k];
@@ -204,8 +254,12 @@ class BatchProblem {
     return at;
   }
 
+  // A segment that is a wheel gap: no odometry links its keyframes (GNSS and the gyro do).
+  bool gap_segment(std::size_t i) const { return log_.wheels.breaks_at(keyframes_[i + 1]); }
+
   void add_odometry() {
     for (std::size_t i = 0; i < segments_.size(); ++i) {
+      if (gap_segment(i)) continue;
       const PreintegratedSegment& seg = segments_[i];
       // A tiny floor keeps a standing-still segment's information finite.
       const Eigen::Matrix3d covariance =
@@ -236,13 +290,21 @@ class BatchProblem {
     }
   }
 
+  // The sigma of fix j's residual. A configured Gauss-Markov error is taken out of the
+  // configured total; an adapted model's white part was estimated as such. The Gauss-Markov
+  // error is held per keyframe, but it drifts within one (by sigma^2 2 dt / (3 tau) on average
+  // over the keyframe, for dt << tau), and that drift is shared by the keyframe's n fixes: each
+  // fix carries n times its variance, so that the keyframe as a whole is weighted right.
   double white_gnss_sigma(std::size_t j) const {
-    if (log_.gnss.sigma_m.empty()) return sensors_.gnss_sigma_m;
-    const double total = log_.gnss.sigma_m[j];
-    if (!gauss_markov()) return total;
-    const double gm = batch_.gnss_gauss_markov_sigma_m;
-    return std::sqrt(std::max(total * total - gm * gm, 0.01 * total * total));
+    const double given = log_.gnss.sigma_m.empty() ? sensors_.gnss_sigma_m : log_.gnss.sigma_m[j];
+    if (!gauss_markov()) return white_scale_ * given;
+    const double gm2 = gm_sigma_m_ * gm_sigma_m_;
+    const double white2 = adapted_noise_ ? square(white_scale_ * given)
+                                         : std::max(given * given - gm2, 0.01 * given * given);
+    const double drift = std::min(2.0 * batch_.keyframe_interval_s / (3.0 * gm_tau_s_), 1.0);
+    return std::sqrt(white2 + gnss_fixes_per_keyframe_ * gm2 * drift);
   }
+  static double square(double v) { return v * v; }
 
   ceres::LossFunction* gnss_loss() const {
     switch (batch_.gnss_loss) {
@@ -258,6 +320,7 @@ class BatchProblem {
 
   void add_gnss() {
     gnss_residuals_ = 0;
+    gnss_blocks_.clear();
     for (std::size_t j = 0; j < log_.gnss.size(); ++j) {
       const auto at = motion_at(log_.gnss.t_s[j]);
       if (!at) continue;
@@ -265,11 +328,12 @@ class BatchProblem {
                                                Eigen::Vector2d(log_.gnss.x_m[j], log_.gnss.y_m[j]),
                                                white_gnss_sigma(j)};
       double* bias = gauss_markov() ? gnss_bias_[at->segment].data() : zero_bias_.data();
-      problem_->AddResidualBlock(
+      const ceres::ResidualBlockId block = problem_->AddResidualBlock(
           new ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, 3, 2, 1, 2, 2>(residual),
           gnss_loss(), poses_[at->segment].data(), params_.data(), lever_.data(), &latency_, bias,
           count_error_[at->segment].data());
       ++gnss_residuals_;
+      gnss_blocks_.push_back({block, j, at->segment, residual->sigma_m});
     }
     if (gnss_residuals_ == 0) {
       throw InsufficientDataError("no GNSS fix inside the wheel time span: nothing to fit");
@@ -317,13 +381,13 @@ class BatchProblem {
   }
 
   void add_gauss_markov() {
-    const double sigma = batch_.gnss_gauss_markov_sigma_m;
+    const double sigma = gm_sigma_m_;
     problem_->AddResidualBlock(new ceres::AutoDiffCostFunction<batch::GaussMarkovPrior, 2, 2>(
                                    new batch::GaussMarkovPrior{sigma}),
                                nullptr, gnss_bias_[0].data());
     for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
       const double dt = log_.wheels.t_s[keyframes_[i + 1]] - log_.wheels.t_s[keyframes_[i]];
-      const double phi = std::exp(-dt / batch_.gnss_gauss_markov_tau_s);
+      const double phi = std::exp(-dt / gm_tau_s_);
       problem_->AddResidualBlock(
           new ceres::AutoDiffCostFunction<batch::GaussMarkovResidual, 2, 2, 2>(
               new batch::GaussMarkovResidual{phi, sigma * std::sqrt(1.0 - phi * phi)}),
@@ -356,6 +420,19 @@ class BatchProblem {
   Eigen::Vector3d params_lin_ = Eigen::Vector3d::Zero();
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
+  struct GnssBlock {
+    ceres::ResidualBlockId id;
+    std::size_t fix;
+    std::size_t segment;
+    double sigma_m;
+  };
+  std::vector<GnssBlock> gnss_blocks_;
+  // The GNSS noise model (configured, or adapted by set_gnss_noise).
+  bool adapted_noise_ = false;
+  double white_scale_ = 1.0;
+  double gnss_fixes_per_keyframe_ = 1.0;
+  double gm_sigma_m_ = 0.0;
+  double gm_tau_s_ = 60.0;
   // Unknowns.
   std::vector<Block3> poses_;
   Block3 params_{};
@@ -450,14 +527,10 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   }
 }
 
-}  // namespace
-
-BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
-                             const CalibrationOptions& common) {
-  require_valid("batch", options.validate());
-  BatchSummary summary;
-  CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
-  BatchProblem batch(log, run.reference(), options, common, summary.nominal);
+// Solves until the parameters stop moving by more than relinearise_relative_change.
+ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOptions& options,
+                                          BatchSummary& summary) {
+  const int before = summary.solves;
   ceres::Solver::Summary solver;
   constexpr double kCoarseNoise = 1e-3;  // m per sqrt(m), slip and lateral
   do {
@@ -465,8 +538,79 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
     solver = batch.solve();
     ++summary.solves;
   } while (summary.solves == 1 || (batch.relative_change() > options.relinearise_relative_change &&
-                                   summary.solves <= options.max_relinearisations));
-  summarise(log, options, batch, solver, summary);
+                                   summary.solves - before <= options.max_relinearisations));
+  return solver;
+}
+
+// The GNSS error in the solution's residuals; when it differs from the configured noise (a
+// correlated part, or a white level off by more than 25 %), the problem is solved again with it,
+// and again with what that solution's residuals show (a fit that trusts GNSS too much hides part
+// of its error in the trajectory), until the noise estimate settles. The report says by how much
+// that widened the circumferences' sigma.
+void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options, BatchSummary& summary,
+                      ceres::Solver::Summary& solver) {
+  GnssNoiseReport& report = summary.gnss_noise;
+  report.configured_sigma_m = batch.gnss_sigma_rms_m();
+  GnssNoiseEstimate noise = estimate_gnss_noise(batch.gnss_errors());
+  report.residual_sigma_m = noise.total_sigma_m;
+  report.white_sigma_m = noise.white_sigma_m;
+  report.gauss_markov_sigma_m = noise.gauss_markov_sigma_m;
+  report.gauss_markov_tau_s = noise.gauss_markov_tau_s;
+  if (!options.adapt_gnss_noise || batch.gauss_markov() || noise.fixes == 0 ||
+      !solver.IsSolutionUsable()) {
+    return;
+  }
+  const double configured = report.configured_sigma_m;
+  const double white_ratio = noise.white_sigma_m / configured;
+  if (noise.gauss_markov_sigma_m == 0.0 && white_ratio > 0.8 && white_ratio < 1.25) return;
+  const auto before = batch.uncertainty();
+  constexpr int kMaxRounds = 4;
+  for (int round = 0; round < kMaxRounds; ++round) {
+    batch.set_gnss_noise(noise.white_sigma_m / configured, noise.gauss_markov_sigma_m,
+                         noise.gauss_markov_tau_s);
+    solver = solve_relinearised(batch, options, summary);
+    const GnssNoiseEstimate next = estimate_gnss_noise(batch.gnss_errors());
+    const auto settled = [](double a, double b) { return std::abs(a - b) <= 0.1 * std::max(a, b); };
+    const bool done = settled(next.white_sigma_m, noise.white_sigma_m) &&
+                      settled(next.gauss_markov_sigma_m, noise.gauss_markov_sigma_m) &&
+                      settled(next.gauss_markov_tau_s, noise.gauss_markov_tau_s);
+    noise = next;
+    if (done || !solver.IsSolutionUsable()) break;
+  }
+  report.adapted = true;
+  report.residual_sigma_m = noise.total_sigma_m;
+  report.white_sigma_m = noise.white_sigma_m;
+  report.gauss_markov_sigma_m = noise.gauss_markov_sigma_m;
+  report.gauss_markov_tau_s = noise.gauss_markov_tau_s;
+  report.model_gauss_markov_sigma_m = noise.gauss_markov_sigma_m;
+  report.model_gauss_markov_tau_s = noise.gauss_markov_tau_s;
+  const double min_tau_s = 0.1 * batch.duration_s();
+  if (noise.gauss_markov_sigma_m > 0.0 && noise.gauss_markov_tau_s < min_tau_s) {
+    report.model_gauss_markov_tau_s = min_tau_s;
+    report.model_gauss_markov_sigma_m =
+        noise.gauss_markov_sigma_m * std::sqrt(min_tau_s / noise.gauss_markov_tau_s);
+    batch.set_gnss_noise(noise.white_sigma_m / configured, report.model_gauss_markov_sigma_m,
+                         report.model_gauss_markov_tau_s);
+    solver = solve_relinearised(batch, options, summary);
+  }
+  const auto after = batch.uncertainty();
+  if (before && after) {
+    report.sigma_inflation = std::sqrt(after->params.topLeftCorner<2, 2>().trace() /
+                                       before->params.topLeftCorner<2, 2>().trace());
+  }
+}
+
+}  // namespace
+
+BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
+                             const CalibrationOptions& common) {
+  require_valid("batch", options.validate());
+  BatchSummary summary;
+  CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
+  BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
+  ceres::Solver::Summary solver = solve_relinearised(batch, options, summary);
+  adapt_gnss_noise(batch, options, summary, solver);
+  summarise(run.log(), options, batch, solver, summary);
   run.finish(summary);
   return summary;
 }
@@ -479,6 +623,23 @@ std::string BatchSummary::full_report() const {
         fmt::format("{:<13}{} = {:.6g} (1-sigma {:.3g})\n", "parameter", p.name, p.value, p.sigma);
   }
   text += fmt::format("{:<13}{}\n", "observable", identifiability);
+  const GnssNoiseReport& g = gnss_noise;
+  if (g.adapted) {
+    text += fmt::format(
+        "{:<13}residuals {:.3g} m RMS where {:.3g} m was configured: solved again with white "
+        "{:.3g} m{}; sigma x{:.2f}\n",
+        "gnss noise", g.residual_sigma_m, g.configured_sigma_m, g.white_sigma_m,
+        g.gauss_markov_sigma_m > 0.0
+            ? fmt::format(" and a correlated {:.3g} m over {:.0f} s (modelled as {:.3g} m over "
+                          "{:.0f} s)",
+                          g.gauss_markov_sigma_m, g.gauss_markov_tau_s,
+                          g.model_gauss_markov_sigma_m, g.model_gauss_markov_tau_s)
+            : std::string(),
+        g.sigma_inflation);
+  } else if (g.residual_sigma_m > 0.0) {
+    text += fmt::format("{:<13}residuals {:.3g} m RMS, as configured ({:.3g} m)\n", "gnss noise",
+                        g.residual_sigma_m, g.configured_sigma_m);
+  }
   text += fmt::format("{:<13}{}\n", "solver", usable() ? message : solver_report);
   return text + report_ending(*this);
 }

@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 24> kFields{{
+  static const std::array<OptionField<O>, 25> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -24,6 +24,9 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"gnss_loss", "", 0, 0, "robust loss on the GNSS residuals", enum_member<&O::gnss_loss>()},
       {"gnss_loss_scale", "sigma", 1e-3, 1e3, "where the robust loss bends, in fix sigmas",
        &O::gnss_loss_scale},
+      {"adapt_gnss_noise", "", 0, 0,
+       "re-solve with the GNSS noise the residuals show when it differs from the configured one",
+       &O::adapt_gnss_noise},
       {"use_heading", "", 0, 0, "heading.csv residuals", &O::use_heading},
       {"use_gyro", "", 0, 0, "imu.csv yaw-rate residuals", &O::use_gyro},
       {"estimate_track_width", "", 0, 0, "also estimate the rear track width",

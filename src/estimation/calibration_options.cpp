@@ -53,7 +53,7 @@ std::string ReferenceOptions::validate() const { return check_option_ranges(fiel
 
 OptionTable<CalibrationOptions> CalibrationOptions::fields() {
   using O = CalibrationOptions;
-  static const std::array<OptionField<O>, 8> kFields{{
+  static const std::array<OptionField<O>, 9> kFields{{
       {"measurement_diagonal", "[m^2, m^2, rad^2]", 1e-12, 1e12,
        "M (eq. 13a): covariance of the reference pose in the odometry filters",
        &O::measurement_diagonal},
@@ -67,6 +67,9 @@ OptionTable<CalibrationOptions> CalibrationOptions::fields() {
       {"max_dead_reckoning_increase", "1", 0.0, 100.0,
        "implausible when the estimate dead-reckons worse than nominal by more than this",
        &O::max_dead_reckoning_increase},
+      {"max_wheel_gap_s", "s", 0.0, 1e4,
+       "a longer wheel-stream interval breaks the odometry chain (0: 5 median sample periods)",
+       &O::max_wheel_gap_s},
       {"min_distance_m", "m", 0.0, 1e9, "refuse logs with less wheel odometry than this",
        &O::min_distance_m},
       {"min_reference_samples", "1", 2.0, 1e9, "refuse logs with fewer reference samples",

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "odocal/model/angle.hpp"
@@ -45,7 +46,17 @@ std::string report_heading(const CalibrationSummary& s) {
 }
 
 std::string report_ending(const CalibrationSummary& s) {
-  std::string text = "dead reckoning of the whole log against the reference:\n";
+  std::string text;
+  if (!s.wheel_gaps.empty()) {
+    const auto longest = std::max_element(
+        s.wheel_gaps.begin(), s.wheel_gaps.end(),
+        [](const WheelGap& a, const WheelGap& b) { return a.duration_s < b.duration_s; });
+    text += fmt::format(
+        "{:<13}{} in the wheel stream (longest {:.2f} s at {:.1f} s): the odometry chain restarts "
+        "there\n",
+        "gaps", s.wheel_gaps.size(), longest->duration_s, longest->start_s);
+  }
+  text += "dead reckoning of the whole log against the reference:\n";
   text += errors_line("  before", s.before);
   text += errors_line("  after", s.after);
   text += s.usable() ? fmt::format("{:<13}usable ({})\n", "outcome", enum_name(s.termination))

@@ -12,6 +12,18 @@
 namespace odocal {
 namespace {
 
+// The log with the odometry chain broken at wheel gaps; nothing when there is none.
+std::optional<Log> prepared_log(const Log& log, const CalibrationOptions& options,
+                                CalibrationSummary& summary) {
+  const double max_gap_s =
+      options.max_wheel_gap_s > 0.0 ? options.max_wheel_gap_s : default_max_wheel_gap_s(log.wheels);
+  summary.wheel_gaps = find_wheel_gaps(log.wheels, max_gap_s);
+  if (summary.wheel_gaps.empty()) return std::nullopt;
+  Log prepared = log;
+  break_chain_at_gaps(prepared.wheels, summary.wheel_gaps);
+  return prepared;
+}
+
 ReferenceTrajectory checked_reference(const Log& log, const CalibrationOptions& options) {
   require_valid("calibration", options.validate());
   ReferenceTrajectory reference = compute_reference(log, options.reference);
@@ -97,14 +109,15 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
                                CalibrationMethod method, CalibrationSummary& summary)
     : log_(log),
       options_(options),
-      reference_(checked_reference(log, options)),
-      evaluator_(log.wheels, reference_, options) {
+      prepared_(prepared_log(log, options, summary)),
+      reference_(checked_reference(this->log(), options)),
+      evaluator_(this->log().wheels, reference_, options) {
   summary.method = method;
   summary.nominal = log.vehicle.nominal_params();
   summary.estimate = summary.nominal;
   summary.reference_samples = reference_.poses.size();
   summary.reference_heading_source = reference_.heading_source;
-  summary.coverage = motion_coverage(log, summary.nominal, reference_.poses.t_s.front(),
+  summary.coverage = motion_coverage(this->log(), summary.nominal, reference_.poses.t_s.front(),
                                      reference_.poses.t_s.back(), options.coverage);
   summary.distance_m = summary.coverage.distance_m;
   if (summary.distance_m < options.min_distance_m) {
@@ -123,7 +136,7 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
                                std::isfinite(e.circumference_rr_m) &&
                                std::isfinite(e.track_width_m);
   summary.after = finite_estimate ? evaluator_.evaluate(e) : summary.before;
-  if (summary.termination == Termination::kConverged) check_plausibility(log_, options_, summary);
+  if (summary.termination == Termination::kConverged) check_plausibility(log(), options_, summary);
 }
 
 }  // namespace odocal

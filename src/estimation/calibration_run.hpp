@@ -4,6 +4,8 @@
 // the left/right difference is identifiable, scores the nominal parameters, and at the end
 // scores the estimate and refuses numbers that make no physical sense.
 
+#include <optional>
+
 #include "odocal/data/log.hpp"
 #include "odocal/estimation/calibration_options.hpp"
 #include "odocal/estimation/calibration_summary.hpp"
@@ -22,6 +24,8 @@ class CalibrationRun {
   CalibrationRun(const CalibrationRun&) = delete;
   CalibrationRun& operator=(const CalibrationRun&) = delete;
 
+  // The log the estimators use: the input, with the odometry chain broken at wheel gaps.
+  const Log& log() const { return prepared_ ? *prepared_ : log_; }
   const ReferenceTrajectory& reference() const { return reference_; }
   WholeLogEvaluator& evaluator() { return evaluator_; }
 
@@ -33,6 +37,7 @@ class CalibrationRun {
  private:
   const Log& log_;
   const CalibrationOptions& options_;
+  std::optional<Log> prepared_;  // only when preparing changed something
   ReferenceTrajectory reference_;
   WholeLogEvaluator evaluator_;
 };

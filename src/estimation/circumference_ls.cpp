@@ -28,6 +28,11 @@ void for_each_row(const WheelStream& wheels, const ReferenceTrajectory& referenc
     in_window = 0;
   };
   for (std::size_t i = 1; i < x_hat.size(); ++i) {
+    if (wheels.breaks_at(reference.first_wheel_index + i)) {  // a gap: no row spans it
+      window.setZero();
+      in_window = 0;
+      continue;
+    }
     const WheelIncrement n = wheels.increment(reference.first_wheel_index + i);
     const Pose2& previous = x_hat[i - 1];
     const Pose2& target = reference.poses.pose[i];

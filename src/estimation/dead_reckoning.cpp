@@ -1,5 +1,7 @@
 #include "odocal/estimation/dead_reckoning.hpp"
 
+#include <algorithm>
+
 #include "hot_loop.hpp"
 #include "odocal/model/stepwise_cos_sin.hpp"
 
@@ -17,9 +19,10 @@ PoseStream dead_reckon(const WheelStream& wheels, const OdometryParams& params,
 }
 
 ODOCAL_HOT_LOOP void dead_reckon_into(const WheelStream& wheels, std::size_t first_sample,
-                                      const OdometryParams& params, std::vector<Pose2>& path) {
+                                      const OdometryParams& params, std::vector<Pose2>& path,
+                                      std::size_t begin, std::size_t end) {
   StepwiseCosSin course_cos_sin;
-  for (std::size_t i = 1; i < path.size(); ++i) {
+  for (std::size_t i = begin; i < std::min(end, path.size()); ++i) {
     const WheelIncrement increment = wheels.increment(first_sample + i);
     const BodyIncrement step = body_increment(increment, params);
     const CosSin course = course_cos_sin(path[i - 1].z() + 0.5 * step.yaw_rad);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "odocal/error.hpp"
+#include "odocal/estimation/wheel_gaps.hpp"
 #include "odocal/model/odometry_model.hpp"
 
 namespace odocal {
@@ -28,6 +29,16 @@ DriftStatistics statistics(const std::vector<WindowDrift>& windows) {
   }
   return {windows.size(), percentile(errors, 0.5), percentile(errors, 0.95),
           percentile(percents, 0.5), percentile(percents, 0.95)};
+}
+
+// Whether the wheel stream has a gap (wheel_gaps.hpp) between reference samples first and last.
+bool spans_gap(const WheelStream& wheels, const ReferenceTrajectory& reference, std::size_t first,
+               std::size_t last, double max_gap_s) {
+  for (std::size_t i = first + 1; i <= last; ++i) {
+    const std::size_t k = reference.first_wheel_index + i;
+    if (wheels.t_s[k] - wheels.t_s[k - 1] > max_gap_s || wheels.breaks_at(k)) return true;
+  }
+  return false;
 }
 
 // Dead reckoning over reference samples [first, last] from the reference pose at `first`.
@@ -59,12 +70,18 @@ DriftValidation validate_drift(const WheelStream& wheels, const ReferenceTraject
   if (const std::string problem = options.validate(); !problem.empty())
     throw Error("invalid validation options: " + problem);
   DriftValidation result;
+  const double max_gap_s = default_max_wheel_gap_s(wheels);
   const auto& t = reference.poses.t_s;
   std::size_t first = 0;
   while (first + 1 < t.size()) {
     std::size_t last = first;
     while (last + 1 < t.size() && t[last + 1] - t[first] <= options.window_s) ++last;
-    if (t[last] - t[first] < 0.99 * options.window_s) break;  // the short tail
+    if (t[last] - t[first] < 0.99 * options.window_s) break;     // the short tail
+    if (spans_gap(wheels, reference, first, last, max_gap_s)) {  // unknown motion inside
+      ++result.windows_with_gaps;
+      first = last;
+      continue;
+    }
     const WindowDrift with_nominal = window_drift(wheels, reference, first, last, nominal);
     if (with_nominal.distance_m >= options.min_window_distance_m) {
       result.nominal.push_back(with_nominal);

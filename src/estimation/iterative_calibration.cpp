@@ -45,10 +45,11 @@ double last_step_in_sigma(const IterativeSummary& summary) {
 }
 
 // Layers 2 and 3 repeated (section 4); the estimate is the iteration with the lowest score.
-void run_loop(const Log& log, CalibrationRun& run, const IterativeOptions& options,
+void run_loop(CalibrationRun& run, const IterativeOptions& options,
               const CalibrationOptions& common, ProcessCovariance process,
               IterativeSummary& summary) {
   const ReferenceTrajectory& reference = run.reference();
+  const WheelStream& wheels = run.log().wheels;
   OdometryParams params = summary.nominal;
   std::vector<Pose2> x_hat;
   double best_score = std::numeric_limits<double>::infinity();
@@ -60,13 +61,13 @@ void run_loop(const Log& log, CalibrationRun& run, const IterativeOptions& optio
                                      ? decaying_process_diagonal(i, options.decay_exponent_q)
                                      : options.fixed_process_diagonal,
                                  common.measurement_diagonal};
-    run_odometry_ekf(log.wheels, reference, params, noise, x_hat);
+    run_odometry_ekf(wheels, reference, params, noise, x_hat);
     const CircumferenceFit fit =
         summary.difference_identifiable
-            ? fit_circumferences(log.wheels, reference, x_hat, params.track_width_m,
-                                 options.ls_weights, options.ls_window_samples)
-            : fit_common_scale(log.wheels, reference, x_hat, params.track_width_m,
-                               options.ls_weights, options.ls_window_samples,
+            ? fit_circumferences(wheels, reference, x_hat, params.track_width_m, options.ls_weights,
+                                 options.ls_window_samples)
+            : fit_common_scale(wheels, reference, x_hat, params.track_width_m, options.ls_weights,
+                               options.ls_window_samples,
                                Eigen::Vector2d(summary.nominal.circumference_rl_m,
                                                summary.nominal.circumference_rr_m));
     if (!separable(fit, options.max_condition_number)) {
@@ -133,7 +134,7 @@ IterativeSummary calibrate_with(const Log& log, const IterativeOptions& options,
                      process == ProcessCovariance::kDecaying ? CalibrationMethod::kIterative
                                                              : CalibrationMethod::kFixedP,
                      summary);
-  run_loop(log, run, options, common, process, summary);
+  run_loop(run, options, common, process, summary);
   run.finish(summary);
   return summary;
 }

@@ -26,6 +26,12 @@ ODOCAL_HOT_LOOP void run_odometry_ekf(const WheelStream& wheels,
   OdometryJacobianPose F;
   StepwiseCosSin course_cos_sin;
   for (std::size_t i = 1; i < n; ++i) {
+    if (wheels.breaks_at(reference.first_wheel_index + i)) {  // a gap: restart at the reference
+      x = reference.poses.pose[i];
+      sigma = M;
+      out[i] = x;
+      continue;
+    }
     const WheelIncrement increment = wheels.increment(reference.first_wheel_index + i);
     const BodyIncrement step = body_increment(increment, params);
     const CosSin course = course_cos_sin(x.z() + 0.5 * step.yaw_rad);

@@ -26,12 +26,21 @@ WholeLogEvaluator::WholeLogEvaluator(const WheelStream& wheels,
   target_.resize(2, static_cast<Eigen::Index>(align_count_));
   for (std::size_t i = 0; i < align_count_; ++i)
     target_.col(static_cast<Eigen::Index>(i)) = reference.poses.pose[i].head<2>();
+  for (std::size_t i = 1; i < path_.size(); ++i)
+    if (wheels.breaks_at(reference.first_wheel_index + i)) breaks_.push_back(i);
 }
 
 ODOCAL_HOT_LOOP DeadReckoningSummary WholeLogEvaluator::evaluate(const OdometryParams& params) {
   path_[0] = reference_.poses.pose[0];
-  dead_reckon_into(wheels_, reference_.first_wheel_index, params, path_);
-  if (options_.dr_start != DeadReckoningStart::kFirstReference && align_count_ >= 2) align_start();
+  const std::size_t first_chain_end = breaks_.empty() ? path_.size() : breaks_.front();
+  dead_reckon_into(wheels_, reference_.first_wheel_index, params, path_, 1, first_chain_end);
+  if (options_.dr_start != DeadReckoningStart::kFirstReference) align_start(first_chain_end);
+  for (std::size_t b = 0; b < breaks_.size(); ++b) {
+    const std::size_t start = breaks_[b];
+    path_[start] = reference_.poses.pose[start];
+    const std::size_t end = b + 1 < breaks_.size() ? breaks_[b + 1] : path_.size();
+    dead_reckon_into(wheels_, reference_.first_wheel_index, params, path_, start + 1, end);
+  }
   DeadReckoningSummary summary;
   for (std::size_t i = 0; i < path_.size(); ++i) {
     const Pose2& reference = reference_.poses.pose[i];
@@ -53,12 +62,17 @@ double WholeLogEvaluator::distance_m(const OdometryParams& params) {
   return path_length_m(path_);
 }
 
-void WholeLogEvaluator::align_start() {
-  for (std::size_t i = 0; i < align_count_; ++i)
+void WholeLogEvaluator::align_start(std::size_t end) {
+  const std::size_t count = std::min(align_count_, end);
+  if (count < 2) return;
+  for (std::size_t i = 0; i < count; ++i)
     source_.col(static_cast<Eigen::Index>(i)) = path_[i].head<2>();
-  const Eigen::Matrix3d T = Eigen::umeyama(source_, target_, false);
+  const auto columns = static_cast<Eigen::Index>(count);
+  const Eigen::Matrix3d T =
+      Eigen::umeyama(source_.leftCols(columns), target_.leftCols(columns), false);
   const double rotation = std::atan2(T(1, 0), T(0, 0));
-  for (Pose2& pose : path_) {
+  for (std::size_t i = 0; i < end; ++i) {
+    Pose2& pose = path_[i];
     pose.head<2>() = T.topLeftCorner<2, 2>() * pose.head<2>() + T.topRightCorner<2, 1>();
     pose.z() += rotation;
   }

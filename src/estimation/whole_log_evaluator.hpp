@@ -2,7 +2,8 @@
 // Dead reckoning of the whole log with given parameters, compared with the reference (paper
 // section 4: "the two-wheel vehicle model with the new parameters is simulated on the whole
 // dataset"). The start pose follows CalibrationOptions::dr_start. Both live on the wheel time
-// base, so the comparison is index by index; the buffers are allocated once.
+// base, so the comparison is index by index; the buffers are allocated once. Where the odometry
+// chain breaks (a wheel gap), the dead reckoning restarts from the reference pose.
 
 #include <Eigen/Core>
 #include <vector>
@@ -25,8 +26,9 @@ class WholeLogEvaluator {
   double distance_m(const OdometryParams& params);
 
  private:
-  // Moves the whole path rigidly so that its first align_count_ positions best fit the reference.
-  void align_start();
+  // Moves path[0, end) rigidly so that its first positions (at most align_count_) best fit the
+  // reference.
+  void align_start(std::size_t end);
 
   const WheelStream& wheels_;
   const ReferenceTrajectory& reference_;
@@ -34,6 +36,7 @@ class WholeLogEvaluator {
   std::vector<Pose2> path_;
   Eigen::Matrix2Xd source_, target_;
   std::size_t align_count_{};
+  std::vector<std::size_t> breaks_;  // reference indices where the odometry chain breaks
 };
 
 }  // namespace odocal

@@ -22,6 +22,13 @@ json errors_json(const DeadReckoningSummary& s) {
           {"max_heading_deg", deg_from_rad(s.max_heading_rad)}};
 }
 
+json gaps_json(const std::vector<WheelGap>& gaps) {
+  json out = json::array();
+  for (const WheelGap& gap : gaps)
+    out.push_back({{"start_s", gap.start_s}, {"duration_s", gap.duration_s}});
+  return out;
+}
+
 // Infinite or NaN numbers (a sigma that could not be computed) are written as null.
 json number_or_null(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
 
@@ -49,6 +56,7 @@ json core_json(const CalibrationSummary& s, const CalibrationConfig& config) {
           {"dead_reckoning_before", errors_json(s.before)},
           {"dead_reckoning_after", errors_json(s.after)},
           {"distance_m", s.distance_m},
+          {"wheel_gaps", gaps_json(s.wheel_gaps)},
           {"coverage",
            {{"distance_m", s.coverage.distance_m},
             {"moving_s", s.coverage.moving_s},
@@ -95,6 +103,16 @@ void add_details(json& out, const BatchSummary& s) {
   out["keyframes"] = s.keyframes;
   out["gnss_fixes"] = s.gnss_fixes;
   out["solves"] = s.solves;
+  const GnssNoiseReport& g = s.gnss_noise;
+  out["gnss_noise"] = {{"configured_sigma_m", g.configured_sigma_m},
+                       {"residual_sigma_m", g.residual_sigma_m},
+                       {"white_sigma_m", g.white_sigma_m},
+                       {"gauss_markov_sigma_m", g.gauss_markov_sigma_m},
+                       {"gauss_markov_tau_s", g.gauss_markov_tau_s},
+                       {"adapted", g.adapted},
+                       {"model_gauss_markov_sigma_m", g.model_gauss_markov_sigma_m},
+                       {"model_gauss_markov_tau_s", g.model_gauss_markov_tau_s},
+                       {"sigma_inflation", g.sigma_inflation}};
 }
 
 }  // namespace

@@ -141,5 +141,50 @@ TEST(BatchCalibrationOutcome, CircumferencesLooserThanRequiredAreNotIdentifiedAn
   EXPECT_NE(result.estimate.circumference_rl_m, result.nominal.circumference_rl_m);
 }
 
+TEST(BatchCalibrationNoise, AWronglyConfiguredGnssNoiseIsEstimatedAndTheSigmaCoversTheError) {
+  // The GNSS drifts (Gauss-Markov, 1.5 m over 30 s) while the configuration claims 0.1 m white.
+  sim::Scenario scenario = ideal_lap();
+  scenario.gnss.sigma_m = 0.05;
+  scenario.gnss.gauss_markov_sigma_m = 1.5;
+  scenario.gnss.gauss_markov_tau_s = 30.0;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  Log log = simulated_log(drive);
+  log.gnss.sigma_m.clear();
+  CalibrationOptions claimed;
+  claimed.reference.gnss_sigma_m = 0.1;
+  const BatchSummary adapted = calibrate_batch(log, {}, claimed);
+  BatchOptions fixed;
+  fixed.adapt_gnss_noise = false;
+  const BatchSummary configured = calibrate_batch(log, fixed, claimed);
+  SCOPED_TRACE(adapted.full_report());
+  ASSERT_TRUE(adapted.gnss_noise.adapted);
+  // The residuals show part of the drift; the model keeps their random-walk intensity over at
+  // least a tenth of the log, which lands near the truth.
+  EXPECT_GT(adapted.gnss_noise.gauss_markov_sigma_m, 0.3);
+  EXPECT_NEAR(adapted.gnss_noise.model_gauss_markov_sigma_m, 1.5, 0.6);
+  EXPECT_GT(adapted.gnss_noise.model_gauss_markov_tau_s, 10.0);
+  EXPECT_LT(adapted.gnss_noise.model_gauss_markov_tau_s, 90.0);
+  EXPECT_GT(adapted.gnss_noise.sigma_inflation, 2.0);
+  // One lap under such GNSS cannot pin the circumferences to max_sigma_circumference_m (1 mm):
+  // said so, not hidden behind a small sigma.
+  EXPECT_EQ(adapted.termination, Termination::kNotIdentifiable);
+  EXPECT_NE(adapted.full_report().find("where 0.1 m was configured"), std::string::npos);
+  const double error_rl =
+      adapted.estimate.circumference_rl_m - drive.true_params.circumference_rl_m;
+  EXPECT_LT(std::abs(error_rl), 3.0 * adapted.sigma_rl_m());
+  // Without the adaptation the sigma is far too small for the same error (the reason it exists).
+  const double error_fixed =
+      configured.estimate.circumference_rl_m - drive.true_params.circumference_rl_m;
+  EXPECT_GT(std::abs(error_fixed), 3.0 * configured.sigma_rl_m());
+}
+
+TEST(BatchCalibrationNoise, ACorrectlyConfiguredWhiteNoiseIsLeftAlone) {
+  const sim::SimulatedDrive drive = sim::simulate(ideal_lap());
+  const BatchSummary result = calibrate_batch(simulated_log(drive));
+  EXPECT_FALSE(result.gnss_noise.adapted);
+  EXPECT_NEAR(result.gnss_noise.residual_sigma_m, 3.0, 0.3);
+  EXPECT_EQ(result.gnss_noise.gauss_markov_sigma_m, 0.0);
+}
+
 }  // namespace
 }  // namespace odocal

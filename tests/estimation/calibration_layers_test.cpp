@@ -99,7 +99,7 @@ TEST(CircumferenceLs, RecoversExactParametersFromNoiseFreeRows) {
 }
 
 TEST(CircumferenceLs, ReportsRankDeficiencyInsteadOfANumber) {
-  WheelStream wheels{{0, 1, 2}, {0, 0, 0}, {0, 0, 0}, {}, {}, WheelUnit::kTicks};
+  WheelStream wheels{{0, 1, 2}, {0, 0, 0}, {0, 0, 0}, {}, {}, WheelUnit::kTicks, {}};
   ReferenceTrajectory reference;
   reference.poses.t_s = wheels.t_s;
   reference.poses.pose = {Pose2::Zero(), Pose2::Zero(), Pose2::Zero()};

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -52,9 +53,14 @@ struct WheelStream {
   std::vector<double> rev_fl;  // empty when the log has no front wheels
   std::vector<double> rev_fr;
   WheelUnit unit_rear{WheelUnit::kTicks};
+  // 1 where sample k's increment spans a gap in the stream: the motion there is unknown and the
+  // odometry chain breaks (its increment is zero). Empty: no break. Set by preprocessing
+  // (odocal/estimation/wheel_gaps.hpp), never by the readers.
+  std::vector<std::uint8_t> chain_break;
 
   std::size_t size() const { return t_s.size(); }
   WheelIncrement increment(std::size_t k) const { return {rev_rl[k], rev_rr[k]}; }
+  bool breaks_at(std::size_t k) const { return !chain_break.empty() && chain_break[k] != 0; }
 };
 
 struct GeodeticOrigin {

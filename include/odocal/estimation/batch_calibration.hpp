@@ -23,12 +23,30 @@ struct EstimatedParameter {
   std::string verdict;    // in words a user can act on, when not identified
 };
 
+// The GNSS noise the fit saw in its residuals, against the configured one.
+struct GnssNoiseReport {
+  double configured_sigma_m{};  // RMS white sigma the first solve used per axis
+  double residual_sigma_m{};    // RMS of its residuals per axis (outliers left out)
+  double white_sigma_m{};
+  double gauss_markov_sigma_m{};  // 0: no correlated error found
+  double gauss_markov_tau_s{};
+  bool adapted{};  // solved again with the estimated noise
+  // The Gauss-Markov error the final solve assumed: the one in the residuals with its
+  // correlation time raised to at least a tenth of the log (at the same random-walk intensity
+  // sigma^2 / tau), because a fit hides the slow part of such an error in the trajectory.
+  double model_gauss_markov_sigma_m{};
+  double model_gauss_markov_tau_s{};
+  // The circumferences' sigma after the adaptation over before (1 when not adapted).
+  double sigma_inflation = 1.0;
+};
+
 struct BatchSummary : CalibrationSummary {
   std::vector<EstimatedParameter> parameters;  // every unknown besides the poses
   std::string solver_report;                   // Ceres' brief report of the last solve
   std::size_t keyframes{};
   std::size_t gnss_fixes{};  // GNSS residuals in the problem
-  int solves{};              // the first, coarse one and the re-linearisations
+  int solves{};              // the first, coarse one, the re-linearisations, the adapted one
+  GnssNoiseReport gnss_noise;
 
   std::string full_report() const;
 };

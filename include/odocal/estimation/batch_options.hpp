@@ -34,8 +34,12 @@ struct BatchOptions {
   double gnss_gauss_markov_tau_s = 60.0;
   RobustLoss gnss_loss = RobustLoss::kCauchy;
   double gnss_loss_scale = 3.0;  // in standard deviations of the fix
-  bool use_heading = true;       // heading.csv residuals
-  bool use_gyro = true;          // imu.csv yaw-rate residuals
+  // After the first solve, estimate the GNSS error from the residuals (white and Gauss-Markov)
+  // and solve again with it when it differs from the configured noise (no Gauss-Markov error
+  // configured): the sigma then covers the error when the configured noise is wrong.
+  bool adapt_gnss_noise = true;
+  bool use_heading = true;  // heading.csv residuals
+  bool use_gyro = true;     // imu.csv yaw-rate residuals
   // Extra unknowns on request (else held at: nominal track width, zero bias/lever arm/latency).
   bool estimate_track_width = false;
   bool estimate_gyro_bias = false;

@@ -38,6 +38,9 @@ struct CalibrationOptions {
   // the nominal parameters by more than max_dead_reckoning_increase (relative, above 0.5 m).
   double max_relative_change = 0.05;
   double max_dead_reckoning_increase = 0.05;
+  // A wheel-stream interval longer than this is a gap: the odometry chain breaks there
+  // (wheel_gaps.hpp). 0: five times the median wheel sample period.
+  double max_wheel_gap_s = 0.0;
   // Too little data: refused before any estimate (InsufficientDataError).
   double min_distance_m = 100.0;
   std::size_t min_reference_samples = 100;

@@ -8,7 +8,8 @@
 // W = diag(1, 1, 10) per sample. Rows may be summed over windows of `window_samples` samples
 // (1 = the paper): a sum of rows of eq. 9 is still exact, and the encoder quantisation in the
 // summed increments telescopes to one tick per window instead of one tick per sample, which
-// removes the errors-in-variables bias of the per-sample fit (docs/calibration.md). Solved by a
+// removes the errors-in-variables bias of the per-sample fit (docs/calibration.md). A window
+// that spans a break of the odometry chain (a wheel gap) gives no row. Solved by a
 // Householder QR of the weighted rows (no normal equations, one allocation per fit).
 
 #include <Eigen/Core>

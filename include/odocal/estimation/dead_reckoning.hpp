@@ -1,6 +1,7 @@
 #pragma once
 // Dead reckoning: the odometry model (eqs. 1-2) integrated over a whole wheel stream.
 
+#include <cstdint>
 #include <vector>
 
 #include "odocal/data/log.hpp"
@@ -11,8 +12,10 @@ namespace odocal {
 PoseStream dead_reckon(const WheelStream& wheels, const OdometryParams& params, const Pose2& start);
 
 // The same into a caller's buffer: path[i] follows from path[i - 1] and the increment of wheel
-// sample first_sample + i, for every i >= 1; path[0] is the start and stays as given.
+// sample first_sample + i, for every i in [begin, end) (default: every i >= 1); path[0] is the
+// start and stays as given.
 void dead_reckon_into(const WheelStream& wheels, std::size_t first_sample,
-                      const OdometryParams& params, std::vector<Pose2>& path);
+                      const OdometryParams& params, std::vector<Pose2>& path, std::size_t begin = 1,
+                      std::size_t end = SIZE_MAX);
 
 }  // namespace odocal

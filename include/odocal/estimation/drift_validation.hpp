@@ -38,6 +38,7 @@ struct DriftValidation {
   std::vector<WindowDrift> calibrated;  // the same windows
   DriftStatistics nominal_statistics;
   DriftStatistics calibrated_statistics;
+  std::size_t windows_with_gaps{};  // left out: a wheel gap inside (wheel_gaps.hpp)
 };
 
 // Throws InsufficientDataError when no window is long enough, Error for invalid options.

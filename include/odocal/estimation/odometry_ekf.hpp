@@ -20,7 +20,8 @@ struct OdometryEkfNoise {
 Eigen::Vector3d decaying_process_diagonal(int iteration, double q);
 
 // Filtered poses x_hat_k at every reference sample (index i = wheel index - first_wheel_index).
-// Starts at the first reference pose with covariance M. `out` is resized once and reused.
+// Starts at the first reference pose with covariance M, and restarts so where the odometry chain
+// breaks (WheelStream::breaks_at). `out` is resized once and reused.
 void run_odometry_ekf(const WheelStream& wheels, const ReferenceTrajectory& reference,
                       const OdometryParams& params, const OdometryEkfNoise& noise,
                       std::vector<Pose2>& out);

@@ -1,0 +1,117 @@
+#include "gnss_noise_estimate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace odocal {
+namespace {
+
+// 1.4826 x the median absolute value: sigma of a normal sample, robust to outliers.
+double robust_sigma(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  for (double& v : values) v = std::abs(v);
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return 1.4826 * *middle;
+}
+
+}  // namespace
+
+GnssNoiseEstimate estimate_gnss_noise(const std::vector<GnssResidualSample>& residuals,
+                                      double bin_s) {
+  GnssNoiseEstimate estimate;
+  if (residuals.size() < 10) return estimate;
+  std::vector<double> components;
+  for (const GnssResidualSample& r : residuals) {
+    components.push_back(r.error_m.x());
+    components.push_back(r.error_m.y());
+  }
+  const double limit = 5.0 * robust_sigma(components);
+
+  // Total variance, and the means over time bins (the white part averages out within a bin).
+  const double t0 = residuals.front().t_s;
+  const auto bins = static_cast<std::size_t>((residuals.back().t_s - t0) / bin_s) + 1;
+  std::vector<Eigen::Vector2d> bin_sum(bins, Eigen::Vector2d::Zero());
+  std::vector<double> bin_squares(bins, 0.0);
+  std::vector<int> bin_count(bins, 0);
+  double square_sum = 0.0;
+  for (const GnssResidualSample& r : residuals) {
+    if (!(r.error_m.cwiseAbs().maxCoeff() <= limit)) {
+      ++estimate.outliers;
+      continue;
+    }
+    ++estimate.fixes;
+    square_sum += r.error_m.squaredNorm();
+    const auto b = static_cast<std::size_t>((r.t_s - t0) / bin_s);
+    bin_sum[b] += r.error_m;
+    bin_squares[b] += r.error_m.squaredNorm();
+    ++bin_count[b];
+  }
+  if (estimate.fixes < 10) return estimate;
+  const double variance = square_sum / (2.0 * static_cast<double>(estimate.fixes));
+  estimate.total_sigma_m = std::sqrt(variance);
+  estimate.white_sigma_m = estimate.total_sigma_m;
+  // The white part directly: the scatter of the fixes around their bin's mean (a correlated
+  // error hardly moves within a bin). Needs bins with several fixes.
+  double within = 0.0, within_dof = 0.0;
+  for (std::size_t b = 0; b < bins; ++b) {
+    if (bin_count[b] < 2) continue;
+    within += bin_squares[b] - bin_sum[b].squaredNorm() / bin_count[b];
+    within_dof += 2.0 * (bin_count[b] - 1);
+  }
+  const std::optional<double> white_variance =
+      within_dof >= 20.0 ? std::optional<double>(within / within_dof) : std::nullopt;
+
+  // Covariance of bin means `lag` bins apart (per axis, pooled): only the correlated part.
+  const auto covariance_at = [&](std::size_t lag) -> std::optional<double> {
+    double sum = 0.0;
+    int pairs = 0;
+    for (std::size_t b = 0; b + lag < bins; ++b) {
+      if (bin_count[b] == 0 || bin_count[b + lag] == 0) continue;
+      sum += (bin_sum[b] / bin_count[b]).dot(bin_sum[b + lag] / bin_count[b + lag]) / 2.0;
+      ++pairs;
+    }
+    if (pairs < 10) return std::nullopt;
+    return sum / pairs;
+  };
+  const std::optional<double> first = covariance_at(1);
+  // A correlated part worth modelling: a tenth of the variance or more.
+  if (!first || *first < 0.1 * variance) return estimate;
+  if (white_variance) estimate.white_sigma_m = std::sqrt(std::max(*white_variance, 1e-12));
+
+  // ln C(k) = ln sigma_gm^2 - k bin / tau, fitted while C(k) stays above a fifth of C(1) (below
+  // that the estimate is mostly noise) and at most a third of the log away.
+  double n = 0, sk = 0, skk = 0, sy = 0, sky = 0;
+  for (std::size_t lag = 1; lag <= bins / 3; ++lag) {
+    const std::optional<double> c = covariance_at(lag);
+    if (!c || *c < 0.2 * *first) break;
+    const double k = static_cast<double>(lag) * bin_s, y = std::log(*c);
+    n += 1;
+    sk += k;
+    skk += k * k;
+    sy += y;
+    sky += k * y;
+  }
+  const double log_span_s = residuals.back().t_s - t0;
+  double tau_s, sigma2;
+  if (n >= 2 && n * skk - sk * sk > 0.0) {
+    const double slope = (n * sky - sk * sy) / (n * skk - sk * sk);
+    const double intercept = (sy - slope * sk) / n;
+    // A correlation that does not decay within the fit window lasts at least as long as the log.
+    tau_s = slope < 0.0 ? -1.0 / slope : log_span_s;
+    sigma2 = std::exp(intercept);
+  } else {
+    tau_s = bin_s;
+    sigma2 = *first * std::exp(1.0);
+  }
+  tau_s = std::clamp(tau_s, bin_s, 10.0 * log_span_s);
+  sigma2 = std::min(sigma2, 0.99 * variance);
+  estimate.gauss_markov_sigma_m = std::sqrt(sigma2);
+  estimate.gauss_markov_tau_s = tau_s;
+  if (!white_variance)
+    estimate.white_sigma_m = std::sqrt(std::max(variance - sigma2, 0.01 * variance));
+  return estimate;
+}
+
+}  // namespace odocal
