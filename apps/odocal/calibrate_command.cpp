@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "exit_codes.hpp"
+#include "log_window_args.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/io/calibration_export.hpp"
@@ -26,6 +27,7 @@ struct CalibrateArgs {
   std::string vehicle_out;
   std::string ros2_out;
   bool print_config = false;
+  LogWindowArgs window;
 };
 
 CalibrationConfig effective_config(const CalibrateArgs& args) {
@@ -45,7 +47,7 @@ void run_calibrate(const CalibrateArgs& args) {
   if (args.log_dir.empty()) throw CLI::RequiredError("LOG");
   LogReadOptions read_options;
   read_options.read_truth = false;  // estimators never see the truth
-  const Log log = read_log(args.log_dir, read_options);
+  const Log log = args.window.apply(read_log(args.log_dir, read_options));
   const AnyCalibrationSummary summary = calibrate(log, config);
   const CalibrationSummary& result = core(summary);
   fmt::print("{}", full_report(summary));
@@ -80,6 +82,7 @@ void add_calibrate_command(CLI::App& app) {
   command->add_flag("--print-config", args->print_config,
                     "Print the configuration (defaults, --config, --method, --reference) as "
                     "commented YAML and exit; feed it back with --config");
+  args->window.add_to(*command);
   command->add_option("--json", args->json_file, "Write the full result as JSON");
   command->add_option("--vehicle-out", args->vehicle_out,
                       "Write vehicle.yaml with the calibrated circumferences and track width");

@@ -5,8 +5,11 @@
 #include <memory>
 #include <optional>
 
+#include "log_window_args.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/dead_reckoning.hpp"
+#include "odocal/estimation/interpolation.hpp"
+#include "odocal/estimation/log_preparation.hpp"
 #include "odocal/estimation/motion_coverage.hpp"
 #include "odocal/estimation/start_pose.hpp"
 #include "odocal/estimation/trajectory_errors.hpp"
@@ -25,7 +28,26 @@ struct DeadreckonArgs {
   std::string start = "auto";
   std::string out_csv;
   std::string out_tum;
+  LogWindowArgs window;
 };
+
+// Where the odometry chain breaks (a wheel gap), dead reckoning restarts from the reference: the
+// truth pose, else the GNSS position there with heading.csv's heading (else the dead-reckoned
+// one).
+Pose2 restart_pose(const Log& log, double t_s, const Pose2& carried) {
+  if (log.truth) {
+    if (const auto pose = interpolate_pose(*log.truth, t_s)) return *pose;
+  }
+  Pose2 pose = carried;
+  const auto x = interpolate_linear(log.gnss.t_s, log.gnss.x_m, t_s);
+  const auto y = interpolate_linear(log.gnss.t_s, log.gnss.y_m, t_s);
+  if (x && y) pose.head<2>() = Eigen::Vector2d(*x, *y);
+  if (log.heading) {
+    if (const auto heading = interpolate_angle(log.heading->t_s, log.heading->heading_rad, t_s))
+      pose.z() = carried.z() + angle_difference(*heading, carried.z());
+  }
+  return pose;
+}
 
 Pose2 choose_start(const Log& log, const OdometryParams& params, const std::string& start) {
   const double t0 = log.wheels.t_s.front();
@@ -39,14 +61,19 @@ Pose2 choose_start(const Log& log, const OdometryParams& params, const std::stri
 }
 
 void run_deadreckon(const DeadreckonArgs& args) {
-  const Log log = read_log(args.log_dir);
+  const Log input = args.window.apply(read_log(args.log_dir));
+  LogPreparation prepared_by;
+  const std::optional<Log> prepared = prepare_log(input, CalibrationOptions{}, prepared_by);
+  const Log& log = prepared ? *prepared : input;
   OdometryParams params = log.vehicle.nominal_params();
   if (args.circumference_rl_m) params.circumference_rl_m = *args.circumference_rl_m;
   if (args.circumference_rr_m) params.circumference_rr_m = *args.circumference_rr_m;
   if (args.track_width_m) params.track_width_m = *args.track_width_m;
 
   const Pose2 start = choose_start(log, params, args.start);
-  const PoseStream trajectory = dead_reckon(log.wheels, params, start);
+  const PoseStream trajectory = dead_reckon(
+      log.wheels, params, start,
+      [&](double t_s, const Pose2& carried) { return restart_pose(log, t_s, carried); });
   const ReferencePath reference =
       log.truth ? reference_from_poses(*log.truth, "truth.csv")
                 : reference_from_gnss(log.gnss, log.heading ? &*log.heading : nullptr);
@@ -58,6 +85,8 @@ void run_deadreckon(const DeadreckonArgs& args) {
       motion_coverage(log, params, log.wheels.t_s.front(), log.wheels.t_s.back()).distance_m;
   fmt::print("log          {} ({} wheel samples, {:.1f} s, {:.1f} m driven)\n", log.source,
              log.wheels.size(), duration_s, distance_m);
+  if (const std::string done = prepared_by.describe(); !done.empty())
+    fmt::print("prepared     {}\n", done);
   fmt::print("parameters   c_RL {:.6f} m, c_RR {:.6f} m, t_R {:.4f} m\n", params.circumference_rl_m,
              params.circumference_rr_m, params.track_width_m);
   fmt::print("start pose   x {:.3f} m, y {:.3f} m, heading {:.2f} deg (from {})\n", start.x(),
@@ -104,6 +133,7 @@ void add_deadreckon_command(CLI::App& app) {
       ->add_option("--start", args->start,
                    "Start pose: truth, gnss, or auto (truth when truth.csv exists)")
       ->check(CLI::IsMember({"auto", "truth", "gnss"}));
+  args->window.add_to(*command);
   command->add_option("--out", args->out_csv, "Write the trajectory as CSV (t,x,y,heading)");
   command->add_option("--tum", args->out_tum, "Write the trajectory in TUM format");
   command->callback([args] { run_deadreckon(*args); });

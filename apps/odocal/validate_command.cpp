@@ -5,8 +5,10 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "log_window_args.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/drift_validation.hpp"
+#include "odocal/estimation/log_preparation.hpp"
 #include "odocal/io/calibration_export.hpp"
 #include "odocal/io/calibration_io.hpp"
 #include "odocal/io/log_reader.hpp"
@@ -21,6 +23,7 @@ struct ValidateArgs {
   DriftValidationOptions options;
   std::string reference = "smoother";
   std::string config_file;
+  LogWindowArgs window;
   std::string json_file;
 };
 
@@ -36,12 +39,16 @@ void run_validate(const ValidateArgs& args) {
   const OdometryParams calibrated = read_calibrated_parameters(args.params_file);
   LogReadOptions read_options;
   read_options.read_truth = false;
-  const Log log = read_log(args.log_dir, read_options);
-  ReferenceOptions reference_options;
-  if (!args.config_file.empty())
-    reference_options = read_calibration_config(args.config_file).common.reference;
-  reference_options.mode = *parse_enum<ReferenceMode>(args.reference);
-  const ReferenceTrajectory reference = compute_reference(log, reference_options);
+  const Log input = args.window.apply(read_log(args.log_dir, read_options));
+  CalibrationOptions options;
+  if (!args.config_file.empty()) options = read_calibration_config(args.config_file).common;
+  options.reference.mode = *parse_enum<ReferenceMode>(args.reference);
+  LogPreparation prepared_by;
+  const std::optional<Log> prepared = prepare_log(input, options, prepared_by);
+  const Log& log = prepared ? *prepared : input;
+  if (const std::string done = prepared_by.describe(); !done.empty())
+    fmt::print("log          {}\n", done);
+  const ReferenceTrajectory reference = compute_reference(log, options.reference);
   const DriftValidation v =
       validate_drift(log.wheels, reference, log.vehicle.nominal_params(), calibrated, args.options);
   fmt::print("{} windows of {:.0f} s, dead-reckoned from the {} reference at their start:\n",
@@ -97,6 +104,7 @@ void add_validate_command(CLI::App& app) {
   command->add_option("--config", args->config_file,
                       "Calibration options YAML (as calibrate --config): its reference options "
                       "are used; the mode is --reference");
+  args->window.add_to(*command);
   command->add_option("--json", args->json_file, "Write the statistics and every window as JSON");
   command->callback([args] { run_validate(*args); });
 }

@@ -53,7 +53,7 @@ std::string ReferenceOptions::validate() const { return check_option_ranges(fiel
 
 OptionTable<CalibrationOptions> CalibrationOptions::fields() {
   using O = CalibrationOptions;
-  static const std::array<OptionField<O>, 9> kFields{{
+  static const std::array<OptionField<O>, 11> kFields{{
       {"measurement_diagonal", "[m^2, m^2, rad^2]", 1e-12, 1e12,
        "M (eq. 13a): covariance of the reference pose in the odometry filters",
        &O::measurement_diagonal},
@@ -70,6 +70,11 @@ OptionTable<CalibrationOptions> CalibrationOptions::fields() {
       {"max_wheel_gap_s", "s", 0.0, 1e4,
        "a longer wheel-stream interval breaks the odometry chain (0: 5 median sample periods)",
        &O::max_wheel_gap_s},
+      {"remove_wheel_rate_bias", "", 0, 0,
+       "estimate the zero-rate bias of angular-rate wheel sensors at standstill and remove it",
+       &O::remove_wheel_rate_bias},
+      {"start_at_first_motion", "", 0, 0, "use the log from its first motion on",
+       &O::start_at_first_motion},
       {"min_distance_m", "m", 0.0, 1e9, "refuse logs with less wheel odometry than this",
        &O::min_distance_m},
       {"min_reference_samples", "1", 2.0, 1e9, "refuse logs with fewer reference samples",
@@ -84,6 +89,7 @@ OptionTable<CalibrationOptions> CalibrationOptions::fields() {
 std::string CalibrationOptions::validate() const {
   if (std::string problem = reference.validate(); !problem.empty()) return "reference." + problem;
   if (std::string problem = coverage.validate(); !problem.empty()) return "coverage." + problem;
+  if (std::string problem = standstill.validate(); !problem.empty()) return "standstill." + problem;
   return check_option_ranges(fields(), *this);
 }
 

@@ -47,15 +47,8 @@ std::string report_heading(const CalibrationSummary& s) {
 
 std::string report_ending(const CalibrationSummary& s) {
   std::string text;
-  if (!s.wheel_gaps.empty()) {
-    const auto longest = std::max_element(
-        s.wheel_gaps.begin(), s.wheel_gaps.end(),
-        [](const WheelGap& a, const WheelGap& b) { return a.duration_s < b.duration_s; });
-    text += fmt::format(
-        "{:<13}{} in the wheel stream (longest {:.2f} s at {:.1f} s): the odometry chain restarts "
-        "there\n",
-        "gaps", s.wheel_gaps.size(), longest->duration_s, longest->start_s);
-  }
+  if (const std::string prepared = s.preparation.describe(); !prepared.empty())
+    text += fmt::format("{:<13}{}\n", "log", prepared);
   text += "dead reckoning of the whole log against the reference:\n";
   text += errors_line("  before", s.before);
   text += errors_line("  after", s.after);

@@ -12,18 +12,6 @@
 namespace odocal {
 namespace {
 
-// The log with the odometry chain broken at wheel gaps; nothing when there is none.
-std::optional<Log> prepared_log(const Log& log, const CalibrationOptions& options,
-                                CalibrationSummary& summary) {
-  const double max_gap_s =
-      options.max_wheel_gap_s > 0.0 ? options.max_wheel_gap_s : default_max_wheel_gap_s(log.wheels);
-  summary.wheel_gaps = find_wheel_gaps(log.wheels, max_gap_s);
-  if (summary.wheel_gaps.empty()) return std::nullopt;
-  Log prepared = log;
-  break_chain_at_gaps(prepared.wheels, summary.wheel_gaps);
-  return prepared;
-}
-
 ReferenceTrajectory checked_reference(const Log& log, const CalibrationOptions& options) {
   require_valid("calibration", options.validate());
   ReferenceTrajectory reference = compute_reference(log, options.reference);
@@ -109,7 +97,7 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
                                CalibrationMethod method, CalibrationSummary& summary)
     : log_(log),
       options_(options),
-      prepared_(prepared_log(log, options, summary)),
+      prepared_(prepare_log(log, options, summary.preparation)),
       reference_(checked_reference(this->log(), options)),
       evaluator_(this->log().wheels, reference_, options) {
   summary.method = method;

@@ -18,6 +18,24 @@ PoseStream dead_reckon(const WheelStream& wheels, const OdometryParams& params,
   return trajectory;
 }
 
+PoseStream dead_reckon(const WheelStream& wheels, const OdometryParams& params, const Pose2& start,
+                       const std::function<Pose2(double, const Pose2&)>& restart) {
+  PoseStream trajectory;
+  trajectory.t_s = wheels.t_s;
+  trajectory.pose.resize(wheels.size());
+  if (wheels.size() == 0) return trajectory;
+  trajectory.pose[0] = start;
+  std::size_t begin = 1;
+  for (std::size_t k = 1; k <= wheels.size(); ++k) {
+    if (k < wheels.size() && !wheels.breaks_at(k)) continue;
+    dead_reckon_into(wheels, 0, params, trajectory.pose, begin, k);
+    if (k == wheels.size()) break;
+    trajectory.pose[k] = restart(wheels.t_s[k], trajectory.pose[k - 1]);
+    begin = k + 1;
+  }
+  return trajectory;
+}
+
 ODOCAL_HOT_LOOP void dead_reckon_into(const WheelStream& wheels, std::size_t first_sample,
                                       const OdometryParams& params, std::vector<Pose2>& path,
                                       std::size_t begin, std::size_t end) {

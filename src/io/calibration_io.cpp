@@ -22,10 +22,19 @@ json errors_json(const DeadReckoningSummary& s) {
           {"max_heading_deg", deg_from_rad(s.max_heading_rad)}};
 }
 
-json gaps_json(const std::vector<WheelGap>& gaps) {
-  json out = json::array();
-  for (const WheelGap& gap : gaps)
-    out.push_back({{"start_s", gap.start_s}, {"duration_s", gap.duration_s}});
+json preparation_json(const LogPreparation& p) {
+  json standstills = json::array();
+  for (const Standstill& still : p.standstills)
+    standstills.push_back({{"start_s", still.start_s}, {"end_s", still.end_s}});
+  json gaps = json::array();
+  for (const WheelGap& gap : p.wheel_gaps)
+    gaps.push_back({{"start_s", gap.start_s}, {"duration_s", gap.duration_s}});
+  json out = {{"standstills", standstills}, {"wheel_gaps", gaps}};
+  if (p.wheel_rate_bias) {
+    out["wheel_rate_bias_deg_per_s"] = {{"rl", 360.0 * p.wheel_rate_bias->rl_rev_per_s},
+                                        {"rr", 360.0 * p.wheel_rate_bias->rr_rev_per_s}};
+  }
+  if (p.started_at_s) out["used_from_s"] = *p.started_at_s;
   return out;
 }
 
@@ -56,7 +65,7 @@ json core_json(const CalibrationSummary& s, const CalibrationConfig& config) {
           {"dead_reckoning_before", errors_json(s.before)},
           {"dead_reckoning_after", errors_json(s.after)},
           {"distance_m", s.distance_m},
-          {"wheel_gaps", gaps_json(s.wheel_gaps)},
+          {"preparation", preparation_json(s.preparation)},
           {"coverage",
            {{"distance_m", s.coverage.distance_m},
             {"moving_s", s.coverage.moving_s},

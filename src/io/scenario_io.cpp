@@ -140,6 +140,8 @@ void parse_sensors(YamlMap sensors, sim::Scenario& s) {
     if (s.wheels.counter_bits == 1)
       throw InputError(wheels->location("counter_bits"), "expected 0 (no wrap) or 2..62");
     wheels->read("start_phase", s.wheels.start_phase, -1.0, 0.999999);
+    wheels->read("rate_bias_rl_radps", s.wheels.rate_bias_rl_radps, -10.0, 10.0);
+    wheels->read("rate_bias_rr_radps", s.wheels.rate_bias_rr_radps, -10.0, 10.0);
     wheels->reject_unknown_keys();
   }
   sensors.reject_unknown_keys();
@@ -365,6 +367,8 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("ticks_per_rev", s.wheels.ticks_per_rev);
   key("counter_bits", s.wheels.counter_bits);
   key("start_phase", s.wheels.start_phase);
+  key("rate_bias_rl_radps", s.wheels.rate_bias_rl_radps);
+  key("rate_bias_rr_radps", s.wheels.rate_bias_rr_radps);
   out << YAML::EndMap << YAML::EndMap;
   out << YAML::Key << "seeds" << YAML::Value << YAML::BeginMap;
   key("trajectory", s.seeds.trajectory);

@@ -100,12 +100,12 @@ void simulate_wheels(const Scenario& scenario, const MotionTruth& truth, std::mt
         rr = sample.wheel_angle_rr_rad;
         break;
       case WheelUnit::kRadiansPerSecond:
-        rl = sample.wheel_rate_rl_radps;
-        rr = sample.wheel_rate_rr_radps;
+        rl = sample.wheel_rate_rl_radps + config.rate_bias_rl_radps;
+        rr = sample.wheel_rate_rr_radps + config.rate_bias_rr_radps;
         break;
       case WheelUnit::kMetresPerSecond:  // the vehicle converts with its nominal radius
-        rl = sample.wheel_rate_rl_radps * nominal_radius_m;
-        rr = sample.wheel_rate_rr_radps * nominal_radius_m;
+        rl = (sample.wheel_rate_rl_radps + config.rate_bias_rl_radps) * nominal_radius_m;
+        rr = (sample.wheel_rate_rr_radps + config.rate_bias_rr_radps) * nominal_radius_m;
         break;
     }
     out.wheel_t_s.push_back(t);

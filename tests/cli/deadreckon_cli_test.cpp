@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "../support/run_cli.hpp"
@@ -92,6 +93,40 @@ TEST(DeadreckonCli, UsageErrorsExitWithStatusTwo) {
   EXPECT_EQ(run_cli("deadreckon").status, 2);
   EXPECT_EQ(run_cli("deadreckon some-log --start sideways").status, 2);
   EXPECT_EQ(run_cli("--help").status, 0);
+}
+
+}  // namespace
+}  // namespace odocal
+
+namespace odocal {
+namespace {
+
+// A log that starts with the car standing for a minute, without heading.csv: deadreckon starts
+// at the first motion (it once refused: "no start heading ... the vehicle barely moves"), and
+// --from / --to pick a window.
+TEST(DeadreckonCli, StartsAtTheFirstMotionAndTakesAWindow) {
+  const testing::TempLogDir dir;
+  dir.write("standing.yaml",
+            "driver: {start_dwell_s: 60}\nroute:\n  segments:\n    - straight: 300\n"
+            "    - arc: {radius_m: 30, turn_deg: 90}\n    - straight: 300\n");
+  const std::string log = dir.file("log");
+  ASSERT_EQ(
+      testing::run_cli("simulate --ideal --scenario " + dir.file("standing.yaml") + " --out " + log)
+          .status,
+      0);
+  std::filesystem::remove(log + "/heading.csv");
+  std::filesystem::remove(log + "/truth.csv");
+  const auto run = testing::run_cli("deadreckon " + log + " --start gnss");
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("(first motion)"), std::string::npos) << run.out;
+  const auto window = testing::run_cli("deadreckon " + log + " --start gnss --from 65 --to 110");
+  ASSERT_EQ(window.status, 0) << window.err;
+  EXPECT_NE(window.out.find(", 45.0 s,"), std::string::npos) << window.out;
+  const auto empty = testing::run_cli("deadreckon " + log + " --from 1e6");
+  EXPECT_EQ(empty.status, 3) << empty.err;
+  EXPECT_NE(empty.err.find("the window 1000000 s to inf s holds 0 wheel samples"),
+            std::string::npos)
+      << empty.err;
 }
 
 }  // namespace

@@ -83,8 +83,8 @@ Log* WheelGapCalibration::clean_ = nullptr;
 void expect_within_noise(const CalibrationSummary& gap, const CalibrationSummary& clean) {
   SCOPED_TRACE(gap.brief_report());
   EXPECT_TRUE(gap.usable()) << gap.message;
-  EXPECT_EQ(gap.wheel_gaps.size(), 1u);
-  EXPECT_NEAR(gap.wheel_gaps.at(0).duration_s, 1.52, 1e-6);
+  EXPECT_EQ(gap.preparation.wheel_gaps.size(), 1u);
+  EXPECT_NEAR(gap.preparation.wheel_gaps.at(0).duration_s, 1.52, 1e-6);
   EXPECT_LT(std::abs(gap.estimate.circumference_rl_m - clean.estimate.circumference_rl_m),
             clean.sigma_rl_m());
   EXPECT_LT(std::abs(gap.estimate.circumference_rr_m - clean.estimate.circumference_rr_m),
@@ -97,7 +97,7 @@ TEST_P(WheelGapCalibration, AGapMidTurnMovesTheEstimateByLessThanTheNoise) {
   const IterativeSummary clean_iterative = calibrate_iterative(*clean_);
   const IterativeSummary gap_iterative = calibrate_iterative(gap);
   expect_within_noise(gap_iterative, clean_iterative);
-  EXPECT_NE(gap_iterative.full_report().find("gaps         1 in the wheel stream (longest 1.52 s"),
+  EXPECT_NE(gap_iterative.full_report().find("1 gap(s) in the wheel stream (longest 1.52 s"),
             std::string::npos)
       << gap_iterative.full_report();
   expect_within_noise(calibrate_batch(gap), calibrate_batch(*clean_));

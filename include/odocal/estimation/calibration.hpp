@@ -36,6 +36,8 @@ void for_each_config_section(Config& config, Visit&& visit) {
         config.common.reference);
   visit("coverage", "what counts as moving and turning (every method)",
         MotionCoverageOptions::fields(), config.common.coverage);
+  visit("standstill", "what counts as standing still (every method)", StandstillOptions::fields(),
+        config.common.standstill);
   visit("", "iterative and fixed-p", IterativeOptions::fields(), config.iterative);
   visit("augmented", "the augmented Kalman filter", AugmentedOptions::fields(), config.augmented);
   visit("batch", "the batch maximum-likelihood estimator", BatchOptions::fields(), config.batch);

@@ -10,6 +10,7 @@
 
 #include "odocal/estimation/motion_coverage.hpp"
 #include "odocal/estimation/reference_filter.hpp"
+#include "odocal/estimation/standstill.hpp"
 #include "odocal/options/option_fields.hpp"
 
 namespace odocal {
@@ -50,6 +51,11 @@ struct CalibrationOptions {
   // summary says so.
   double min_turning_for_difference_rad = 0.785;  // 45 deg
   MotionCoverageOptions coverage;
+  // Standing still (standstill.hpp): the zero-rate bias of angular-rate wheel sensors (radps, mps)
+  // is estimated there and removed, and the log is used from its first motion on.
+  StandstillOptions standstill;
+  bool remove_wheel_rate_bias = true;
+  bool start_at_first_motion = true;
 
   static OptionTable<CalibrationOptions> fields();  // without `reference` (its own table)
   std::string validate() const;                     // empty when valid; includes `reference`

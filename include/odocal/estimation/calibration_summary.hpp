@@ -7,11 +7,12 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "odocal/estimation/log_preparation.hpp"
 #include "odocal/estimation/motion_coverage.hpp"
-#include "odocal/estimation/wheel_gaps.hpp"
 #include "odocal/model/odometry_model.hpp"
 #include "odocal/options/enum_names.hpp"
 
@@ -65,12 +66,12 @@ struct CalibrationSummary {
   double condition_number{};                             // of the circumference problem
   // false: c_RL / c_RR kept at the nominal ratio, only their common scale estimated.
   bool difference_identifiable = true;
-  std::string identifiability;       // in words, for the user
-  DeadReckoningSummary before;       // nominal parameters
-  DeadReckoningSummary after;        // the estimate
-  double distance_m{};               // wheel odometry distance while moving (= coverage.distance_m)
-  MotionCoverage coverage;           // over the reference's span
-  std::vector<WheelGap> wheel_gaps;  // where the odometry chain broke
+  std::string identifiability;  // in words, for the user
+  DeadReckoningSummary before;  // nominal parameters
+  DeadReckoningSummary after;   // the estimate
+  double distance_m{};          // wheel odometry distance while moving (= coverage.distance_m)
+  MotionCoverage coverage;      // over the reference's span
+  LogPreparation preparation;   // standstill, wheel rate bias, first motion, wheel gaps
   std::size_t reference_samples{};
   std::string reference_heading_source;
 

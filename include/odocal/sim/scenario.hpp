@@ -75,6 +75,9 @@ struct WheelSimConfig {
   // Where each counter starts between two ticks, in ticks [0, 1); negative: drawn per wheel from
   // the noise seed, as a real encoder is found at power-up.
   double start_phase = -1.0;
+  // Zero-rate bias of angular-rate wheel sensors (outputs radps and mps), rad/s of wheel rate.
+  double rate_bias_rl_radps = 0.0;
+  double rate_bias_rr_radps = 0.0;
 };
 
 struct Seeds {

@@ -1,0 +1,33 @@
+#pragma once
+// What every command does to a log before the odometry is used: the zero-rate bias of
+// angular-rate wheel sensors, estimated at standstill, is removed; the log is used from its first
+// motion on; and the odometry chain breaks at wheel gaps. The record of it goes into reports.
+
+#include <optional>
+#include <vector>
+
+#include "odocal/data/log.hpp"
+#include "odocal/estimation/calibration_options.hpp"
+#include "odocal/estimation/standstill.hpp"
+#include "odocal/estimation/wheel_gaps.hpp"
+
+namespace odocal {
+
+struct LogPreparation {
+  std::vector<Standstill> standstills;
+  std::optional<WheelRateBias> wheel_rate_bias;  // removed (angular-rate wheel sensors only)
+  std::optional<double> started_at_s;            // used from here on (first motion)
+  std::vector<WheelGap> wheel_gaps;              // where the odometry chain breaks
+
+  double standing_s() const;
+  // One line for reports ("" when nothing was done): standstill, bias, start, gaps.
+  std::string describe() const;
+};
+
+// The prepared log, or nothing when preparing changes nothing (then use `log` itself); `done`
+// records what was found and done. Uses options' standstill, remove_wheel_rate_bias,
+// start_at_first_motion, coverage.moving_speed_mps and max_wheel_gap_s.
+std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options,
+                               LogPreparation& done);
+
+}  // namespace odocal

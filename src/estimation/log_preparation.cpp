@@ -1,0 +1,75 @@
+#include "odocal/estimation/log_preparation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "odocal/estimation/log_window.hpp"
+
+namespace odocal {
+
+double LogPreparation::standing_s() const {
+  double total = 0.0;
+  for (const Standstill& still : standstills) total += still.end_s - still.start_s;
+  return total;
+}
+
+std::string LogPreparation::describe() const {
+  std::string text;
+  if (!standstills.empty()) {
+    text += fmt::format("standing {:.1f} s in {} period(s)", standing_s(), standstills.size());
+  }
+  if (wheel_rate_bias) {
+    constexpr double kDegPerRev = 360.0;
+    text += fmt::format("; wheel rate bias removed: RL {:+.3f} deg/s, RR {:+.3f} deg/s",
+                        kDegPerRev * wheel_rate_bias->rl_rev_per_s,
+                        kDegPerRev * wheel_rate_bias->rr_rev_per_s);
+  }
+  if (started_at_s) text += fmt::format("; used from {:.1f} s (first motion)", *started_at_s);
+  if (!wheel_gaps.empty()) {
+    const auto longest = std::max_element(
+        wheel_gaps.begin(), wheel_gaps.end(),
+        [](const WheelGap& a, const WheelGap& b) { return a.duration_s < b.duration_s; });
+    text += fmt::format(
+        "; {} gap(s) in the wheel stream (longest {:.2f} s at {:.1f} s): the odometry chain "
+        "restarts there",
+        wheel_gaps.size(), longest->duration_s, longest->start_s);
+  }
+  if (text.starts_with("; ")) text.erase(0, 2);
+  return text;
+}
+
+std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options,
+                               LogPreparation& done) {
+  std::optional<Log> prepared;
+  const auto edit = [&]() -> Log& {
+    if (!prepared) prepared = log;
+    return *prepared;
+  };
+  const OdometryParams nominal = log.vehicle.nominal_params();
+  done.standstills = find_standstills(log, nominal, options.standstill);
+  const bool rate_sensor = log.wheels.unit_rear == WheelUnit::kRadiansPerSecond ||
+                           log.wheels.unit_rear == WheelUnit::kMetresPerSecond;
+  if (options.remove_wheel_rate_bias && rate_sensor && !done.standstills.empty()) {
+    done.wheel_rate_bias = wheel_rate_bias(log.wheels, done.standstills);
+    remove_wheel_rate_bias(edit().wheels, *done.wheel_rate_bias);
+  }
+  if (options.start_at_first_motion) {
+    const Log& current = prepared ? *prepared : log;
+    const std::optional<double> moving =
+        first_motion_s(current.wheels, nominal, options.coverage.moving_speed_mps);
+    constexpr double kLeadS = 1.0;  // a little standing before, for the filters to settle
+    if (moving && *moving - kLeadS > current.wheels.t_s.front()) {
+      done.started_at_s = *moving - kLeadS;
+      prepared = crop_log(current, *done.started_at_s, current.wheels.t_s.back());
+    }
+  }
+  const WheelStream& wheels = prepared ? prepared->wheels : log.wheels;
+  const double max_gap_s =
+      options.max_wheel_gap_s > 0.0 ? options.max_wheel_gap_s : default_max_wheel_gap_s(wheels);
+  done.wheel_gaps = find_wheel_gaps(wheels, max_gap_s);
+  if (!done.wheel_gaps.empty()) break_chain_at_gaps(edit().wheels, done.wheel_gaps);
+  return prepared;
+}
+
+}  // namespace odocal
