@@ -6,6 +6,7 @@
 //   build/bench/odocal_calibration_accuracy [--seeds 10] [--q 2] [--window 10]
 //       [--start aligned-window] [--reference filter] [--wheels ticks] [--track FILE|builtin]
 //       [--methods iterative,fixed-p,augmented,batch] [--config OPTIONS.yaml] [--laps 3]
+//       [--grade 0.06 [--no-altitude]]
 // Also prints the Cramér–Rao sigma of c_RL/c_RR (GNSS and heading noise, encoder quantisation;
 // and with counts taken as exact, for comparison) and each method's RMS
 // error as a multiple of it.
@@ -58,6 +59,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> method_names{"iterative", "fixed-p", "augmented"};
   std::string config;
   int laps = 3;
+  double grade = 0.0;
+  bool no_altitude = false;
   app.add_option("--seeds", seeds);
   app.add_option("--q", q);
   app.add_option("--window", window);
@@ -73,6 +76,9 @@ int main(int argc, char** argv) {
   app.add_option("--config", config, "Calibration options YAML (as odocal calibrate --config)")
       ->check(CLI::ExistingFile);
   app.add_option("--laps", laps)->check(CLI::PositiveNumber);
+  app.add_option("--grade", grade, "Hills along the road: maximum grade (e.g. 0.06)")
+      ->check(CLI::Range(0.0, 0.3));
+  app.add_flag("--no-altitude", no_altitude, "Calibrate without the GNSS altitude (planar)");
   CLI11_PARSE(app, argc, argv);
 
   sim::Scenario scenario = load_scenario("circuit");
@@ -83,6 +89,7 @@ int main(int argc, char** argv) {
     where = "Hockenheim (" + track + ")";
   }
   scenario.route.laps = laps;
+  scenario.route.terrain.max_grade = grade;
   scenario.vehicle.wear_rl_mm = wear_rl;
   scenario.vehicle.wear_rr_mm = wear_rr;
   scenario.wheels.output = wheels == "ticks" ? WheelUnit::kTicks : WheelUnit::kRadians;
@@ -98,11 +105,13 @@ int main(int argc, char** argv) {
   options.iterative.ls_window_samples = window;
   options.common.dr_start = *parse_enum<DeadReckoningStart>(start);
   options.common.reference.mode = *parse_enum<ReferenceMode>(reference);
+  if (no_altitude) options.common.use_gnss_altitude = false;
 
   fmt::print(
       "{}, {} laps, --ideal, wear {}/{} mm, wheels {}, {} seeds; q {}, LS window {}, start {}, "
-      "reference {}\n",
-      where, scenario.route.laps, wear_rl, wear_rr, wheels, seeds, q, window, start, reference);
+      "reference {}, grade {}{}\n",
+      where, scenario.route.laps, wear_rl, wear_rr, wheels, seeds, q, window, start, reference,
+      grade, no_altitude ? " (altitude not used)" : "");
   std::vector<CalibrationMethod> methods;
   for (const std::string& name : method_names)
     methods.push_back(*parse_enum<CalibrationMethod>(name));

@@ -53,7 +53,7 @@ std::string ReferenceOptions::validate() const { return check_option_ranges(fiel
 
 OptionTable<CalibrationOptions> CalibrationOptions::fields() {
   using O = CalibrationOptions;
-  static const std::array<OptionField<O>, 11> kFields{{
+  static const std::array<OptionField<O>, 13> kFields{{
       {"measurement_diagonal", "[m^2, m^2, rad^2]", 1e-12, 1e12,
        "M (eq. 13a): covariance of the reference pose in the odometry filters",
        &O::measurement_diagonal},
@@ -75,6 +75,11 @@ OptionTable<CalibrationOptions> CalibrationOptions::fields() {
        &O::remove_wheel_rate_bias},
       {"start_at_first_motion", "", 0, 0, "use the log from its first motion on",
        &O::start_at_first_motion},
+      {"use_gnss_altitude", "", 0, 0,
+       "with an alt column in gnss.csv, project the wheels to the horizontal (hills)",
+       &O::use_gnss_altitude},
+      {"grade_window_m", "m", 10.0, 1e5, "the road grade is fitted over this much driving",
+       &O::grade_window_m},
       {"min_distance_m", "m", 0.0, 1e9, "refuse logs with less wheel odometry than this",
        &O::min_distance_m},
       {"min_reference_samples", "1", 2.0, 1e9, "refuse logs with fewer reference samples",

@@ -124,6 +124,11 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
                                std::isfinite(e.circumference_rr_m) &&
                                std::isfinite(e.track_width_m);
   summary.after = finite_estimate ? evaluator_.evaluate(e) : summary.before;
+  // The hills' projection is uncertain by the noise of the fitted grades: a common scale.
+  if (summary.preparation.grade_scale_variance > 0.0 && finite_estimate) {
+    const Eigen::Vector2d c(e.circumference_rl_m, e.circumference_rr_m);
+    summary.covariance += summary.preparation.grade_scale_variance * c * c.transpose();
+  }
   if (summary.termination == Termination::kConverged) check_plausibility(log(), options_, summary);
 }
 

@@ -26,6 +26,12 @@ std::string LogPreparation::describe() const {
                         kDegPerRev * wheel_rate_bias->rr_rev_per_s);
   }
   if (started_at_s) text += fmt::format("; used from {:.1f} s (first motion)", *started_at_s);
+  if (typical_max_grade) {
+    text += fmt::format(
+        "; grade from GNSS altitude within {:.1f} % on 95 % of the road, the 3-D path {:.3f} % "
+        "longer than the 2-D one (projected)",
+        100.0 * *typical_max_grade, 100.0 * length_excess);
+  }
   if (!wheel_gaps.empty()) {
     const auto longest = std::max_element(
         wheel_gaps.begin(), wheel_gaps.end(),
@@ -62,6 +68,15 @@ std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options
     if (moving && *moving - kLeadS > current.wheels.t_s.front()) {
       done.started_at_s = *moving - kLeadS;
       prepared = crop_log(current, *done.started_at_s, current.wheels.t_s.back());
+    }
+  }
+  if (options.use_gnss_altitude) {
+    const Log& current = prepared ? *prepared : log;
+    if (const auto profile = grade_from_gnss_altitude(current, nominal, options.grade_window_m)) {
+      done.typical_max_grade = profile->typical_max_grade();
+      done.length_excess = profile->length_excess();
+      done.grade_scale_variance = profile->scale_variance();
+      project_to_horizontal(edit(), *profile);
     }
   }
   const WheelStream& wheels = prepared ? prepared->wheels : log.wheels;

@@ -32,8 +32,7 @@ Log crop_log(const Log& log, double from_s, double to_s) {
   if (wheels.second - wheels.first < 2) {
     throw InsufficientDataError(fmt::format(
         "the window {} s to {} s holds {} wheel samples (the log's wheels run from {} s to {} s)",
-        from_s, to_s, wheels.second - wheels.first, log.wheels.t_s.front(),
-        log.wheels.t_s.back()));
+        from_s, to_s, wheels.second - wheels.first, log.wheels.t_s.front(), log.wheels.t_s.back()));
   }
   for (auto* v : {&out.wheels.t_s, &out.wheels.rev_rl, &out.wheels.rev_rr, &out.wheels.rev_fl,
                   &out.wheels.rev_fr})

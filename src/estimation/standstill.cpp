@@ -5,9 +5,7 @@
 #include <cmath>
 
 namespace odocal {
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 OptionTable<StandstillOptions> StandstillOptions::fields() {
   using O = StandstillOptions;
@@ -38,8 +36,8 @@ std::vector<Standstill> find_standstills(const Log& log, const OdometryParams& n
   // A stretch the wheels call standing, confirmed by the mean GNSS speed and the mean gyro rate
   // over it (single samples are too noisy).
   const auto confirmed = [&](double start, double end) {
-    const auto mean_over = [&](const std::vector<double>& t_s, const std::vector<double>& values)
-        -> std::optional<double> {
+    const auto mean_over = [&](const std::vector<double>& t_s,
+                               const std::vector<double>& values) -> std::optional<double> {
       const auto first = std::lower_bound(t_s.begin(), t_s.end(), start);
       const auto last = std::upper_bound(first, t_s.end(), end);
       if (first == last) return std::nullopt;

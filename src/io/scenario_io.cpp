@@ -71,6 +71,11 @@ void parse_route(YamlMap route, sim::Route& out) {
     out.start.z() = rad_from_deg(heading_deg);
     start->reject_unknown_keys();
   }
+  if (auto terrain = route.map("terrain")) {
+    terrain->read("max_grade", out.terrain.max_grade, 0.0, 0.3);
+    terrain->read("wavelength_m", out.terrain.wavelength_m, 10.0, 1e5);
+    terrain->reject_unknown_keys();
+  }
   const auto segments = route.sequence("segments");
   if (!segments.empty()) out.segments.clear();
   for (std::size_t i = 0; i < segments.size(); ++i)
@@ -96,6 +101,7 @@ void parse_sensors(YamlMap sensors, sim::Scenario& s) {
     gnss->read("outlier_min_m", s.gnss.outlier_min_m, 0.0, 1e6);
     gnss->read("outlier_max_m", s.gnss.outlier_max_m, s.gnss.outlier_min_m, 1e6);
     gnss->read("latency_s", s.gnss.latency_s, 0.0, 10.0);
+    gnss->read("altitude_sigma_m", s.gnss.altitude_sigma_m, -1.0, 1e3);
     const auto outages = gnss->sequence("outages");
     if (!outages.empty()) s.gnss.outages.clear();
     for (std::size_t i = 0; i < outages.size(); ++i) {
@@ -263,6 +269,10 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   out << YAML::Key << "route" << YAML::Value << YAML::BeginMap;
   key("repeat", s.route.repeat);
   key("laps", s.route.laps);
+  out << YAML::Key << "terrain" << YAML::Value << YAML::BeginMap;
+  key("max_grade", s.route.terrain.max_grade);
+  key("wavelength_m", s.route.terrain.wavelength_m);
+  out << YAML::EndMap;
   out << YAML::Key << "start" << YAML::Value << YAML::Flow << YAML::BeginMap;
   key("x_m", s.route.start.x());
   key("y_m", s.route.start.y());
@@ -336,6 +346,7 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("outlier_min_m", s.gnss.outlier_min_m);
   key("outlier_max_m", s.gnss.outlier_max_m);
   key("latency_s", s.gnss.latency_s);
+  key("altitude_sigma_m", s.gnss.altitude_sigma_m);
   out << YAML::Key << "outages" << YAML::Value << YAML::BeginSeq;
   for (const sim::Outage& outage : s.gnss.outages) {
     out << YAML::Flow << YAML::BeginMap;

@@ -35,15 +35,18 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
   write_text_file(directory / "gnss.csv", [&](TextBuffer& out) {
     // sigma_m must be positive in the log format: error-free fixes leave the column out.
     const bool has_sigma = drive.gnss_sigma_m > 0.0;
-    out.print("{}{}\n", drive.gnss_latlon ? "t,lat,lon" : "t,x,y", has_sigma ? ",sigma_m" : "");
+    const bool has_alt = !drive.gnss_alt.empty();
+    out.print("{}{}{}\n", drive.gnss_latlon ? "t,lat,lon" : "t,x,y", has_alt ? ",alt" : "",
+              has_sigma ? ",sigma_m" : "");
     const std::string sigma = has_sigma ? fmt::format(",{:.3f}", drive.gnss_sigma_m) : "";
     for (std::size_t k = 0; k < drive.gnss_t_s.size(); ++k) {
+      const std::string alt = has_alt ? fmt::format(",{:.3f}", drive.gnss_alt[k]) : "";
       if (drive.gnss_latlon) {
-        out.print("{:.4f},{:.9f},{:.9f}{}\n", drive.gnss_t_s[k], drive.gnss_a[k], drive.gnss_b[k],
-                  sigma);
+        out.print("{:.4f},{:.9f},{:.9f}{}{}\n", drive.gnss_t_s[k], drive.gnss_a[k], drive.gnss_b[k],
+                  alt, sigma);
       } else {
-        out.print("{:.4f},{:.4f},{:.4f}{}\n", drive.gnss_t_s[k], drive.gnss_a[k], drive.gnss_b[k],
-                  sigma);
+        out.print("{:.4f},{:.4f},{:.4f}{}{}\n", drive.gnss_t_s[k], drive.gnss_a[k], drive.gnss_b[k],
+                  alt, sigma);
       }
     }
   });
@@ -92,9 +95,14 @@ Log simulated_log(const sim::SimulatedDrive& drive, bool with_truth) {
   log.wheels = wheel_stream_from_table(table("wheels.csv", {"t", "rl_" + unit, "rr_" + unit},
                                              {drive.wheel_t_s, drive.wheel_rl, drive.wheel_rr}),
                                        log.vehicle);
-  log.gnss = gnss_stream_from_table(
-      table("gnss.csv", {"t", drive.gnss_latlon ? "lat" : "x", drive.gnss_latlon ? "lon" : "y"},
-            {drive.gnss_t_s, drive.gnss_a, drive.gnss_b}));
+  std::vector<std::string> gnss_header{"t", drive.gnss_latlon ? "lat" : "x",
+                                       drive.gnss_latlon ? "lon" : "y"};
+  std::vector<std::vector<double>> gnss_columns{drive.gnss_t_s, drive.gnss_a, drive.gnss_b};
+  if (!drive.gnss_alt.empty()) {
+    gnss_header.emplace_back("alt");
+    gnss_columns.push_back(drive.gnss_alt);
+  }
+  log.gnss = gnss_stream_from_table(table("gnss.csv", gnss_header, gnss_columns));
   if (drive.gnss_sigma_m > 0.0) log.gnss.sigma_m.assign(log.gnss.size(), drive.gnss_sigma_m);
   log.imu = drive.imu;
   log.heading = drive.heading;

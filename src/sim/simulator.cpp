@@ -6,6 +6,7 @@
 #include <numbers>
 #include <random>
 
+#include "graded_motion.hpp"
 #include "odocal/error.hpp"
 #include "odocal/model/angle.hpp"
 #include "odocal/model/path_length.hpp"
@@ -117,8 +118,10 @@ void simulate_wheels(const Scenario& scenario, const MotionTruth& truth, std::mt
   out.distance_m = path_length_m(out.truth.pose);
 }
 
-void simulate_gnss(const GnssSimConfig& config, const MotionTruth& truth, std::mt19937_64& rng,
-                   SimulatedDrive& out) {
+void simulate_gnss(const GnssSimConfig& config, bool altitude, const MotionTruth& truth,
+                   std::mt19937_64& rng, SimulatedDrive& out) {
+  const double altitude_sigma_m =
+      config.altitude_sigma_m >= 0.0 ? config.altitude_sigma_m : 1.5 * config.sigma_m;
   std::normal_distribution<double> unit(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   const GeographicLib::LocalCartesian enu(config.origin.latitude_deg, config.origin.longitude_deg,
@@ -139,6 +142,8 @@ void simulate_gnss(const GnssSimConfig& config, const MotionTruth& truth, std::m
     const double outlier_size =
         config.outlier_min_m + (config.outlier_max_m - config.outlier_min_m) * uniform(rng);
     const double outlier_angle = kTwoPi * uniform(rng);
+    // Drawn only on hills: flat logs keep their noise sequence.
+    const double altitude_noise = altitude ? altitude_sigma_m * unit(rng) : 0.0;
     if (outlier)
       error += outlier_size * Eigen::Vector2d(std::cos(outlier_angle), std::sin(outlier_angle));
 
@@ -147,16 +152,20 @@ void simulate_gnss(const GnssSimConfig& config, const MotionTruth& truth, std::m
       in_outage = in_outage || (t >= outage.start_s && t < outage.start_s + outage.duration_s);
     }
     if (in_outage || t < config.latency_s) continue;
-    const Pose2 pose = truth.at(t - config.latency_s).pose;
+    const TruthSample sample = truth.at(t - config.latency_s);
+    const Pose2& pose = sample.pose;
     const double x = pose.x() + error.x();
     const double y = pose.y() + error.y();
+    const double up = altitude ? sample.altitude_m + altitude_noise : 0.0;
     out.gnss_t_s.push_back(t);
     if (config.output_latlon) {
       double lat = 0, lon = 0, alt = 0;
-      enu.Reverse(x, y, 0.0, lat, lon, alt);
+      enu.Reverse(x, y, up, lat, lon, alt);
       out.gnss_a.push_back(lat);
       out.gnss_b.push_back(lon);
+      if (altitude) out.gnss_alt.push_back(alt);
     } else {
+      if (altitude) out.gnss_alt.push_back(up);
       out.gnss_a.push_back(x);
       out.gnss_b.push_back(y);
     }
@@ -238,8 +247,12 @@ SimulatedDrive simulate(const Scenario& scenario) {
         scenario.vehicle.track_width_m,
         {out.true_params.circumference_rl_m / kTwoPi, out.true_params.circumference_rr_m / kTwoPi});
   }
+  if (scenario.route.terrain.max_grade > 0.0) {
+    const double lap_length_m = path.length_m() / scenario.route.laps;
+    truth = std::make_unique<GradedMotion>(std::move(truth), scenario.route.terrain, lap_length_m);
+  }
   simulate_wheels(scenario, *truth, wheel_rng, out);
-  simulate_gnss(scenario.gnss, *truth, gnss_rng, out);
+  simulate_gnss(scenario.gnss, scenario.route.terrain.max_grade > 0.0, *truth, gnss_rng, out);
   simulate_imu_and_heading(scenario, *truth, imu_rng, out);
   return out;
 }

@@ -56,6 +56,10 @@ struct CalibrationOptions {
   StandstillOptions standstill;
   bool remove_wheel_rate_bias = true;
   bool start_at_first_motion = true;
+  // Hills (road_grade.hpp): with gnss.csv's alt column, the wheel increments are projected to
+  // the horizontal with the grade fitted over grade_window_m of driving.
+  bool use_gnss_altitude = true;
+  double grade_window_m = 100.0;
 
   static OptionTable<CalibrationOptions> fields();  // without `reference` (its own table)
   std::string validate() const;                     // empty when valid; includes `reference`

@@ -1,13 +1,15 @@
 #pragma once
 // What every command does to a log before the odometry is used: the zero-rate bias of
 // angular-rate wheel sensors, estimated at standstill, is removed; the log is used from its first
-// motion on; and the odometry chain breaks at wheel gaps. The record of it goes into reports.
+// motion on; on hills the wheels are projected to the horizontal; and the odometry chain breaks
+// at wheel gaps. The record of it goes into reports.
 
 #include <optional>
 #include <vector>
 
 #include "odocal/data/log.hpp"
 #include "odocal/estimation/calibration_options.hpp"
+#include "odocal/estimation/road_grade.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
 
@@ -18,6 +20,11 @@ struct LogPreparation {
   std::optional<WheelRateBias> wheel_rate_bias;  // removed (angular-rate wheel sensors only)
   std::optional<double> started_at_s;            // used from here on (first motion)
   std::vector<WheelGap> wheel_gaps;              // where the odometry chain breaks
+  // Hills: the grade 95 % of the road stays within, and how much longer the 3-D path was
+  // (projected to the horizontal).
+  std::optional<double> typical_max_grade;
+  double length_excess{};
+  double grade_scale_variance{};  // relative; the summary's covariance includes it
 
   double standing_s() const;
   // One line for reports ("" when nothing was done): standstill, bias, start, gaps.

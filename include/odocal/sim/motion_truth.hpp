@@ -14,6 +14,7 @@ struct TruthSample {
   double wheel_angle_rr_rad{};
   double wheel_rate_rl_radps{};
   double wheel_rate_rr_radps{};
+  double altitude_m{};  // of the road under the vehicle (0 on flat terrain)
 };
 
 class MotionTruth {

@@ -20,11 +20,20 @@ struct RouteSegment {
   double stop_dwell_s{};  // > 0: stop at the end of this segment for that long
 };
 
+// Hills along the road: altitude z(s) = A sin(2 pi s / lambda) over the distance s driven, with
+// the amplitude A chosen for the maximum grade and lambda rounded so that every lap closes; no
+// cross slope. 0: flat.
+struct Terrain {
+  double max_grade = 0.0;  // dz/ds, e.g. 0.06 for 6 %
+  double wavelength_m = 500.0;
+};
+
 struct Route {
   std::vector<RouteSegment> segments;
   int repeat = 1;  // the segment list is driven this many times per lap
   int laps = 1;
   Pose2 start = Pose2::Zero();
+  Terrain terrain;
 };
 
 struct VehicleSimConfig {
@@ -49,6 +58,9 @@ struct GnssSimConfig {
   double outlier_min_m = 20.0;
   double outlier_max_m = 50.0;
   double latency_s = 0.0;  // a fix stamped t reports the position at t - latency
+  // Altitude noise (white, m) of the alt column, written when the terrain is not flat; negative:
+  // 1.5 x sigma_m (GNSS altitude is worse than its horizontal position).
+  double altitude_sigma_m = -1.0;
   std::vector<Outage> outages;
   bool output_latlon = false;
   GeodeticOrigin origin{49.3278, 8.5656, 103.0};  // Hockenheimring

@@ -17,6 +17,9 @@ struct SimulatedDrive {
   WheelUnit wheel_unit{WheelUnit::kTicks};
   // gnss.csv: x/y in metres, or lat/lon in degrees when `gnss_latlon`
   std::vector<double> gnss_t_s, gnss_a, gnss_b;
+  // gnss.csv's alt column (m, with its noise): local up, or ellipsoidal height with lat/lon; empty
+  // on flat terrain.
+  std::vector<double> gnss_alt;
   bool gnss_latlon{};
   double gnss_sigma_m{};
   ImuStream imu;
