@@ -64,8 +64,10 @@ std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options
     const Log& current = prepared ? *prepared : log;
     const std::optional<double> moving =
         first_motion_s(current.wheels, nominal, options.coverage.moving_speed_mps);
-    constexpr double kLeadS = 1.0;  // a little standing before, for the filters to settle
-    if (moving && *moving - kLeadS > current.wheels.t_s.front()) {
+    // Only a real standing start is cut (a second or two is harmless), keeping a little of it
+    // for the filters to settle.
+    constexpr double kMinStandingS = 5.0, kLeadS = 1.0;
+    if (moving && *moving - current.wheels.t_s.front() > kMinStandingS) {
       done.started_at_s = *moving - kLeadS;
       prepared = crop_log(current, *done.started_at_s, current.wheels.t_s.back());
     }
