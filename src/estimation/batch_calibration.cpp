@@ -454,7 +454,13 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   const auto uncertainty = batch.uncertainty();
   const double inf = std::numeric_limits<double>::infinity();
   const auto sigma = [&](double variance) { return uncertainty ? std::sqrt(variance) : inf; };
-  const BatchProblem::Uncertainty u = uncertainty.value_or(BatchProblem::Uncertainty{});
+  BatchProblem::Uncertainty u = uncertainty.value_or(BatchProblem::Uncertainty{});
+  const double scale = summary.gnss_noise.covariance_scale;
+  u.params *= scale;
+  u.lever *= scale;
+  u.gyro_bias *= scale;
+  u.heading_bias *= scale;
+  u.latency *= scale;
   summary.parameters = {
       {"circumference_rl_m", p[0], sigma(u.params(0, 0)), true, true, ""},
       {"circumference_rr_m", p[1], sigma(u.params(1, 1)), true, true, ""},
@@ -547,7 +553,8 @@ ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOption
 // and again with what that solution's residuals show (a fit that trusts GNSS too much hides part
 // of its error in the trajectory), until the noise estimate settles. The report says by how much
 // that widened the circumferences' sigma.
-void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options, BatchSummary& summary,
+void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
+                      const CalibrationOptions& common, BatchSummary& summary,
                       ceres::Solver::Summary& solver) {
   GnssNoiseReport& report = summary.gnss_noise;
   report.configured_sigma_m = batch.gnss_sigma_rms_m();
@@ -564,7 +571,12 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options, BatchSum
   const double white_ratio = noise.white_sigma_m / configured;
   if (noise.gauss_markov_sigma_m == 0.0 && white_ratio > 0.8 && white_ratio < 1.25) return;
   const auto before = batch.uncertainty();
+  const auto first_params = batch.params();
   constexpr int kMaxRounds = 4;
+  // What the data can support: a few times the first fit's residuals. Beyond, the error model
+  // would explain the odometry's own misfit (a vehicle the two-wheel model does not describe)
+  // as GNSS error, let the trajectory float free of GNSS and feed on itself.
+  const double bound_m = 3.0 * noise.total_sigma_m;
   for (int round = 0; round < kMaxRounds; ++round) {
     batch.set_gnss_noise(noise.white_sigma_m / configured, noise.gauss_markov_sigma_m,
                          noise.gauss_markov_tau_s);
@@ -574,6 +586,7 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options, BatchSum
     const bool done = settled(next.white_sigma_m, noise.white_sigma_m) &&
                       settled(next.gauss_markov_sigma_m, noise.gauss_markov_sigma_m) &&
                       settled(next.gauss_markov_tau_s, noise.gauss_markov_tau_s);
+    if (next.total_sigma_m > bound_m) break;  // running away: keep the model solved with
     noise = next;
     if (done || !solver.IsSolutionUsable()) break;
   }
@@ -587,8 +600,8 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options, BatchSum
   const double min_tau_s = 0.1 * batch.duration_s();
   if (noise.gauss_markov_sigma_m > 0.0 && noise.gauss_markov_tau_s < min_tau_s) {
     report.model_gauss_markov_tau_s = min_tau_s;
-    report.model_gauss_markov_sigma_m =
-        noise.gauss_markov_sigma_m * std::sqrt(min_tau_s / noise.gauss_markov_tau_s);
+    report.model_gauss_markov_sigma_m = std::min(
+        noise.gauss_markov_sigma_m * std::sqrt(min_tau_s / noise.gauss_markov_tau_s), bound_m);
     batch.set_gnss_noise(noise.white_sigma_m / configured, report.model_gauss_markov_sigma_m,
                          report.model_gauss_markov_tau_s);
     solver = solve_relinearised(batch, options, summary);
@@ -597,6 +610,21 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options, BatchSum
   if (before && after) {
     report.sigma_inflation = std::sqrt(after->params.topLeftCorner<2, 2>().trace() /
                                        before->params.topLeftCorner<2, 2>().trace());
+  }
+  // The adaptation changes weights; it must not carry a plausible estimate out of the plausible
+  // band (GNSS weighted down so far that a misfit of the odometry model decides). Then the first
+  // estimate stands, with its covariance inflated as the adapted model says.
+  const auto implausible = [&](double c_rl, double c_rr) {
+    return std::max(std::abs(c_rl / summary.nominal.circumference_rl_m - 1.0),
+                    std::abs(c_rr / summary.nominal.circumference_rr_m - 1.0)) >
+           common.max_relative_change;
+  };
+  if (implausible(batch.params()[0], batch.params()[1]) &&
+      !implausible(first_params[0], first_params[1])) {
+    batch.set_gnss_noise(1.0, 0.0, 60.0);
+    solver = solve_relinearised(batch, options, summary);
+    report.reverted = true;
+    report.covariance_scale = report.sigma_inflation * report.sigma_inflation;
   }
 }
 
@@ -609,7 +637,7 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
   BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
   ceres::Solver::Summary solver = solve_relinearised(batch, options, summary);
-  adapt_gnss_noise(batch, options, summary, solver);
+  adapt_gnss_noise(batch, options, common, summary, solver);
   summarise(run.log(), options, batch, solver, summary);
   run.finish(summary);
   return summary;
@@ -636,6 +664,11 @@ std::string BatchSummary::full_report() const {
                           g.model_gauss_markov_sigma_m, g.model_gauss_markov_tau_s)
             : std::string(),
         g.sigma_inflation);
+    if (g.reverted) {
+      text += fmt::format(
+          "{:<13}that estimate left the plausible band: the first one stands, its sigma x{:.2f}\n",
+          "", g.sigma_inflation);
+    }
   } else if (g.residual_sigma_m > 0.0) {
     text += fmt::format("{:<13}residuals {:.3g} m RMS, as configured ({:.3g} m)\n", "gnss noise",
                         g.residual_sigma_m, g.configured_sigma_m);

@@ -121,7 +121,8 @@ void add_details(json& out, const BatchSummary& s) {
                        {"adapted", g.adapted},
                        {"model_gauss_markov_sigma_m", g.model_gauss_markov_sigma_m},
                        {"model_gauss_markov_tau_s", g.model_gauss_markov_tau_s},
-                       {"sigma_inflation", g.sigma_inflation}};
+                       {"sigma_inflation", g.sigma_inflation},
+                       {"reverted", g.reverted}};
 }
 
 }  // namespace

@@ -20,6 +20,18 @@ YAML::Node parse_yaml(const std::string& text, const std::string& file) {
 YamlMap::YamlMap(YAML::Node node, std::string file, std::string path)
     : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {
   if (!node_.IsMap()) throw InputError(location(), "expected a mapping of key: value");
+  // yaml-cpp keeps the first of two equal keys and takes [a, b] as a key: both would pass
+  // unnoticed.
+  std::set<std::string> seen;
+  for (const auto& entry : node_) {
+    if (!entry.first.IsScalar()) {
+      throw InputError({file_, line(entry.first), path_},
+                       "a key must be a plain name, not a list or a mapping");
+    }
+    const std::string key = entry.first.Scalar();
+    if (!seen.insert(key).second)
+      throw InputError({file_, line(entry.first), key_path(key)}, "key given twice");
+  }
 }
 
 InputLocation YamlMap::location(const std::string& key) const {
@@ -120,7 +132,7 @@ std::vector<YAML::Node> YamlMap::sequence(const std::string& key) {
 
 void YamlMap::reject_unknown_keys() const {
   for (const auto& entry : node_) {
-    const std::string key = entry.first.as<std::string>();
+    const std::string key = entry.first.Scalar();
     if (used_.count(key) == 0)
       throw InputError({file_, line(entry.first), key_path(key)}, "unknown key");
   }

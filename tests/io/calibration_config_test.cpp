@@ -118,6 +118,11 @@ TEST(CalibrationConfig, BadValuesNameFileLineAndKey) {
             "c.yaml:2: 'batch.keyframe_interval_s': 0 is out of range: expected a finite number "
             "from 0.001 to 10000");
   EXPECT_EQ(error_of("augmented:\n  typo: 1\n"), "c.yaml:2: 'augmented.typo': unknown key");
+  EXPECT_EQ(error_of("method: batch\nmethod: iterative\n"), "c.yaml:2: 'method': key given twice");
+  EXPECT_EQ(error_of("? [a, b]\n: 1\n"),
+            "c.yaml:1: a key must be a plain name, not a list or a mapping");
+  EXPECT_EQ(error_of("batch:\n  ? {x: 1}\n  : 2\n"),
+            "c.yaml:2: 'batch': a key must be a plain name, not a list or a mapping");
   EXPECT_EQ(error_of("reference:\n  acc_bias_sigma_mps2: -1\n"),
             "c.yaml:2: 'reference.acc_bias_sigma_mps2': -1 is out of range: expected a finite "
             "number from 0 to 100");

@@ -38,6 +38,10 @@ struct GnssNoiseReport {
   double model_gauss_markov_tau_s{};
   // The circumferences' sigma after the adaptation over before (1 when not adapted).
   double sigma_inflation = 1.0;
+  // The adapted estimate left the plausible band while the first did not: the first estimate
+  // stands, its covariance scaled by covariance_scale (sigma_inflation^2).
+  bool reverted{};
+  double covariance_scale = 1.0;
 };
 
 struct BatchSummary : CalibrationSummary {
