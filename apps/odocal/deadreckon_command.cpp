@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "log_window_args.hpp"
+#include "number_checks.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/dead_reckoning.hpp"
 #include "odocal/estimation/interpolation.hpp"
@@ -120,15 +121,15 @@ void add_deadreckon_command(CLI::App& app) {
   command
       ->add_option("--circumference-rl", args->circumference_rl_m,
                    "Rear-left circumference in m (default: vehicle.yaml)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(kCircumferenceM));
   command
       ->add_option("--circumference-rr", args->circumference_rr_m,
                    "Rear-right circumference in m (default: vehicle.yaml)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(kCircumferenceM));
   command
       ->add_option("--track-width", args->track_width_m,
                    "Rear track width in m (default: vehicle.yaml)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(kTrackWidthM));
   command
       ->add_option("--start", args->start,
                    "Start pose: truth, gnss, or auto (truth when truth.csv exists)")

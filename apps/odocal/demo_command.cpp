@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "exit_codes.hpp"
+#include "number_checks.hpp"
 #include "odocal/estimation/iterative_calibration.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/io/scenario_io.hpp"
@@ -64,9 +65,11 @@ void add_demo_command(CLI::App& app) {
   command->add_option("--out", args->out_dir, "Where the simulated log goes")
       ->capture_default_str();
   command->add_option("--wear-rl", args->wear_rl_mm, "Rear-left wear, mm of radius")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_in(kTyreWearMm));
   command->add_option("--wear-rr", args->wear_rr_mm, "Rear-right wear, mm of radius")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_in(kTyreWearMm));
   command->add_option("--seed", args->seed, "Noise seed")->capture_default_str();
   command->callback([args] { run_demo(*args); });
 }

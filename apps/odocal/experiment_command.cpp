@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "experiments/paper_experiment.hpp"
+#include "number_checks.hpp"
 
 namespace odocal::cli {
 namespace {
@@ -53,11 +54,13 @@ void add_experiment_command(CLI::App& app, int argc, char** argv) {
   paper
       ->add_option("--wear-rl", args->options.setup.wear_rl_mm,
                    "True rear-left wear of the section 5 runs, mm of radius")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_in(kTyreWearMm));
   paper
       ->add_option("--wear-rr", args->options.setup.wear_rr_mm,
                    "True rear-right wear of the section 5 runs, mm of radius")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_in(kTyreWearMm));
   paper
       ->add_option("--laps", args->options.setup.laps,
                    "Laps of the section 5 runs (the paper: 3; fewer for a quick look)")

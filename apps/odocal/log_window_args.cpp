@@ -2,15 +2,16 @@
 
 #include <limits>
 
+#include "number_checks.hpp"
 #include "odocal/estimation/log_window.hpp"
 
 namespace odocal::cli {
 
 void LogWindowArgs::add_to(CLI::App& command) {
   command.add_option("--from", from_s, "Use the log from this time on (s, the log's clock)")
-      ->check(CLI::Number);
+      ->check(finite_in(-1e12, 1e12));
   command.add_option("--to", to_s, "Use the log up to this time (s, the log's clock)")
-      ->check(CLI::Number);
+      ->check(finite_in(-1e12, 1e12));
 }
 
 Log LogWindowArgs::apply(Log log) const {

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 
+#include "number_checks.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
@@ -72,13 +73,15 @@ void add_simulate_command(CLI::App& app) {
   command->add_flag("--ideal", args->ideal,
                     "Kinematic motion, no slip, constant radius: the paper's model assumptions");
   command->add_option("--laps", args->laps, "Laps of the route")->check(CLI::Range(1, 1000));
-  command->add_option("--wear-rl", args->wear_rl_mm, "Rear-left tyre wear: radius lost, mm");
-  command->add_option("--wear-rr", args->wear_rr_mm, "Rear-right tyre wear: radius lost, mm");
+  command->add_option("--wear-rl", args->wear_rl_mm, "Rear-left tyre wear: radius lost, mm")
+      ->check(finite_in(kTyreWearMm));
+  command->add_option("--wear-rr", args->wear_rr_mm, "Rear-right tyre wear: radius lost, mm")
+      ->check(finite_in(kTyreWearMm));
   command->add_option("--seed", args->noise_seed, "Noise seed (sensor errors)");
   command->add_option("--trajectory-seed", args->trajectory_seed,
                       "Trajectory seed (driver variation)");
   command->add_option("--gnss-sigma", args->gnss_sigma_m, "GNSS white noise per axis, m")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_in(0.0, 1e3));
   command->add_option("--gnss-output", args->gnss_output, "GNSS as local x,y or lat,lon")
       ->check(CLI::IsMember({"local", "latlon"}));
   command->add_option("--wheel-output", args->wheel_output, "Wheel columns' unit")

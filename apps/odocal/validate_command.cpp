@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "log_window_args.hpp"
+#include "number_checks.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/drift_validation.hpp"
 #include "odocal/estimation/log_preparation.hpp"
@@ -93,11 +94,12 @@ void add_validate_command(CLI::App& app) {
       ->required();
   command->add_option("--window", args->options.window_s, "Window length, s")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(1.0, 86400.0));
   command
       ->add_option("--min-distance", args->options.min_window_distance_m,
                    "Skip windows with less driving than this, m")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finite_in(0.0, 1e6));
   command->add_option("--reference", args->reference, "Reference pose: smoother or filter")
       ->capture_default_str()
       ->check(CLI::IsMember(enum_name_list<ReferenceMode>()));

@@ -1,11 +1,15 @@
 #include "odocal/io/calibration_export.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "odocal/data/physical_limits.hpp"
 #include "odocal/error.hpp"
+#include "odocal/io/input_file.hpp"
 #include "odocal/io/text_output.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
 
@@ -44,27 +48,28 @@ void write_ros2_diff_drive_parameters(const VehicleConfig& nominal,
 }
 
 OdometryParams read_calibrated_parameters(const std::filesystem::path& json_path) {
-  std::ifstream in(json_path);
-  if (!in) throw InputError({json_path.string(), 0, ""}, "cannot open file");
+  const std::string text = read_input_file(json_path);
   nlohmann::json json;
   try {
-    json = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
+    json = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {  // syntax, or a number out of range (1e400)
     throw InputError({json_path.string(), 0, ""}, std::string("not valid JSON: ") + e.what());
   }
+  if (!json.is_object())
+    throw InputError({json_path.string(), 0, ""}, "expected a calibration result (JSON object)");
   if (json.contains("usable") && json["usable"] == false) {
     throw InputError({json_path.string(), 0, "usable"},
                      "this calibration is not usable: " + json.value("message", std::string()));
   }
-  const auto positive = [&](const char* key) {
-    if (!json.contains(key) || !json[key].is_number() || !(json[key].get<double>() > 0.0) ||
-        !std::isfinite(json[key].get<double>())) {
-      throw InputError({json_path.string(), 0, key}, "expected a positive number");
+  const auto value = [&](const char* key, PhysicalRange range) {
+    if (!json.contains(key) || !json[key].is_number() || !range.contains(json[key].get<double>())) {
+      throw InputError({json_path.string(), 0, key},
+                       fmt::format("expected a number from {} to {}", range.min, range.max));
     }
     return json[key].get<double>();
   };
-  return {positive("circumference_rl_m"), positive("circumference_rr_m"),
-          positive("track_width_m")};
+  return {value("circumference_rl_m", kCircumferenceM),
+          value("circumference_rr_m", kCircumferenceM), value("track_width_m", kTrackWidthM)};
 }
 
 }  // namespace odocal

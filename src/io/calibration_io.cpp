@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "odocal/error.hpp"
+#include "odocal/io/input_file.hpp"
 #include "odocal/model/angle.hpp"
 #include "option_fields_io.hpp"
 #include "yaml_map.hpp"
@@ -147,11 +148,7 @@ CalibrationConfig parse_calibration_config(const std::string& yaml_text, const s
 }
 
 CalibrationConfig read_calibration_config(const std::string& path, CalibrationConfig defaults) {
-  std::ifstream stream(path);
-  if (!stream) throw InputError({path, 0, ""}, "cannot open file");
-  std::ostringstream text;
-  text << stream.rdbuf();
-  return parse_calibration_config(text.str(), path, defaults);
+  return parse_calibration_config(read_input_file(path), path, defaults);
 }
 
 json config_to_json(const CalibrationConfig& config) {

@@ -15,6 +15,7 @@
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/motion_coverage.hpp"
 #include "odocal/io/csv_table.hpp"
+#include "odocal/io/input_file.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/io/text_output.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
@@ -190,11 +191,7 @@ std::optional<StreamReader> stream(YamlMap& streams, const std::string& name, Ta
 
 ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
                          const fs::path& out_dir) {
-  std::ifstream map_stream(map_file);
-  if (!map_stream) throw InputError({map_file.string(), 0, ""}, "cannot open the column map");
-  std::ostringstream map_text;
-  map_text << map_stream.rdbuf();
-  const YAML::Node root_node = detail::parse_yaml(map_text.str(), map_file.string());
+  const YAML::Node root_node = detail::parse_yaml(read_input_file(map_file), map_file.string());
   YamlMap root(root_node, map_file.string(), "");
   auto vehicle_map = root.map("vehicle");
   if (!vehicle_map)

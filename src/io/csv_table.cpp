@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "odocal/io/input_file.hpp"
+
 namespace odocal {
 namespace {
 
@@ -126,12 +128,7 @@ CsvTable parse_csv_table(std::string_view text, const std::string& file_label,
 }
 
 CsvTable read_csv_table(const std::filesystem::path& path, const CsvOptions& options) {
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw InputError({path.string(), 0, ""}, "cannot open file");
-  std::ostringstream contents;
-  contents << stream.rdbuf();
-  if (stream.bad()) throw InputError({path.string(), 0, ""}, "cannot read file");
-  return parse_csv_table(contents.view(), path.string(), options);
+  return parse_csv_table(read_input_file(path), path.string(), options);
 }
 
 }  // namespace odocal

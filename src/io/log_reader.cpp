@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <system_error>
 
 #include "odocal/io/csv_table.hpp"
+#include "odocal/io/input_file.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
 
 namespace odocal {
@@ -27,8 +29,14 @@ void require_overlap(const std::vector<double>& t_s, const WheelStream& wheels,
 }  // namespace
 
 Log read_log(const std::filesystem::path& directory, const LogReadOptions& options) {
-  if (!std::filesystem::is_directory(directory)) {
-    throw InputError({directory.string(), 0, ""}, "log directory does not exist");
+  std::error_code error;
+  const auto status = std::filesystem::status(directory, error);
+  if (error && error != std::errc::no_such_file_or_directory)
+    throw InputError({directory.string(), 0, ""}, "cannot open: " + error.message());
+  if (!std::filesystem::is_directory(status)) {
+    throw InputError({directory.string(), 0, ""}, std::filesystem::exists(status)
+                                                      ? "not a directory: a log is a directory"
+                                                      : "log directory does not exist");
   }
   Log log;
   log.source = directory.string();
@@ -46,7 +54,7 @@ Log read_log(const std::filesystem::path& directory, const LogReadOptions& optio
 
   const auto optional_file = [&](const char* name) -> std::optional<std::filesystem::path> {
     const std::filesystem::path path = directory / name;
-    if (std::filesystem::exists(path)) return path;
+    if (input_exists(path)) return path;
     return std::nullopt;
   };
   if (const auto path = optional_file("imu.csv")) {

@@ -9,7 +9,9 @@
 #include <sstream>
 #include <string_view>
 
+#include "odocal/data/physical_limits.hpp"
 #include "odocal/error.hpp"
+#include "odocal/io/input_file.hpp"
 #include "odocal/io/output_file.hpp"
 #include "vehicle_config_parse.hpp"
 
@@ -18,20 +20,21 @@ namespace detail {
 
 VehicleConfig parse_vehicle_config(YamlMap& map) {
   VehicleConfig vehicle;
-  const auto required = [&](const std::string& key, double& value) {
+  const auto required = [&](const std::string& key, double& value, PhysicalRange range) {
     if (!map.has(key))
       throw InputError({map.file(), 0, map.key_path(key)}, "required key is missing");
-    map.read(key, value, 1e-9, 1e9);
+    map.read(key, value, range.min, range.max);
   };
-  const auto optional = [&](const std::string& key, std::optional<double>& value) {
+  const auto optional = [&](const std::string& key, std::optional<double>& value,
+                            PhysicalRange range) {
     if (!map.has(key)) return;
     double read = 0.0;
-    map.read(key, read, 1e-9, 1e9);
+    map.read(key, read, range.min, range.max);
     value = read;
   };
-  required("track_width_m", vehicle.track_width_m);
-  required("circumference_rl_m", vehicle.circumference_rl_m);
-  required("circumference_rr_m", vehicle.circumference_rr_m);
+  required("track_width_m", vehicle.track_width_m, kTrackWidthM);
+  required("circumference_rl_m", vehicle.circumference_rl_m, kCircumferenceM);
+  required("circumference_rr_m", vehicle.circumference_rr_m, kCircumferenceM);
   if (map.has("ticks_per_rev")) {
     int ticks = 0;
     map.read("ticks_per_rev", ticks, 1, 1 << 24);
@@ -42,9 +45,9 @@ VehicleConfig parse_vehicle_config(YamlMap& map) {
     map.read("counter_bits", bits, 2, 62);
     vehicle.counter_bits = bits;
   }
-  optional("wheelbase_m", vehicle.wheelbase_m);
-  optional("circumference_fl_m", vehicle.circumference_fl_m);
-  optional("circumference_fr_m", vehicle.circumference_fr_m);
+  optional("wheelbase_m", vehicle.wheelbase_m, kWheelbaseM);
+  optional("circumference_fl_m", vehicle.circumference_fl_m, kCircumferenceM);
+  optional("circumference_fr_m", vehicle.circumference_fr_m, kCircumferenceM);
   map.reject_unknown_keys();
   return vehicle;
 }
@@ -52,11 +55,7 @@ VehicleConfig parse_vehicle_config(YamlMap& map) {
 }  // namespace detail
 
 VehicleConfig read_vehicle_config(const std::filesystem::path& path) {
-  std::ifstream stream(path);
-  if (!stream) throw InputError({path.string(), 0, ""}, "cannot open file");
-  std::ostringstream text;
-  text << stream.rdbuf();
-  detail::YamlMap map(detail::parse_yaml(text.str(), path.string()), path.string(), "");
+  detail::YamlMap map(detail::parse_yaml(read_input_file(path), path.string()), path.string(), "");
   return detail::parse_vehicle_config(map);
 }
 

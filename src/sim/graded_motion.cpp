@@ -48,7 +48,8 @@ double GradedMotion::grade(double s_m) const {
 }
 
 double GradedMotion::interpolate(const std::vector<double>& values, double t_s) const {
-  const double position = std::clamp(t_s / grid_step_s_, 0.0, static_cast<double>(values.size() - 1));
+  const double position =
+      std::clamp(t_s / grid_step_s_, 0.0, static_cast<double>(values.size() - 1));
   const auto below = static_cast<std::size_t>(std::floor(position));
   const std::size_t above = std::min(below + 1, values.size() - 1);
   return values[below] + (position - static_cast<double>(below)) * (values[above] - values[below]);

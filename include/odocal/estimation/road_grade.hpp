@@ -15,8 +15,8 @@ namespace odocal {
 
 // dz/ds against the distance driven (wheel odometry, nominal circumferences).
 struct GradeProfile {
-  double step_m{};                  // between profile points
-  std::vector<double> grade;        // at 0, step, 2 step, ... metres driven
+  double step_m{};            // between profile points
+  std::vector<double> grade;  // at 0, step, 2 step, ... metres driven
   // grade^2 less the fit's own variance: noise in the fitted grade would otherwise always
   // shorten the projection (cos of a noisy angle is biased low).
   std::vector<double> grade_squared;

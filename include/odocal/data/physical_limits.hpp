@@ -1,0 +1,19 @@
+#pragma once
+// What a wheel-odometry vehicle can physically be, from a small robot to a truck. Readers and the
+// command line refuse values outside (exit 2), so that no computation starts from a track width
+// of a nanometre or a circumference of a kilometre.
+
+namespace odocal {
+
+struct PhysicalRange {
+  double min;
+  double max;
+  bool contains(double value) const { return value >= min && value <= max; }  // false for NaN
+};
+
+inline constexpr PhysicalRange kTrackWidthM{0.05, 5.0};
+inline constexpr PhysicalRange kWheelbaseM{0.05, 20.0};
+inline constexpr PhysicalRange kCircumferenceM{0.05, 10.0};  // wheel radius 8 mm to 1.6 m
+inline constexpr PhysicalRange kTyreWearMm{-50.0, 50.0};      // radius lost (negative: grown)
+
+}  // namespace odocal
