@@ -54,7 +54,7 @@ paper: build
 	  --figures docs/figures/results --bench-command "$(PAPER_BENCH)"
 
 # C++ sources as .clang-format says (CI runs format-check; `make format` rewrites them).
-FORMAT_FILES = $(shell git ls-files '*.cpp' '*.hpp')
+FORMAT_FILES = $(shell git ls-files --cached --others --exclude-standard '*.cpp' '*.hpp')
 format-check: deps
 	@clang-format --dry-run --Werror $(FORMAT_FILES) && echo "format-check: $(words $(FORMAT_FILES)) files formatted"
 

@@ -36,9 +36,9 @@ std::string read_input_file(const fs::path& path, std::uintmax_t max_bytes) {
   const std::uintmax_t bytes = fs::file_size(path, error);
   if (error) throw InputError({path.string(), 0, ""}, "cannot open: " + error.message());
   if (bytes > max_bytes) {
-    throw InputError({path.string(), 0, ""},
-                     fmt::format("{} bytes: larger than the {} bytes odocal reads", bytes,
-                                 max_bytes));
+    throw InputError(
+        {path.string(), 0, ""},
+        fmt::format("{} bytes: larger than the {} bytes odocal reads", bytes, max_bytes));
   }
   std::ifstream stream(path, std::ios::binary);
   if (!stream) throw InputError({path.string(), 0, ""}, "cannot open file");

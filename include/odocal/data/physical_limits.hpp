@@ -14,6 +14,6 @@ struct PhysicalRange {
 inline constexpr PhysicalRange kTrackWidthM{0.05, 5.0};
 inline constexpr PhysicalRange kWheelbaseM{0.05, 20.0};
 inline constexpr PhysicalRange kCircumferenceM{0.05, 10.0};  // wheel radius 8 mm to 1.6 m
-inline constexpr PhysicalRange kTyreWearMm{-50.0, 50.0};      // radius lost (negative: grown)
+inline constexpr PhysicalRange kTyreWearMm{-50.0, 50.0};     // radius lost (negative: grown)
 
 }  // namespace odocal
