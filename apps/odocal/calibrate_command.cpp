@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -38,6 +39,20 @@ CalibrationConfig effective_config(const CalibrateArgs& args) {
   return config;
 }
 
+// The log's own vehicle.yaml holds the nominal vehicle its calibrations are measured from;
+// replacing it would make the next calibration of the same log start from this one's answer.
+void refuse_log_vehicle_file(const CalibrateArgs& args) {
+  if (args.vehicle_out.empty()) return;
+  std::error_code error;
+  if (std::filesystem::equivalent(args.vehicle_out,
+                                  std::filesystem::path(args.log_dir) / "vehicle.yaml", error)) {
+    throw CLI::ValidationError("--vehicle-out",
+                               args.vehicle_out +
+                                   " is the log's own vehicle.yaml (its nominal vehicle): write "
+                                   "the calibrated vehicle elsewhere");
+  }
+}
+
 void run_calibrate(const CalibrateArgs& args) {
   const CalibrationConfig config = effective_config(args);
   if (args.print_config) {
@@ -45,6 +60,7 @@ void run_calibrate(const CalibrateArgs& args) {
     return;
   }
   if (args.log_dir.empty()) throw CLI::RequiredError("LOG");
+  refuse_log_vehicle_file(args);
   LogReadOptions read_options;
   read_options.read_truth = false;  // estimators never see the truth
   const Log log = args.window.apply(read_log(args.log_dir, read_options));

@@ -64,7 +64,7 @@ Pose2 choose_start(const Log& log, const OdometryParams& params, const std::stri
 void run_deadreckon(const DeadreckonArgs& args) {
   const Log input = args.window.apply(read_log(args.log_dir));
   LogPreparation prepared_by;
-  const std::optional<Log> prepared = prepare_log(input, CalibrationOptions{}, prepared_by);
+  const std::optional<Log> prepared = prepare_log(input, CalibrationOptions{}, prepared_by, false);
   const Log& log = prepared ? *prepared : input;
   OdometryParams params = log.vehicle.nominal_params();
   if (args.circumference_rl_m) params.circumference_rl_m = *args.circumference_rl_m;

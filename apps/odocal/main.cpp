@@ -10,6 +10,7 @@
 #include "exit_codes.hpp"
 #include "experiment_command.hpp"
 #include "import_command.hpp"
+#include "message_text.hpp"
 #include "odocal/error.hpp"
 #include "simulate_command.hpp"
 #include "validate_command.hpp"
@@ -28,20 +29,27 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    const int status = app.exit(e);
-    return status == 0 ? kExitOk : kExitBadInput;
+    // One line, like every other error (CLI11 adds a second one pointing at --help).
+    fmt::print(stderr, "odocal: usage: {} (see odocal --help)\n", printable_line(e.what()));
+    return kExitBadInput;
   } catch (const odocal::InputError& e) {
-    fmt::print(stderr, "odocal: error: {}\n", e.what());
+    fmt::print(stderr, "odocal: error: {}\n", printable_line(e.what()));
     return kExitBadInput;
   } catch (const NotUsableResult& e) {
-    fmt::print(stderr, "odocal: not usable: {}\n", e.what());
+    fmt::print(stderr, "odocal: not usable: {}\n", printable_line(e.what()));
     return kExitNotIdentifiable;
   } catch (const odocal::InsufficientDataError& e) {
-    fmt::print(stderr, "odocal: cannot identify: {}\n", e.what());
+    fmt::print(stderr, "odocal: cannot identify: {}\n", printable_line(e.what()));
     return kExitNotIdentifiable;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "odocal: error: {}\n", e.what());
+    fmt::print(stderr, "odocal: error: {}\n", printable_line(e.what()));
     return kExitFailure;
   }
   return kExitOk;

@@ -524,7 +524,9 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                     b.max_solver_iterations);
   } else if (!solver.IsSolutionUsable()) {
     summary.termination = Termination::kFailure;
-    summary.message = fmt::format("{}: {}", solved, solver.message);
+    // Ceres' message can span lines and name memory addresses; its first line says what failed.
+    summary.message =
+        fmt::format("{}: {}", solved, solver.message.substr(0, solver.message.find('\n')));
   } else if (!circumferences_identified) {
     summary.termination = Termination::kNotIdentifiable;
     summary.message = fmt::format("{}: {}", solved, summary.identifiability);

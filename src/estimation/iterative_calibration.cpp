@@ -17,6 +17,10 @@ namespace {
 enum class ProcessCovariance { kDecaying, kFixed };
 
 std::string unseparable_message(const CircumferenceFit& fit, double max_condition_number) {
+  if (!fit.circumference_m.allFinite() || std::isnan(fit.condition_number)) {
+    return "the least-squares solution is not finite: the filtered odometry diverged (a sensor "
+           "value far outside its range, or a wheel stream that does not match the GNSS track)";
+  }
   return fmt::format(
       "the least-squares problem cannot separate c_RL and c_RR (condition number {:.3g} > "
       "{:.3g}): the log needs more distance and more turning",

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "odocal/error.hpp"
 #include "odocal/estimation/log_window.hpp"
 
 namespace odocal {
@@ -16,8 +17,14 @@ double LogPreparation::standing_s() const {
 
 std::string LogPreparation::describe() const {
   std::string text;
+  if (common_span_s) {
+    text += fmt::format(
+        "; {:.1f} s of wheel data outside the GNSS span cut off (used {:.1f} to "
+        "{:.1f} s)",
+        cut_without_gnss_s, common_span_s->first, common_span_s->second);
+  }
   if (!standstills.empty()) {
-    text += fmt::format("standing {:.1f} s in {} period(s)", standing_s(), standstills.size());
+    text += fmt::format("; standing {:.1f} s in {} period(s)", standing_s(), standstills.size());
   }
   if (wheel_rate_bias) {
     constexpr double kDegPerRev = 360.0;
@@ -46,18 +53,40 @@ std::string LogPreparation::describe() const {
 }
 
 std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options,
-                               LogPreparation& done) {
+                               LogPreparation& done, bool need_gnss_span) {
   std::optional<Log> prepared;
   const auto edit = [&]() -> Log& {
     if (!prepared) prepared = log;
     return *prepared;
   };
+  if (need_gnss_span) {
+    const double wheel_from = log.wheels.t_s.front(), wheel_to = log.wheels.t_s.back();
+    const double from = std::max(wheel_from, log.gnss.t_s.front());
+    const double to = std::min(wheel_to, log.gnss.t_s.back());
+    constexpr double kMinCommonS = 2.0;
+    if (!(to - from >= kMinCommonS)) {
+      throw InsufficientDataError(fmt::format(
+          "wheels ({:.3f} to {:.3f} s) and GNSS ({:.3f} to {:.3f} s) share {:.3f} s of time: "
+          "the streams' clocks or time units disagree",
+          wheel_from, wheel_to, log.gnss.t_s.front(), log.gnss.t_s.back(),
+          std::max(0.0, to - from)));
+    }
+    // A few GNSS periods beyond either end is the normal sampling offset.
+    const double tolerance_s =
+        std::max(1.0, 5.0 * (log.gnss.t_s.back() - log.gnss.t_s.front()) /
+                          static_cast<double>(std::max<std::size_t>(1, log.gnss.size() - 1)));
+    if (from - wheel_from > tolerance_s || wheel_to - to > tolerance_s) {
+      done.common_span_s = {from, to};
+      done.cut_without_gnss_s = (from - wheel_from) + (wheel_to - to);
+      prepared = crop_log(log, from, to);
+    }
+  }
   const OdometryParams nominal = log.vehicle.nominal_params();
-  done.standstills = find_standstills(log, nominal, options.standstill);
+  done.standstills = find_standstills(prepared ? *prepared : log, nominal, options.standstill);
   const bool rate_sensor = log.wheels.unit_rear == WheelUnit::kRadiansPerSecond ||
                            log.wheels.unit_rear == WheelUnit::kMetresPerSecond;
   if (options.remove_wheel_rate_bias && rate_sensor && !done.standstills.empty()) {
-    done.wheel_rate_bias = wheel_rate_bias(log.wheels, done.standstills);
+    done.wheel_rate_bias = wheel_rate_bias((prepared ? *prepared : log).wheels, done.standstills);
     remove_wheel_rate_bias(edit().wheels, *done.wheel_rate_bias);
   }
   if (options.start_at_first_motion) {

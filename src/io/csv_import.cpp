@@ -16,6 +16,7 @@
 #include "odocal/estimation/motion_coverage.hpp"
 #include "odocal/io/csv_table.hpp"
 #include "odocal/io/input_file.hpp"
+#include "odocal/io/log_directory_output.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/io/text_output.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
@@ -76,6 +77,8 @@ class StreamReader {
     t_s_ = table.column(column);
     for (std::size_t k = 0; k < t_s_.size(); ++k) {
       t_s_[k] = t_s_[k] * unit->to_si + offset_s;
+      if (!std::isfinite(t_s_[k]))
+        throw InputError(table.at(k, column), "not a finite time after the unit conversion");
       if (k > 0 && !(t_s_[k] > t_s_[k - 1])) {
         throw InputError(table.at(k, column), "time must strictly increase");
       }
@@ -117,7 +120,16 @@ class StreamReader {
                        fmt::format("column '{}' is not in {}", column, table.file));
     }
     std::vector<double> out = table.column(column);
-    for (double& v : out) v *= unit->to_si;
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      // An empty cell (NaN) is a missing value; a finite one that overflows is an error.
+      const double converted = out[k] * unit->to_si;
+      if (std::isfinite(out[k]) && !std::isfinite(converted)) {
+        throw InputError(
+            table.at(k, column),
+            fmt::format("{:g} {} is not a finite value in SI units", out[k], unit_name));
+      }
+      out[k] = converted;
+    }
     if (file == file_) return {std::move(out), unit->quantity};
     // Another file of the same sensor: interpolate onto this stream's time base via its own
     // time column, which must have the same name and unit (the stream's `time` applies).
@@ -187,6 +199,18 @@ std::optional<StreamReader> stream(YamlMap& streams, const std::string& name, Ta
   return StreamReader(std::move(*map), root["streams"][name], cache);
 }
 
+// Reads the staged log back as any log; its errors name the files where they will be.
+Log read_written_log(const fs::path& staged, const fs::path& target) {
+  try {
+    return read_log(staged);
+  } catch (const InputError& e) {
+    InputLocation location = e.location();
+    if (location.file.starts_with(staged.string()))
+      location.file = (target / fs::path(location.file).filename()).string();
+    throw InputError(location, e.problem() + " (after conversion; nothing was written)");
+  }
+}
+
 }  // namespace
 
 ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
@@ -199,9 +223,9 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
   const VehicleConfig vehicle = detail::parse_vehicle_config(*vehicle_map);
   auto streams = root.map("streams");
   if (!streams) throw InputError({map_file.string(), 0, "streams"}, "required section is missing");
-  std::error_code error;
-  fs::create_directories(out_dir, error);
-  if (error) throw Error("cannot create " + out_dir.string() + ": " + error.message());
+  refuse_overlapping_directories(source_dir, out_dir);
+  LogDirectoryOutput output(out_dir);
+  const fs::path& dir = output.staging();
 
   TableCache cache(source_dir);
   ImportSummary summary;
@@ -242,7 +266,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     for (std::size_t c = 0; c < names.size(); ++c) {
       if (names[c].ends_with("_ticks")) decimals[c] = 0;
     }
-    write_csv(out_dir / "wheels.csv", fmt::format("t,{}", fmt::join(names, ",")), wheels->t_s(),
+    write_csv(dir / "wheels.csv", fmt::format("t,{}", fmt::join(names, ",")), wheels->t_s(),
               columns, rows, decimals);
   }
 
@@ -283,7 +307,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
       const bool has_alt = std::find(header.begin(), header.end(), "alt") != header.end();
       enu.emplace(values[0][rows[0]], values[1][rows[0]], has_alt ? values[2][rows[0]] : 0.0);
     }
-    write_csv(out_dir / "gnss.csv", fmt::format("{}", fmt::join(header, ",")), gnss->t_s(), columns,
+    write_csv(dir / "gnss.csv", fmt::format("{}", fmt::join(header, ",")), gnss->t_s(), columns,
               rows, decimals);
   }
 
@@ -302,7 +326,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
       for (double& v : wz) v = -v;
     }
     const auto rows = complete_rows({&ax, &ay, &wz}, imu->t_s().size());
-    write_csv(out_dir / "imu.csv", "t,ax,ay,wz", imu->t_s(), {&ax, &ay, &wz}, rows, {6, 6, 7});
+    write_csv(dir / "imu.csv", "t,ax,ay,wz", imu->t_s(), {&ax, &ay, &wz}, rows, {6, 6, 7});
   }
 
   // Heading: ENU counter-clockwise from east, or compass clockwise from north.
@@ -315,7 +339,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     heading->done();
     for (double& v : values) v = wrap_angle(convention == "compass_cw" ? kPi / 2 - v : v);
     const auto rows = complete_rows({&values}, heading->t_s().size());
-    write_csv(out_dir / "heading.csv", "t,heading", heading->t_s(), {&values}, rows, {7});
+    write_csv(dir / "heading.csv", "t,heading", heading->t_s(), {&values}, rows, {7});
   }
 
   // Truth: in the GNSS's local frame; heading from a column or from the course of the path.
@@ -354,11 +378,22 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
                                            ? truth->text("heading", "course")
                                            : "column";
     if (heading_source == "course") {
-      // Course over ground of the truth path (forward driving), from neighbours 1 m apart or more.
+      // Course over ground of the truth path (forward driving), from the neighbours 0.5 m of
+      // path before and after; found by bisection over the path length (a standing stretch of
+      // n rows would otherwise cost n^2).
+      std::vector<double> path_m(x.size(), 0.0);
+      for (std::size_t k = 1; k < x.size(); ++k) {
+        const double step = std::hypot(x[k] - x[k - 1], y[k] - y[k - 1]);
+        path_m[k] = path_m[k - 1] + (std::isfinite(step) ? step : 0.0);
+      }
       for (std::size_t k = 0; k < x.size(); ++k) {
-        std::size_t a = k, b = k;
-        while (a > 0 && std::hypot(x[k] - x[a], y[k] - y[a]) < 0.5) --a;
-        while (b + 1 < x.size() && std::hypot(x[b] - x[k], y[b] - y[k]) < 0.5) ++b;
+        const auto first_before =
+            std::upper_bound(path_m.begin(), path_m.end(), path_m[k] - 0.5) - path_m.begin();
+        const std::size_t a = first_before > 0 ? static_cast<std::size_t>(first_before) - 1 : 0;
+        const std::size_t b = std::min<std::size_t>(
+            static_cast<std::size_t>(
+                std::lower_bound(path_m.begin(), path_m.end(), path_m[k] + 0.5) - path_m.begin()),
+            x.size() - 1);
         if (std::hypot(x[b] - x[a], y[b] - y[a]) > 0.5)
           yaw[k] = std::atan2(y[b] - y[a], x[b] - x[a]);
       }
@@ -372,15 +407,15 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     }
     truth->done();
     const auto rows = complete_rows({&x, &y, &yaw}, truth->t_s().size());
-    write_csv(out_dir / "truth.csv", "t,x,y,heading", truth->t_s(), {&x, &y, &yaw}, rows,
-              {4, 4, 7});
+    write_csv(dir / "truth.csv", "t,x,y,heading", truth->t_s(), {&x, &y, &yaw}, rows, {4, 4, 7});
   }
   streams->reject_unknown_keys();
   root.reject_unknown_keys();
-  write_vehicle_config(vehicle, out_dir / "vehicle.yaml");
+  write_vehicle_config(vehicle, dir / "vehicle.yaml");
 
   // Validate the result as any log, and summarise it.
-  const Log log = read_log(out_dir);
+  const Log log = read_written_log(dir, out_dir);
+  output.commit();
   summary.streams.push_back(summarise("wheels", log.wheels.t_s));
   summary.streams.push_back(summarise("gnss", log.gnss.t_s));
   if (log.imu) summary.streams.push_back(summarise("imu", log.imu->t_s));

@@ -2,6 +2,7 @@
 
 #include "odocal/error.hpp"
 #include "odocal/io/csv_table.hpp"
+#include "odocal/io/log_directory_output.hpp"
 #include "odocal/io/output_file.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/stream_readers.hpp"
@@ -12,10 +13,9 @@
 namespace odocal {
 
 void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& scenario,
-                         const std::filesystem::path& directory) {
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  if (error) throw Error("cannot create " + directory.string() + ": " + error.message());
+                         const std::filesystem::path& target) {
+  LogDirectoryOutput output(target);
+  const std::filesystem::path& directory = output.staging();
 
   write_vehicle_config(drive.nominal_vehicle, directory / "vehicle.yaml");
   write_text_file(directory / "wheels.csv", [&](TextBuffer& out) {
@@ -75,6 +75,7 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
               scenario.seeds.noise);
   });
   write_output_file(directory / "scenario.yaml", scenario_to_yaml(scenario));
+  output.commit();
 }
 
 Log simulated_log(const sim::SimulatedDrive& drive, bool with_truth) {

@@ -1,16 +1,26 @@
 #include "odocal/io/stream_readers.hpp"
 
+#include <fmt/format.h>
+
 #include <GeographicLib/LocalCartesian.hpp>
 
+#include "odocal/data/physical_limits.hpp"
 #include "odocal/model/angle.hpp"
 #include "table_checks.hpp"
 
 namespace odocal {
 namespace {
 
+void require_within(const CsvTable& table, std::string_view column, PhysicalRange range,
+                    std::string_view what) {
+  detail::require_range(table, column, range.min, range.max,
+                        fmt::format("{} from {:g} to {:g}", what, range.min, range.max));
+}
+
 void require_rows_and_time(const CsvTable& table) {
   detail::require_increasing_time(table);
   detail::require_rows(table, 1, "need at least 1");
+  require_within(table, "t", kTimeS, "a time in seconds");
 }
 
 }  // namespace
@@ -30,7 +40,10 @@ GnssStream gnss_stream_from_table(const CsvTable& table) {
 
   GnssStream stream;
   stream.t_s = table.column("t");
-  if (table.has("alt")) stream.altitude_m = table.column("alt");
+  if (table.has("alt")) {
+    require_within(table, "alt", kAltitudeM, "an altitude in metres");
+    stream.altitude_m = table.column("alt");
+  }
   if (table.has("sigma_m")) {
     detail::require_range(table, "sigma_m", 1e-6, 1e6, "a positive 1-sigma in metres");
     stream.sigma_m = table.column("sigma_m");
@@ -40,6 +53,8 @@ GnssStream gnss_stream_from_table(const CsvTable& table) {
     stream.speed_mps = table.column("speed_mps");
   }
   if (metric) {
+    require_within(table, "x", kPositionM, "a local position in metres");
+    require_within(table, "y", kPositionM, "a local position in metres");
     stream.x_m = table.column("x");
     stream.y_m = table.column("y");
     return stream;
@@ -66,12 +81,16 @@ GnssStream gnss_stream_from_table(const CsvTable& table) {
 ImuStream imu_stream_from_table(const CsvTable& table) {
   detail::require_known_columns(table, {"t", "ax", "ay", "wz"});
   require_rows_and_time(table);
+  require_within(table, "ax", kAccelerationMps2, "an acceleration in m/s^2");
+  require_within(table, "ay", kAccelerationMps2, "an acceleration in m/s^2");
+  require_within(table, "wz", kRateRadps, "a yaw rate in rad/s");
   return {table.column("t"), table.column("ax"), table.column("ay"), table.column("wz")};
 }
 
 HeadingStream heading_stream_from_table(const CsvTable& table) {
   detail::require_known_columns(table, {"t", "heading"});
   require_rows_and_time(table);
+  require_within(table, "heading", kHeadingRad, "a heading in radians");
   HeadingStream stream{table.column("t"), table.column("heading")};
   for (double& heading : stream.heading_rad) heading = wrap_angle(heading);
   return stream;
@@ -80,6 +99,9 @@ HeadingStream heading_stream_from_table(const CsvTable& table) {
 PoseStream pose_stream_from_table(const CsvTable& table) {
   detail::require_known_columns(table, {"t", "x", "y", "heading"});
   require_rows_and_time(table);
+  require_within(table, "x", kPositionM, "a local position in metres");
+  require_within(table, "y", kPositionM, "a local position in metres");
+  require_within(table, "heading", kHeadingRad, "a heading in radians");
   const std::vector<double>& x = table.column("x");
   const std::vector<double>& y = table.column("y");
   const std::vector<double>& heading = table.column("heading");

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <optional>
 
+#include "odocal/data/physical_limits.hpp"
 #include "odocal/io/stream_readers.hpp"
 #include "table_checks.hpp"
 
@@ -133,17 +134,21 @@ class WheelConverter {
       const double dt_s = t_[k] - t_[k - 1];
       const double speed_mps = std::abs(revs[k]) * nominal_circumference_m / dt_s;
       if (speed_mps <= options_.max_wheel_speed_mps) continue;
-      const std::string wrap_hint =
-          column.unit != WheelUnit::kTicks ? std::string("a cumulative angle cannot wrap")
+      const std::string not_explained =
+          column.unit != WheelUnit::kTicks ? fmt::format("is not plausible motion (at most {} m/s)",
+                                                         options_.max_wheel_speed_mps)
           : vehicle_.counter_bits
-              ? fmt::format("nor a wrap of the {}-bit counter", *vehicle_.counter_bits)
-              : fmt::format("nor a counter wrap (set counter_bits in {} if the counter wraps)",
-                            options_.vehicle_file);
-      throw InputError(
-          table_.at(k, column.name),
-          fmt::format("jump of {:.4g} revolutions in {:.4g} s ({:.1f} m/s) is neither "
-                      "plausible motion (at most {} m/s) {}",
-                      revs[k], dt_s, speed_mps, options_.max_wheel_speed_mps, wrap_hint));
+              ? fmt::format(
+                    "is neither plausible motion (at most {} m/s) nor a wrap of the "
+                    "{}-bit counter",
+                    options_.max_wheel_speed_mps, *vehicle_.counter_bits)
+              : fmt::format(
+                    "is neither plausible motion (at most {} m/s) nor a counter wrap (set "
+                    "counter_bits in {} if the counter wraps)",
+                    options_.max_wheel_speed_mps, options_.vehicle_file);
+      throw InputError(table_.at(k, column.name),
+                       fmt::format("jump of {:.4g} revolutions in {:.4g} s ({:.4g} m/s) {}",
+                                   revs[k], dt_s, speed_mps, not_explained));
     }
   }
 
@@ -163,6 +168,7 @@ WheelStream wheel_stream_from_table(const CsvTable& table, const VehicleConfig& 
        "fl_ticks", "fl_rad", "fl_radps", "fl_mps", "fr_ticks", "fr_rad", "fr_radps", "fr_mps"});
   detail::require_increasing_time(table);
   detail::require_rows(table, 2, "need at least 2 samples to form a wheel increment");
+  detail::require_range(table, "t", kTimeS.min, kTimeS.max, "a time in seconds from -1e10 to 1e10");
 
   const auto rear_column = [&](std::string_view prefix) {
     auto column = find_wheel_column(table, prefix);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "odocal/error.hpp"
+#include "odocal/sim/simulation_limits.hpp"
 
 namespace odocal::sim {
 namespace {
@@ -24,6 +25,8 @@ Path::Path(std::vector<PathSegment> segments, const Pose2& start, double resolut
     if (!(segment.length_m > 0.0) || (segment.direction != 1 && segment.direction != -1)) {
       throw Error("path segments need a positive length and direction +1 or -1");
     }
+    if (!(segment.length_m <= kMaxRouteLengthM))
+      throw Error("a path segment is longer than the simulator's largest route");
     segment_start_m_.push_back(s);
     const int steps = std::max(1, static_cast<int>(std::ceil(segment.length_m / resolution_m)));
     const double ds = segment.length_m / steps;

@@ -10,6 +10,7 @@
 #include "odocal/error.hpp"
 #include "odocal/model/angle.hpp"
 #include "odocal/model/path_length.hpp"
+#include "odocal/sim/simulation_limits.hpp"
 
 namespace odocal::sim {
 namespace {
@@ -202,6 +203,7 @@ Path route_path(const Scenario& scenario) {
 }
 
 SimulatedDrive simulate(const Scenario& scenario) {
+  check_route_size(scenario);
   const Path path = route_path(scenario);
   std::vector<Stop> stops;
   double s = 0.0;
@@ -215,6 +217,7 @@ SimulatedDrive simulate(const Scenario& scenario) {
   std::vector<double> speed_scale(path.segments().size());
   for (double& scale : speed_scale) scale = variation(trajectory_rng);
   const SpeedProfile profile(path, scenario.driver, stops, speed_scale);
+  check_drive_size(scenario, profile.duration_s());
 
   SimulatedDrive out;
   const double nominal_c = kTwoPi * scenario.vehicle.tyre_radius_m;
@@ -253,6 +256,10 @@ SimulatedDrive simulate(const Scenario& scenario) {
   }
   simulate_wheels(scenario, *truth, wheel_rng, out);
   simulate_gnss(scenario.gnss, scenario.route.terrain.max_grade > 0.0, *truth, gnss_rng, out);
+  if (out.gnss_t_s.size() < 2) {
+    throw InputError({"scenario", 0, "sensors.gnss.outages"},
+                     "the outages leave fewer than 2 GNSS fixes in the whole drive");
+  }
   simulate_imu_and_heading(scenario, *truth, imu_rng, out);
   return out;
 }

@@ -166,18 +166,27 @@ TEST(ImportCli, ImportsAndSummarisesOrExitsTwoOnABadMap) {
             " rr: {column: r, unit: ticks}}\n"
             "  gnss: {file: gps_raw.csv, time: {column: time_ms, unit: ms}, position: local,"
             " x: {column: e, unit: m}, y: {column: n, unit: m}}\n");
+  const TempLogDir out;
   const auto run =
-      run_cli("import csv --map " + dir.file("map.yaml") + " --out " + dir.file("log"));
+      run_cli("import csv --map " + dir.file("map.yaml") + " --out " + out.file("log"));
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("wheels          4          3.0"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("distance     3.0 m"), std::string::npos) << run.out;
-  EXPECT_EQ(run_cli("deadreckon " + dir.file("log") + " --start gnss").status, 0);
+  EXPECT_EQ(run_cli("deadreckon " + out.file("log") + " --start gnss").status, 0);
+
+  // The logger's own directory, or one inside it, is never the output.
+  for (const std::string& inside : {dir.path().string(), dir.file("log")}) {
+    const auto refused = run_cli("import csv --map " + dir.file("map.yaml") + " --out " + inside);
+    EXPECT_EQ(refused.status, 2) << inside;
+    EXPECT_NE(refused.err.find("input directory"), std::string::npos) << refused.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("log")));
 
   dir.write(
       "bad.yaml",
       "vehicle: {track_width_m: 1.6, circumference_rl_m: 2, circumference_rr_m: 2}\nstreams: {}\n");
   const auto bad =
-      run_cli("import csv --map " + dir.file("bad.yaml") + " --out " + dir.file("log2"));
+      run_cli("import csv --map " + dir.file("bad.yaml") + " --out " + out.file("log2"));
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("'streams.wheels': required stream is missing"), std::string::npos)
       << bad.err;

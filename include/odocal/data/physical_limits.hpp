@@ -16,4 +16,14 @@ inline constexpr PhysicalRange kWheelbaseM{0.05, 20.0};
 inline constexpr PhysicalRange kCircumferenceM{0.05, 10.0};  // wheel radius 8 mm to 1.6 m
 inline constexpr PhysicalRange kTyreWearMm{-50.0, 50.0};     // radius lost (negative: grown)
 
+// Log streams. Times are seconds on any clock up to 300 years from its zero (Unix time fits);
+// positions are local metres (UTM northings fit); accelerations reach 50 g and rates 50 rad/s
+// (a crash, a spinning robot); headings may be unwrapped over a long drive.
+inline constexpr PhysicalRange kTimeS{-1e10, 1e10};
+inline constexpr PhysicalRange kPositionM{-1e8, 1e8};
+inline constexpr PhysicalRange kAltitudeM{-1e4, 1e5};
+inline constexpr PhysicalRange kAccelerationMps2{-500.0, 500.0};
+inline constexpr PhysicalRange kRateRadps{-50.0, 50.0};
+inline constexpr PhysicalRange kHeadingRad{-1e4, 1e4};
+
 }  // namespace odocal

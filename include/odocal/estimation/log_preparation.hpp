@@ -1,5 +1,7 @@
 #pragma once
-// What every command does to a log before the odometry is used: the zero-rate bias of
+// What every command does to a log before the odometry is used: for a calibration, only the span
+// that both wheels and GNSS cover is used (a wheel stream hours past the last fix, from a clock
+// jump, would otherwise be odometry with no reference); the zero-rate bias of
 // angular-rate wheel sensors, estimated at standstill, is removed; the log is used from its first
 // motion on; on hills the wheels are projected to the horizontal; and the odometry chain breaks
 // at wheel gaps. The record of it goes into reports.
@@ -16,6 +18,9 @@
 namespace odocal {
 
 struct LogPreparation {
+  // Wheels beyond the GNSS span cut off: the kept span and what was cut, s.
+  std::optional<std::pair<double, double>> common_span_s;
+  double cut_without_gnss_s{};
   std::vector<Standstill> standstills;
   std::optional<WheelRateBias> wheel_rate_bias;  // removed (angular-rate wheel sensors only)
   std::optional<double> started_at_s;            // used from here on (first motion)
@@ -33,8 +38,10 @@ struct LogPreparation {
 
 // The prepared log, or nothing when preparing changes nothing (then use `log` itself); `done`
 // records what was found and done. Uses options' standstill, remove_wheel_rate_bias,
-// start_at_first_motion, coverage.moving_speed_mps and max_wheel_gap_s.
+// start_at_first_motion, coverage.moving_speed_mps and max_wheel_gap_s. `need_gnss_span`:
+// cut the wheels to the GNSS span (calibration and validation; dead reckoning drives on where
+// GNSS is missing). Throws InsufficientDataError when wheels and GNSS share less than 2 s.
 std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options,
-                               LogPreparation& done);
+                               LogPreparation& done, bool need_gnss_span = true);
 
 }  // namespace odocal

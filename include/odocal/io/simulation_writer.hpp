@@ -10,7 +10,7 @@
 namespace odocal {
 
 void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& scenario,
-                         const std::filesystem::path& directory);
+                         const std::filesystem::path& target);
 
 // The log read_log would return for the written directory (up to CSV rounding), without the
 // disk: the raw columns go through the reader's own stream conversions. Truth is left out
