@@ -4,7 +4,7 @@ ASAN_DIR ?= build-asan
 JOBS ?= $(shell nproc)
 ODOCAL := $(BUILD_DIR)/apps/odocal/odocal
 
-.PHONY: all deps build demo test sanitize bench paper format format-check clean
+.PHONY: all deps build demo test sanitize fuzz fuzz-build bench paper format format-check clean
 
 all: build
 
@@ -31,6 +31,21 @@ sanitize: deps
 	      -DODOCAL_BUILD_BENCHMARKS=OFF
 	cmake --build $(ASAN_DIR) -j $(JOBS)
 	ctest --test-dir $(ASAN_DIR) --output-on-failure -j $(JOBS) -LE 'install|slow'
+
+# libFuzzer harnesses (fuzz/, docs/reliability.md) built by clang with ASan + UBSan: each runs
+# over its corpus and regression reproducers, then FUZZ_SECONDS of fuzzing (0: regression only).
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZERS := csv_streams yaml_configs import_map log_pipeline
+fuzz-build: deps
+	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	      -DCMAKE_CXX_COMPILER=clang++ -DODOCAL_FUZZ=ON -DODOCAL_FUNCTION_CLONES=OFF \
+	      -DODOCAL_BUILD_TESTS=OFF -DODOCAL_BUILD_BENCHMARKS=OFF -DODOCAL_BUILD_APPS=OFF \
+	      "-DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all"
+	cmake --build $(FUZZ_DIR) -j $(JOBS) --target $(FUZZERS:%=%_fuzzer)
+
+fuzz: fuzz-build
+	tools/run_fuzzers $(FUZZ_DIR) $(FUZZ_SECONDS) $(FUZZERS)
 
 bench: build
 	$(BUILD_DIR)/bench/odocal_bench
@@ -62,4 +77,4 @@ format: deps
 	clang-format -i $(FORMAT_FILES)
 
 clean:
-	rm -rf $(BUILD_DIR) $(ASAN_DIR)
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) $(FUZZ_DIR)

@@ -21,7 +21,10 @@ double step_m(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 }  // namespace
 
 std::vector<Eigen::Vector2d> read_track_centreline(const std::filesystem::path& path) {
-  const CsvTable table = read_csv_table(path, {.header_may_be_comment = true});
+  return track_centreline_from_table(read_csv_table(path, {.header_may_be_comment = true}));
+}
+
+std::vector<Eigen::Vector2d> track_centreline_from_table(const CsvTable& table) {
   detail::require_known_columns(table, {"x_m", "y_m", "w_tr_right_m", "w_tr_left_m"});
   detail::require_rows(table, 8, "a closed centreline needs at least 8 points");
   const std::vector<double>& x = table.column("x_m");
@@ -33,7 +36,7 @@ std::vector<Eigen::Vector2d> read_track_centreline(const std::filesystem::path& 
     // A centreline is sampled every few metres; one point kilometres away is a typo that would
     // add thousands of kilometres to the simulated drive.
     if (k > 0 && step_m(points[k], points[k - 1]) > kMaxCentrelineStepM) {
-      throw InputError({path.string(), table.line_of_row[k], "x_m"},
+      throw InputError(table.at(k, "x_m"),
                        fmt::format("{:.4g} m from the previous point; a centreline's points are at "
                                    "most {:.0f} m apart",
                                    step_m(points[k], points[k - 1]), kMaxCentrelineStepM));
