@@ -13,6 +13,7 @@
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/io/calibration_export.hpp"
 #include "odocal/io/calibration_io.hpp"
+#include "odocal/io/log_doctor.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/io/output_file.hpp"
 
@@ -26,6 +27,7 @@ struct CalibrateArgs {
   std::string json_file;
   std::optional<std::string> reference;
   std::string vehicle_out;
+  bool force = false;
   std::string ros2_out;
   bool print_config = false;
   LogWindowArgs window;
@@ -61,6 +63,24 @@ void run_calibrate(const CalibrateArgs& args) {
   }
   if (args.log_dir.empty()) throw CLI::RequiredError("LOG");
   refuse_log_vehicle_file(args);
+  if (!args.force) {
+    // The doctor's blocking findings (a flipped sign, a unit, a clock) make any estimate wrong.
+    const Diagnosis diagnosis = doctor_log(args.log_dir);
+    if (diagnosis.blocking()) {
+      std::string first;
+      for (const Finding& f : diagnosis.findings) {
+        if (f.severity == FindingSeverity::kBlocking) {
+          first = describe(f);
+          break;
+        }
+      }
+      throw NotUsableResult(
+          fmt::format("the log has input mistakes that would make the "
+                      "calibration wrong, first: {} -- run `odocal doctor {}` "
+                      "for all, or --force to calibrate anyway",
+                      first, args.log_dir));
+    }
+  }
   LogReadOptions read_options;
   read_options.read_truth = false;  // estimators never see the truth
   const Log log = args.window.apply(read_log(args.log_dir, read_options));
@@ -100,6 +120,8 @@ void add_calibrate_command(CLI::App& app) {
                     "commented YAML and exit; feed it back with --config");
   args->window.add_to(*command);
   command->add_option("--json", args->json_file, "Write the full result as JSON");
+  command->add_flag("--force", args->force,
+                    "Calibrate even when `odocal doctor` finds input mistakes that block it");
   command->add_option("--vehicle-out", args->vehicle_out,
                       "Write vehicle.yaml with the calibrated circumferences and track width");
   command->add_option("--ros2-out", args->ros2_out,

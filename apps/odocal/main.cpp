@@ -7,6 +7,7 @@
 #include "calibrate_command.hpp"
 #include "deadreckon_command.hpp"
 #include "demo_command.hpp"
+#include "doctor_command.hpp"
 #include "exit_codes.hpp"
 #include "experiment_command.hpp"
 #include "import_command.hpp"
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
   add_calibrate_command(app);
   add_deadreckon_command(app);
   add_demo_command(app);
+  add_doctor_command(app);
   add_experiment_command(app, argc, argv);
   add_import_command(app);
   add_simulate_command(app);

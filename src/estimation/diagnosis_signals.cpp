@@ -1,0 +1,176 @@
+#include "diagnosis_signals.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "odocal/estimation/interpolation.hpp"
+#include "odocal/model/angle.hpp"
+
+namespace odocal::detail {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kSmoothS = 1.0;  // wheels and IMU averaged over this window
+
+// Cumulative revolutions at each wheel sample, for distance over any interval.
+std::vector<double> cumulative(const std::vector<double>& increments) {
+  std::vector<double> sum(increments.size(), 0.0);
+  for (std::size_t k = 1; k < increments.size(); ++k) sum[k] = sum[k - 1] + increments[k];
+  return sum;
+}
+
+double at(const std::vector<double>& t_s, const std::vector<double>& values, double t) {
+  return interpolate_linear(t_s, values, t).value_or(kNaN);
+}
+
+// Mean of values over [from, to) by the samples inside (NaN if none).
+double mean_over(const std::vector<double>& t_s, const std::vector<double>& values, double from,
+                 double to) {
+  const auto first = std::lower_bound(t_s.begin(), t_s.end(), from) - t_s.begin();
+  const auto last = std::lower_bound(t_s.begin(), t_s.end(), to) - t_s.begin();
+  if (last <= first) return kNaN;
+  double sum = 0.0;
+  for (auto k = first; k < last; ++k) sum += values[static_cast<std::size_t>(k)];
+  return sum / static_cast<double>(last - first);
+}
+
+}  // namespace
+
+DiagnosisSignals diagnosis_signals(const Log& log, double step_s) {
+  DiagnosisSignals s;
+  s.step_s = step_s;
+  const double from = std::max(log.wheels.t_s.front(), log.gnss.t_s.front());
+  const double to = std::min(log.wheels.t_s.back(), log.gnss.t_s.back());
+  if (!(to - from > 5.0)) return s;
+  const auto n = static_cast<std::size_t>((to - from) / step_s);
+  const OdometryParams nominal = log.vehicle.nominal_params();
+  const std::vector<double> rev_rl = cumulative(log.wheels.rev_rl);
+  const std::vector<double> rev_rr = cumulative(log.wheels.rev_rr);
+  // GNSS velocity from the mean positions of the second before and after: a 3 m noise averages
+  // down over a 50 Hz second, and a 1-5 Hz receiver still gives a few fixes.
+  constexpr double kHalfWindowS = 1.0;
+  std::vector<double> vx(n, kNaN), vy(n, kNaN);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = from + (static_cast<double>(i) + 0.5) * step_s;
+    s.t_s.push_back(t);
+    // Wheel distance over a second: one tick of a 96-tick encoder in 0.1 s is a 0.13 rad/s
+    // jump of the yaw rate; over a second it is 0.013 rad/s.
+    const double a = t - 0.5 * kSmoothS, b = t + 0.5 * kSmoothS;
+    s.speed_rl_mps.push_back((at(log.wheels.t_s, rev_rl, b) - at(log.wheels.t_s, rev_rl, a)) *
+                             nominal.circumference_rl_m / kSmoothS);
+    s.speed_rr_mps.push_back((at(log.wheels.t_s, rev_rr, b) - at(log.wheels.t_s, rev_rr, a)) *
+                             nominal.circumference_rr_m / kSmoothS);
+    s.wheel_yaw_rate_radps.push_back((s.speed_rr_mps.back() - s.speed_rl_mps.back()) /
+                                     nominal.track_width_m);
+    const double x0 = mean_over(log.gnss.t_s, log.gnss.x_m, t - kHalfWindowS, t);
+    const double x1 = mean_over(log.gnss.t_s, log.gnss.x_m, t, t + kHalfWindowS);
+    const double y0 = mean_over(log.gnss.t_s, log.gnss.y_m, t - kHalfWindowS, t);
+    const double y1 = mean_over(log.gnss.t_s, log.gnss.y_m, t, t + kHalfWindowS);
+    vx[i] = (x1 - x0) / kHalfWindowS;
+    vy[i] = (y1 - y0) / kHalfWindowS;
+    s.gnss_speed_mps.push_back(!log.gnss.speed_mps.empty() ? at(log.gnss.t_s, log.gnss.speed_mps, t)
+                                                           : std::hypot(vx[i], vy[i]));
+  }
+  // Course rate over 1 s where the GNSS moves (below 2 m/s its course is noise).
+  const auto lag = static_cast<std::size_t>(std::lround(kHalfWindowS / step_s));
+  s.gnss_course_rate_radps.assign(n, kNaN);
+  for (std::size_t i = lag; i + lag < n; ++i) {
+    const std::size_t a = i - lag, b = i + lag;
+    if (std::hypot(vx[a], vy[a]) < 2.0 || std::hypot(vx[b], vy[b]) < 2.0) continue;
+    s.gnss_course_rate_radps[i] =
+        angle_difference(std::atan2(vy[b], vx[b]), std::atan2(vy[a], vx[a])) /
+        (static_cast<double>(b - a) * step_s);
+  }
+  if (log.imu) {
+    // Averaged over the wheels' second, so that both see the same motion.
+    const auto smoothed = [&](const std::vector<double>& values, double t) {
+      const double mean = mean_over(log.imu->t_s, values, t - 0.5 * kSmoothS, t + 0.5 * kSmoothS);
+      return std::isfinite(mean) ? mean : at(log.imu->t_s, values, t);
+    };
+    for (const double t : s.t_s) {
+      s.gyro_radps.push_back(smoothed(log.imu->wz_radps, t));
+      s.ax_mps2.push_back(smoothed(log.imu->ax_mps2, t));
+      s.ay_mps2.push_back(smoothed(log.imu->ay_mps2, t));
+    }
+  }
+  if (log.heading) {
+    for (const double t : s.t_s) {
+      const auto before =
+          interpolate_angle(log.heading->t_s, log.heading->heading_rad, t - 0.5 * step_s);
+      const auto after =
+          interpolate_angle(log.heading->t_s, log.heading->heading_rad, t + 0.5 * step_s);
+      s.heading_rate_radps.push_back(before && after ? angle_difference(*after, *before) / step_s
+                                                     : kNaN);
+    }
+  }
+  return s;
+}
+
+double slope_through_origin(const std::vector<double>& x, const std::vector<double>& y,
+                            const std::vector<bool>& use, std::size_t min_samples) {
+  double xy = 0.0, xx = 0.0;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < x.size() && k < y.size(); ++k) {
+    if (!use[k] || !std::isfinite(x[k]) || !std::isfinite(y[k])) continue;
+    xy += x[k] * y[k];
+    xx += x[k] * x[k];
+    ++count;
+  }
+  return count >= min_samples && xx > 0.0 ? xy / xx : kNaN;
+}
+
+double correlation(const std::vector<double>& x, const std::vector<double>& y,
+                   const std::vector<bool>& use, std::size_t min_samples) {
+  double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < x.size() && k < y.size(); ++k) {
+    if (!use[k] || !std::isfinite(x[k]) || !std::isfinite(y[k])) continue;
+    sx += x[k];
+    sy += y[k];
+    sxx += x[k] * x[k];
+    syy += y[k] * y[k];
+    sxy += x[k] * y[k];
+    ++count;
+  }
+  if (count < min_samples) return kNaN;
+  const double n = static_cast<double>(count);
+  const double cov = sxy - sx * sy / n, vx = sxx - sx * sx / n, vy = syy - sy * sy / n;
+  return vx > 0.0 && vy > 0.0 ? cov / std::sqrt(vx * vy) : kNaN;
+}
+
+Lag cross_correlation_lag(const std::vector<double>& x, const std::vector<double>& y, double step_s,
+                          double max_lag_s) {
+  const auto max_shift = static_cast<long>(std::lround(max_lag_s / step_s));
+  const auto n = static_cast<long>(std::min(x.size(), y.size()));
+  std::vector<double> values;
+  for (long shift = -max_shift; shift <= max_shift; ++shift) {
+    // y(t + shift) against x(t): positive shift = y trails x.
+    std::vector<double> xs, ys;
+    for (long k = std::max(0L, -shift); k < n && k + shift < n; ++k) {
+      xs.push_back(x[static_cast<std::size_t>(k)]);
+      ys.push_back(y[static_cast<std::size_t>(k + shift)]);
+    }
+    values.push_back(correlation(xs, ys, std::vector<bool>(xs.size(), true), 50));
+  }
+  Lag lag{kNaN, kNaN, values[static_cast<std::size_t>(max_shift)]};
+  std::size_t best = 0;
+  bool found = false;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (std::isfinite(values[i]) && (!found || values[i] > values[best])) {
+      best = i;
+      found = true;
+    }
+  }
+  if (!found) return lag;
+  double offset = 0.0;
+  if (best > 0 && best + 1 < values.size() && std::isfinite(values[best - 1]) &&
+      std::isfinite(values[best + 1])) {
+    const double denominator = values[best - 1] - 2 * values[best] + values[best + 1];
+    if (denominator < 0.0) offset = 0.5 * (values[best - 1] - values[best + 1]) / denominator;
+  }
+  lag.lag_s = (static_cast<double>(best) - static_cast<double>(max_shift) + offset) * step_s;
+  lag.peak = values[best];
+  return lag;
+}
+
+}  // namespace odocal::detail

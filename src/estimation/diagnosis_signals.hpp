@@ -1,0 +1,49 @@
+#pragma once
+// The log on one 10 Hz grid over the span wheels and GNSS share, as the doctor's checks compare
+// them: each wheel's speed (nominal circumference), the yaw rate the wheels imply, the GNSS speed
+// and course rate, the gyro rate, the lateral and forward accelerations, the heading stream's
+// rate. A signal the log lacks is empty; a sample a signal cannot give (a standing GNSS has no
+// course) is NaN.
+
+#include <vector>
+
+#include "odocal/data/log.hpp"
+
+namespace odocal::detail {
+
+struct DiagnosisSignals {
+  double step_s{};
+  std::vector<double> t_s;
+  std::vector<double> speed_rl_mps, speed_rr_mps;  // signed, per wheel
+  std::vector<double> wheel_yaw_rate_radps;
+  std::vector<double> gnss_speed_mps;  // from positions (or the Doppler column)
+  std::vector<double> gnss_course_rate_radps;
+  std::vector<double> gyro_radps, ax_mps2, ay_mps2;  // empty without imu.csv
+  std::vector<double> heading_rate_radps;            // empty without heading.csv
+
+  std::size_t size() const { return t_s.size(); }
+};
+
+// Empty (size 0) when wheels and GNSS share less than a few seconds.
+DiagnosisSignals diagnosis_signals(const Log& log, double step_s = 0.1);
+
+// Least-squares slope of y on x through the origin, over samples where both are finite and
+// `use` holds; NaN with fewer than `min_samples`.
+double slope_through_origin(const std::vector<double>& x, const std::vector<double>& y,
+                            const std::vector<bool>& use, std::size_t min_samples = 20);
+
+// Pearson correlation over samples where both are finite and `use` holds; NaN when too few.
+double correlation(const std::vector<double>& x, const std::vector<double>& y,
+                   const std::vector<bool>& use, std::size_t min_samples = 20);
+
+// The lag (s) by which `y` trails `x`, from the peak of their cross-correlation within
+// +-max_lag_s (parabolic refinement), and the peak correlation; NaN when too few samples.
+struct Lag {
+  double lag_s{};
+  double peak{};
+  double at_zero{};
+};
+Lag cross_correlation_lag(const std::vector<double>& x, const std::vector<double>& y, double step_s,
+                          double max_lag_s);
+
+}  // namespace odocal::detail

@@ -1,0 +1,496 @@
+#include "odocal/estimation/log_diagnosis.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include "diagnosis_signals.hpp"
+#include "odocal/estimation/standstill.hpp"
+#include "odocal/estimation/wheel_gaps.hpp"
+#include "odocal/model/angle.hpp"
+
+namespace odocal {
+namespace {
+
+using detail::DiagnosisSignals;
+constexpr double kPi = std::numbers::pi;
+
+// A ratio that a known unit mistake produces, within 4 %.
+struct KnownFactor {
+  double factor;
+  const char* cause;
+  const char* fix;
+};
+
+std::optional<KnownFactor> known_wheel_factor(double ratio, const WheelStream& wheels) {
+  static const KnownFactor kFactors[] = {
+      {180.0 / kPi, "wheel angles in degrees read as radians",
+       "give the wheel columns in rad (or unit: deg in the import map)"},
+      {kPi / 180.0, "wheel angles in radians read as degrees",
+       "give the wheel columns in rad (or unit: rad in the import map)"},
+      {60.0 / (2 * kPi), "wheel rates in rpm read as rad/s",
+       "convert the wheel rates to rad/s (or unit: rpm in the import map)"},
+      {2 * kPi / 60.0, "wheel rates in rad/s read as rpm",
+       "give the wheel rates in rad/s (or unit: rad/s in the import map)"},
+      {3.6, "wheel speeds in km/h read as m/s",
+       "convert the wheel speeds to m/s (or unit: km/h in the import map)"},
+      {1.0 / 3.6, "wheel speeds in m/s read as km/h",
+       "give the wheel speeds in m/s (or unit: m/s in the import map)"},
+      {1.0 / kPi, "a diameter where vehicle.yaml wants the circumference",
+       "circumference = pi x diameter"},
+      {1.0 / (2 * kPi), "a radius where vehicle.yaml wants the circumference",
+       "circumference = 2 pi x radius"},
+  };
+  const auto near = [&](double factor) { return std::abs(ratio / factor - 1.0) < 0.04; };
+  for (const KnownFactor& known : kFactors) {
+    if (near(known.factor)) return known;
+  }
+  if (wheels.unit_rear == WheelUnit::kTicks) {
+    for (int n = 2; n <= 16; ++n) {
+      if (near(n))
+        return KnownFactor{double(n), "ticks_per_rev too small by an integer factor", ""};
+      if (near(1.0 / n))
+        return KnownFactor{1.0 / n, "ticks_per_rev too large by an integer factor", ""};
+    }
+  }
+  return std::nullopt;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return NAN;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+class Doctor {
+ public:
+  Doctor(const Log& log) : log_(log), signals_(detail::diagnosis_signals(log)) {
+    moving_.resize(signals_.size());
+    turning_.resize(signals_.size());
+    for (std::size_t k = 0; k < signals_.size(); ++k) {
+      moving_[k] = signals_.gnss_speed_mps[k] > 3.0;
+      const double gyro = signals_.gyro_radps.empty() ? 0.0 : signals_.gyro_radps[k];
+      turning_[k] = moving_[k] &&
+                    (std::abs(signals_.wheel_yaw_rate_radps[k]) > 0.05 || std::abs(gyro) > 0.05);
+    }
+  }
+
+  Diagnosis run() {
+    out_.compared_s = signals_.size() * signals_.step_s;
+    const bool clocks_agree = check_spans();
+    if (signals_.size() > 0 && clocks_agree) {
+      const bool signs_ok = check_wheel_speeds();
+      if (signs_ok) check_yaw_rates();
+      check_clock_offsets();
+      if (signs_ok) check_imu_axes();
+      // A mirrored GNSS track (lat/lon swapped) also scales its distances by direction: the
+      // wheel ratios then say nothing about units or circumferences.
+      if (has("gnss.mirrored")) {
+        std::erase_if(out_.findings, [](const Finding& f) {
+          return f.check.starts_with("vehicle.") || f.check.ends_with("_unit");
+        });
+      }
+    }
+    check_gnss_repeats();
+    check_gaps();
+    check_standstill_biases();
+    check_altitude();
+    return std::move(out_);
+  }
+
+ private:
+  void add(const char* check, FindingSeverity severity, std::string what, std::string evidence,
+           std::string cause, std::string fix) {
+    out_.findings.push_back(
+        {check, severity, std::move(what), std::move(evidence), std::move(cause), std::move(fix)});
+  }
+
+  bool has(std::string_view check) const {
+    return std::any_of(out_.findings.begin(), out_.findings.end(),
+                       [&](const Finding& f) { return f.check == check; });
+  }
+
+  std::size_t count(const std::vector<bool>& use) const {
+    return static_cast<std::size_t>(std::count(use.begin(), use.end(), true));
+  }
+
+  // Time scale and span: the wheels' and GNSS's clocks must cover the same drive.
+  bool check_spans() {
+    const double wheels_s = log_.wheels.t_s.back() - log_.wheels.t_s.front();
+    const double gnss_s = log_.gnss.t_s.back() - log_.gnss.t_s.front();
+    const double ratio = gnss_s / wheels_s;
+    for (const double factor : {10.0, 100.0, 1000.0, 1e6, 1e9, 60.0, 3600.0}) {
+      for (const double r : {factor, 1.0 / factor}) {
+        if (std::abs(ratio / r - 1.0) < 0.05) {
+          add("time.scale", FindingSeverity::kBlocking,
+              "the GNSS and wheel clocks run at different rates",
+              fmt::format("gnss.csv spans {:.6g} s, wheels.csv {:.6g} s (x{:.4g})", gnss_s,
+                          wheels_s, ratio),
+              "a time column in the wrong unit (ms read as s, or s read as ms, ...)",
+              fmt::format("scale the time of gnss.csv by {:g} (import map: time.unit)", 1.0 / r));
+          return false;
+        }
+      }
+    }
+    const double overlap_s = std::min(log_.wheels.t_s.back(), log_.gnss.t_s.back()) -
+                             std::max(log_.wheels.t_s.front(), log_.gnss.t_s.front());
+    if (signals_.size() == 0 && overlap_s > 0.0) {
+      add("time.short", FindingSeverity::kNote, "too short to compare the streams",
+          fmt::format("wheels and GNSS share {:.1f} s", overlap_s), "", "");
+      return false;
+    }
+    if (signals_.size() == 0) {
+      add("time.span", FindingSeverity::kBlocking, "wheels and GNSS share no time",
+          fmt::format("wheels {:.3f} to {:.3f} s, GNSS {:.3f} to {:.3f} s", log_.wheels.t_s.front(),
+                      log_.wheels.t_s.back(), log_.gnss.t_s.front(), log_.gnss.t_s.back()),
+          "the two loggers' clocks are unrelated (different epochs)",
+          "give both streams one clock (import map: time.offset_s)");
+      return false;
+    }
+    const double shared = signals_.size() * signals_.step_s;
+    if (shared < 0.9 * std::min(wheels_s, gnss_s) - 2.0 ||
+        shared < 0.5 * std::max(wheels_s, gnss_s)) {
+      add("time.span", FindingSeverity::kWarning, "the streams cover different spans",
+          fmt::format("wheels {:.1f} s, GNSS {:.1f} s, both {:.1f} s", wheels_s, gnss_s, shared),
+          "a logger started late or stopped early, or its clock is offset",
+          "calibration uses the shared span only; check the time columns if it should be longer");
+    }
+    return true;
+  }
+
+  // Each wheel's speed against the GNSS speed: sign, unit and circumference.
+  bool check_wheel_speeds() {
+    if (count(moving_) < 50) {
+      add("wheels.motion", FindingSeverity::kNote,
+          "too little driving above 3 m/s to compare wheels with GNSS",
+          fmt::format("{:.1f} s moving", count(moving_) * signals_.step_s), "", "");
+      return false;
+    }
+    bool ok = true;
+    const auto ratio_of = [&](const std::vector<double>& speed) {
+      std::vector<double> ratios;
+      for (std::size_t k = 0; k < speed.size(); ++k) {
+        if (moving_[k] && std::isfinite(speed[k]))
+          ratios.push_back(speed[k] / signals_.gnss_speed_mps[k]);
+      }
+      return median(std::move(ratios));
+    };
+    const double rl = ratio_of(signals_.speed_rl_mps), rr = ratio_of(signals_.speed_rr_mps);
+    if (rl < 0.0 && rr < 0.0) {
+      add("wheels.sign", FindingSeverity::kBlocking,
+          "both rear wheels count backwards while the car drives forward",
+          fmt::format("wheel speed / GNSS speed: RL {:.3f}, RR {:.3f}", rl, rr),
+          "the encoders' sign convention is reversed",
+          "negate both wheel columns (import map: a negative unit scale, or the logger's direction "
+          "setting)");
+      return false;
+    }
+    for (const auto& [name, ratio, key] :
+         {std::tuple{"RL", rl, "circumference_rl_m"}, std::tuple{"RR", rr, "circumference_rr_m"}}) {
+      if (ratio < 0.0) {
+        add(name == std::string("RL") ? "wheels.rl_sign" : "wheels.rr_sign",
+            FindingSeverity::kBlocking,
+            fmt::format("the {} wheel counts backwards while the car drives forward", name),
+            fmt::format("{} speed / GNSS speed {:.3f}, the other wheel {:+.3f}", name, ratio,
+                        name == std::string("RL") ? rr : rl),
+            fmt::format(
+                "the {} encoder's sign is flipped (or left and right are mixed up with a sign)",
+                name),
+            fmt::format("negate the {} wheel column", name));
+        ok = false;
+        continue;
+      }
+      const double nominal = name == std::string("RL") ? log_.vehicle.circumference_rl_m
+                                                       : log_.vehicle.circumference_rr_m;
+      if (const auto known = known_wheel_factor(ratio, log_.wheels)) {
+        const std::string fix = *known->fix
+                                    ? known->fix
+                                    : fmt::format("ticks_per_rev: {:g} in vehicle.yaml",
+                                                  *log_.vehicle.ticks_per_rev * known->factor);
+        add(name == std::string("RL") ? "wheels.rl_unit" : "wheels.rr_unit",
+            FindingSeverity::kBlocking,
+            fmt::format("the {} wheel's distance is {:.4g}x the GNSS distance", name, ratio),
+            fmt::format("median speed ratio {:.4f} over {:.0f} s of driving", ratio,
+                        count(moving_) * signals_.step_s),
+            known->cause, fix);
+
+      } else if (std::abs(ratio - 1.0) > 0.10) {
+        add(name == std::string("RL") ? "vehicle.rl_circumference" : "vehicle.rr_circumference",
+            FindingSeverity::kBlocking,
+            fmt::format("the nominal {} circumference is {:.1f} % off the GNSS distance", name,
+                        100.0 * (ratio - 1.0)),
+            fmt::format("{} {:.4f} m in vehicle.yaml; the GNSS says about {:.4f} m", key, nominal,
+                        nominal / ratio),
+            "a wrong tyre size, or a unit or factor not on the known list",
+            fmt::format("{}: {:.4f} in vehicle.yaml (then calibrate)", key, nominal / ratio));
+      }
+    }
+    return ok;
+  }
+
+  // How many times faster `other` turns than the wheels, over clear turns of the wheels (a slope
+  // would be diluted by the wheels' noise): the mean of other x sign(wheels) over the mean
+  // |wheels|.
+  double turn_scale(const std::vector<double>& wheels, const std::vector<double>& other) const {
+    double along = 0.0, magnitude = 0.0;
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < wheels.size(); ++k) {
+      if (!moving_[k] || !(std::abs(wheels[k]) > 0.1) || !std::isfinite(other[k])) continue;
+      along += wheels[k] > 0.0 ? other[k] : -other[k];
+      magnitude += std::abs(wheels[k]);
+      ++n;
+    }
+    return n >= 20 ? along / magnitude : NAN;
+  }
+
+  // Wheels, gyro and GNSS course must turn the same way at the same rate.
+  void check_yaw_rates() {
+    const auto& wheels = signals_.wheel_yaw_rate_radps;
+    const auto& course = signals_.gnss_course_rate_radps;
+    if (count(turning_) < 50) return;
+    const double wheel_course = detail::correlation(wheels, course, turning_);
+    const bool gyro = !signals_.gyro_radps.empty();
+    const double wheel_gyro =
+        gyro ? detail::correlation(wheels, signals_.gyro_radps, turning_) : NAN;
+    const double gyro_course =
+        gyro ? detail::correlation(signals_.gyro_radps, course, turning_) : NAN;
+    const std::string evidence =
+        fmt::format("correlation of yaw rates: wheels-GNSS course {:+.2f}{}", wheel_course,
+                    gyro ? fmt::format(", wheels-gyro {:+.2f}, gyro-GNSS course {:+.2f}",
+                                       wheel_gyro, gyro_course)
+                         : std::string());
+    constexpr double kAgree = 0.3;
+    if (gyro && wheel_gyro < -kAgree && gyro_course > kAgree) {
+      add("wheels.swapped", FindingSeverity::kBlocking, "left and right wheels are swapped",
+          evidence, "the wheels turn opposite to the gyro and the GNSS course",
+          "swap rl and rr (wheels.csv columns, or the import map's rl/rr)");
+    } else if (gyro && wheel_gyro < -kAgree && wheel_course > kAgree) {
+      add("imu.yaw_sign", FindingSeverity::kBlocking, "the gyro's yaw rate has the wrong sign",
+          evidence,
+          "the IMU is forward-right-down (or mounted upside down) and was read as forward-left-up",
+          "negate wz (import map: imu frame: frd)");
+    } else if (wheel_course < -kAgree && (!gyro || wheel_gyro > kAgree)) {
+      add("gnss.mirrored", FindingSeverity::kBlocking, "the GNSS track is mirrored", evidence,
+          log_.gnss.origin ? "latitude and longitude are swapped"
+                           : "x and y (east and north) are swapped",
+          log_.gnss.origin ? "swap the lat and lon columns" : "swap the x and y columns");
+    } else if (!gyro && wheel_course < -kAgree) {
+      add("wheels.swapped", FindingSeverity::kBlocking,
+          "the wheels turn opposite to the GNSS course", evidence,
+          "left and right wheels swapped (or the GNSS mirrored)", "swap rl and rr");
+    }
+    if (gyro) {
+      const double scale = turn_scale(wheels, signals_.gyro_radps);
+      for (const auto& [factor, cause, fix] :
+           {std::tuple{180.0 / kPi, "gyro rate in deg/s read as rad/s",
+                       "give wz in rad/s (import map: unit: deg/s)"},
+            std::tuple{kPi / 180.0, "gyro rate in rad/s read as deg/s",
+                       "give wz in rad/s (import map: unit: rad/s)"}}) {
+        if (std::abs(std::abs(scale) / factor - 1.0) < 0.1) {
+          add("imu.yaw_unit", FindingSeverity::kBlocking,
+              "the gyro's yaw rate is in the wrong unit",
+              fmt::format("gyro / wheel yaw rate {:.4g}", scale), cause, fix);
+        }
+      }
+    }
+    if (!signals_.heading_rate_radps.empty()) {
+      const auto& reference = gyro ? signals_.gyro_radps : wheels;
+      const double scale =
+          detail::slope_through_origin(reference, signals_.heading_rate_radps, turning_);
+      if (std::abs(scale + 1.0) < 0.2) {
+        add("heading.convention", FindingSeverity::kBlocking,
+            "the heading stream turns the wrong way",
+            fmt::format("heading rate / {} yaw rate {:.3f}", gyro ? "gyro" : "wheel", scale),
+            "a compass heading (clockwise from north) read as ENU (counter-clockwise from east)",
+            "heading = 90 deg - compass (import map: heading convention: compass_cw)");
+      }
+    }
+  }
+
+  // Clock offsets between streams, from the cross-correlation of what both measure.
+  void check_clock_offsets() {
+    constexpr double kMaxLagS = 5.0, kMinOffsetS = 0.15;
+    std::vector<double> wheel_speed(signals_.size());
+    for (std::size_t k = 0; k < signals_.size(); ++k)
+      wheel_speed[k] =
+          0.5 * (std::abs(signals_.speed_rl_mps[k]) + std::abs(signals_.speed_rr_mps[k]));
+    const auto report = [&](const char* check, const char* stream, const detail::Lag& lag) {
+      if (!std::isfinite(lag.lag_s) || lag.peak < 0.5 || std::abs(lag.lag_s) < kMinOffsetS) return;
+      add(check, FindingSeverity::kBlocking,
+          fmt::format("the {} clock is offset from the wheels' by {:+.2f} s", stream, lag.lag_s),
+          fmt::format("cross-correlation peaks at {:+.2f} s ({:.2f}; {:.2f} at zero lag)",
+                      lag.lag_s, lag.peak, lag.at_zero),
+          "two loggers on different clocks, or a latency not taken out",
+          fmt::format("time.offset_s: {:+.3f} for {} in the import map", -lag.lag_s, stream));
+    };
+    // The GNSS clock from two signals that must agree: the speeds alone would read drive slip
+    // (wheels run ahead while accelerating) as a lag, the course rate alone is noisy.
+    const detail::Lag by_speed = detail::cross_correlation_lag(wheel_speed, signals_.gnss_speed_mps,
+                                                               signals_.step_s, kMaxLagS);
+    std::vector<double> course = signals_.gnss_course_rate_radps;
+    for (double& v : course) v = std::isfinite(v) ? v : 0.0;
+    const detail::Lag by_course = detail::cross_correlation_lag(signals_.wheel_yaw_rate_radps,
+                                                                course, signals_.step_s, kMaxLagS);
+    if (std::isfinite(by_course.lag_s) && by_course.peak > 0.5) {
+      if (std::abs(by_course.lag_s - by_speed.lag_s) < 0.3 || !std::isfinite(by_speed.lag_s))
+        report("time.gnss_offset", "GNSS", by_course);
+    } else if (std::abs(by_speed.lag_s) > 3 * kMinOffsetS) {
+      report("time.gnss_offset", "GNSS", by_speed);
+    }
+    if (!signals_.gyro_radps.empty()) {
+      report("time.imu_offset", "IMU",
+             detail::cross_correlation_lag(signals_.wheel_yaw_rate_radps, signals_.gyro_radps,
+                                           signals_.step_s, kMaxLagS));
+    }
+  }
+
+  // The lateral acceleration in a turn is speed x yaw rate, to the left.
+  void check_imu_axes() {
+    if (signals_.gyro_radps.empty() || count(turning_) < 50) return;
+    std::vector<double> centripetal(signals_.size());
+    for (std::size_t k = 0; k < signals_.size(); ++k)
+      centripetal[k] = signals_.gnss_speed_mps[k] * signals_.wheel_yaw_rate_radps[k];
+    const double with_ay = detail::correlation(centripetal, signals_.ay_mps2, turning_);
+    const double with_ax = detail::correlation(centripetal, signals_.ax_mps2, turning_);
+    const std::string evidence =
+        fmt::format("correlation with speed x yaw rate: ay {:+.2f}, ax {:+.2f}", with_ay, with_ax);
+    if (std::abs(with_ax) > 0.5 && std::abs(with_ax) > std::abs(with_ay) + 0.2) {
+      add("imu.axes_swapped", FindingSeverity::kBlocking, "the IMU's x and y axes are swapped",
+          evidence, "the IMU is mounted turned by 90 deg, or its columns are mixed up",
+          "swap ax and ay");
+    } else if (with_ay < -0.5) {
+      add("imu.ay_sign", FindingSeverity::kBlocking, "the lateral acceleration has the wrong sign",
+          evidence, "a forward-right-down IMU read as forward-left-up",
+          "negate ay (import map: imu frame: frd)");
+    }
+  }
+
+  void check_gnss_repeats() {
+    std::size_t repeated = 0, first = 0;
+    for (std::size_t k = 1; k < log_.gnss.size(); ++k) {
+      if (log_.gnss.x_m[k] == log_.gnss.x_m[k - 1] && log_.gnss.y_m[k] == log_.gnss.y_m[k - 1]) {
+        if (repeated++ == 0) first = k;
+      }
+    }
+    const double share =
+        log_.gnss.size() > 1 ? double(repeated) / double(log_.gnss.size() - 1) : 0.0;
+    // Standing still repeats a fix legitimately; a quarter of all rows is more than that.
+    if (share > 0.25) {
+      add("gnss.repeated", FindingSeverity::kBlocking, "GNSS fixes are repeated on many rows",
+          fmt::format("{:.0f} % of rows repeat the previous position (first at row {})",
+                      100 * share, first + 1),
+          "the GNSS was logged faster than the receiver makes fixes: each fix counts several times "
+          "and the sigma is too small",
+          "keep only the rows where the fix changes (or log at the receiver's rate)");
+    }
+  }
+
+  void check_gaps() {
+    const auto gaps = find_wheel_gaps(log_.wheels, default_max_wheel_gap_s(log_.wheels));
+    if (!gaps.empty()) {
+      const auto longest = std::max_element(
+          gaps.begin(), gaps.end(),
+          [](const WheelGap& a, const WheelGap& b) { return a.duration_s < b.duration_s; });
+      add("wheels.gaps", FindingSeverity::kWarning,
+          fmt::format("{} gap(s) in the wheel stream", gaps.size()),
+          fmt::format("longest {:.2f} s at {:.1f} s", longest->duration_s, longest->start_s),
+          "dropped packets or a logger pause",
+          "none needed: the odometry chain restarts at each gap");
+    }
+    std::vector<double> dt;
+    for (std::size_t k = 1; k < log_.gnss.size(); ++k)
+      dt.push_back(log_.gnss.t_s[k] - log_.gnss.t_s[k - 1]);
+    if (dt.empty()) return;
+    const double typical = median(dt);
+    const double longest = *std::max_element(dt.begin(), dt.end());
+    if (longest > std::max(2.0, 10.0 * typical)) {
+      add("gnss.gaps", FindingSeverity::kNote, "the GNSS has gaps",
+          fmt::format("longest {:.1f} s (fixes every {:.3g} s)", longest, typical),
+          "an outage (tunnel, garage) or dropped messages", "none needed");
+    }
+  }
+
+  void check_standstill_biases() {
+    const auto standing = find_standstills(log_, log_.vehicle.nominal_params(), {});
+    if (standing.empty()) return;
+    if (log_.imu) {
+      double sum = 0.0;
+      std::size_t n = 0;
+      for (const Standstill& still : standing) {
+        for (std::size_t k = 0; k < log_.imu->size(); ++k) {
+          if (log_.imu->t_s[k] >= still.start_s && log_.imu->t_s[k] <= still.end_s) {
+            sum += log_.imu->wz_radps[k];
+            ++n;
+          }
+        }
+      }
+      if (n > 10 && std::abs(sum / n) > rad_from_deg(0.2)) {
+        add("imu.gyro_bias", FindingSeverity::kNote, "the gyro has a zero-rate bias",
+            fmt::format("{:+.3f} deg/s at standstill ({} samples)", deg_from_rad(sum / n), n),
+            "an uncalibrated gyro", "none needed: the reference filter estimates it");
+      }
+    }
+    const bool rate_sensor = log_.wheels.unit_rear == WheelUnit::kRadiansPerSecond ||
+                             log_.wheels.unit_rear == WheelUnit::kMetresPerSecond;
+    if (rate_sensor) {
+      const WheelRateBias bias = wheel_rate_bias(log_.wheels, standing);
+      if (std::max(std::abs(bias.rl_rev_per_s), std::abs(bias.rr_rev_per_s)) * 360.0 > 0.1) {
+        add("wheels.rate_bias", FindingSeverity::kNote,
+            "the wheel rate sensors have zero-rate biases",
+            fmt::format("RL {:+.3f} deg/s, RR {:+.3f} deg/s over {:.1f} s standing",
+                        360.0 * bias.rl_rev_per_s, 360.0 * bias.rr_rev_per_s, bias.standing_s),
+            "angular-rate wheel sensors read a little at rest",
+            "none needed: removed before calibrating");
+      }
+    }
+  }
+
+  void check_altitude() {
+    if (log_.gnss.altitude_m.empty()) {
+      add("gnss.altitude", FindingSeverity::kNote, "the GNSS has no altitude",
+          "gnss.csv has no alt column",
+          "on hills the 3-D path is longer than the planar one and biases the circumferences",
+          "log the altitude (gnss alt column) if the drive is not flat");
+    }
+  }
+
+  const Log& log_;
+  DiagnosisSignals signals_;
+  std::vector<bool> moving_, turning_;
+  Diagnosis out_;
+};
+
+}  // namespace
+
+bool Diagnosis::blocking() const {
+  return std::any_of(findings.begin(), findings.end(),
+                     [](const Finding& f) { return f.severity == FindingSeverity::kBlocking; });
+}
+
+const char* severity_name(FindingSeverity severity) {
+  switch (severity) {
+    case FindingSeverity::kBlocking:
+      return "blocking";
+    case FindingSeverity::kWarning:
+      return "warning";
+    case FindingSeverity::kNote:
+      return "note";
+  }
+  return "?";
+}
+
+std::string describe(const Finding& finding) {
+  std::string line =
+      fmt::format("[{}] {}: {}", severity_name(finding.severity), finding.what, finding.evidence);
+  if (!finding.cause.empty()) line += "; likely " + finding.cause;
+  if (!finding.fix.empty()) line += "; fix: " + finding.fix;
+  return line + " (" + finding.check + ")";
+}
+
+Diagnosis diagnose_log(const Log& log) { return Doctor(log).run(); }
+
+}  // namespace odocal
