@@ -63,9 +63,12 @@ void run_calibrate(const CalibrateArgs& args) {
   }
   if (args.log_dir.empty()) throw CLI::RequiredError("LOG");
   refuse_log_vehicle_file(args);
+  LogReadOptions read_options;
+  read_options.read_truth = false;  // estimators never see the truth
+  const Log log = args.window.apply(read_log(args.log_dir, read_options));
   if (!args.force) {
     // The doctor's blocking findings (a flipped sign, a unit, a clock) make any estimate wrong.
-    const Diagnosis diagnosis = doctor_log(args.log_dir);
+    const Diagnosis diagnosis = doctor_log(log, args.log_dir);
     if (diagnosis.blocking()) {
       std::string first;
       for (const Finding& f : diagnosis.findings) {
@@ -81,9 +84,6 @@ void run_calibrate(const CalibrateArgs& args) {
                       first, args.log_dir));
     }
   }
-  LogReadOptions read_options;
-  read_options.read_truth = false;  // estimators never see the truth
-  const Log log = args.window.apply(read_log(args.log_dir, read_options));
   const AnyCalibrationSummary summary = calibrate(log, config);
   const CalibrationSummary& result = core(summary);
   fmt::print("{}", full_report(summary));

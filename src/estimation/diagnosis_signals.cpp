@@ -23,15 +23,10 @@ double at(const std::vector<double>& t_s, const std::vector<double>& values, dou
   return interpolate_linear(t_s, values, t).value_or(kNaN);
 }
 
-// Mean of values over [from, to) by the samples inside (NaN if none).
+// Mean of the samples in [from, to] (NaN if none).
 double mean_over(const std::vector<double>& t_s, const std::vector<double>& values, double from,
                  double to) {
-  const auto first = std::lower_bound(t_s.begin(), t_s.end(), from) - t_s.begin();
-  const auto last = std::lower_bound(t_s.begin(), t_s.end(), to) - t_s.begin();
-  if (last <= first) return kNaN;
-  double sum = 0.0;
-  for (auto k = first; k < last; ++k) sum += values[static_cast<std::size_t>(k)];
-  return sum / static_cast<double>(last - first);
+  return window_sum(t_s, values, from, to).mean().value_or(kNaN);
 }
 
 }  // namespace

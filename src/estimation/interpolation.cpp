@@ -51,4 +51,15 @@ std::optional<Pose2> interpolate_pose(const PoseStream& poses, double t_s) {
   return result;
 }
 
+WindowSum window_sum(const std::vector<double>& t_s, const std::vector<double>& values,
+                     double from_s, double to_s) {
+  const auto first = std::lower_bound(t_s.begin(), t_s.end(), from_s);
+  const auto last = std::upper_bound(first, t_s.end(), to_s);
+  WindowSum window;
+  for (auto it = first; it != last; ++it)
+    window.sum += values[static_cast<std::size_t>(it - t_s.begin())];
+  window.count = static_cast<std::size_t>(last - first);
+  return window;
+}
+
 }  // namespace odocal

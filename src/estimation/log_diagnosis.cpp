@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "diagnosis_signals.hpp"
+#include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
 #include "odocal/model/angle.hpp"
@@ -103,10 +104,10 @@ class Doctor {
   }
 
  private:
-  void add(const char* check, FindingSeverity severity, std::string what, std::string evidence,
+  void add(std::string check, FindingSeverity severity, std::string what, std::string evidence,
            std::string cause, std::string fix) {
-    out_.findings.push_back(
-        {check, severity, std::move(what), std::move(evidence), std::move(cause), std::move(fix)});
+    out_.findings.push_back({std::move(check), severity, std::move(what), std::move(evidence),
+                             std::move(cause), std::move(fix)});
   }
 
   bool has(std::string_view check) const {
@@ -189,38 +190,37 @@ class Doctor {
           "setting)");
       return false;
     }
-    for (const auto& [name, ratio, key] :
-         {std::tuple{"RL", rl, "circumference_rl_m"}, std::tuple{"RR", rr, "circumference_rr_m"}}) {
+    struct Wheel {
+      const char* name;  // RL, RR
+      const char* id;    // rl, rr: in check names and vehicle.yaml keys
+      double ratio, other_ratio, nominal_m;
+    };
+    for (const Wheel& wheel : {Wheel{"RL", "rl", rl, rr, log_.vehicle.circumference_rl_m},
+                               Wheel{"RR", "rr", rr, rl, log_.vehicle.circumference_rr_m}}) {
+      const auto [name, id, ratio, other_ratio, nominal] = wheel;
       if (ratio < 0.0) {
-        add(name == std::string("RL") ? "wheels.rl_sign" : "wheels.rr_sign",
-            FindingSeverity::kBlocking,
+        add(fmt::format("wheels.{}_sign", id), FindingSeverity::kBlocking,
             fmt::format("the {} wheel counts backwards while the car drives forward", name),
             fmt::format("{} speed / GNSS speed {:.3f}, the other wheel {:+.3f}", name, ratio,
-                        name == std::string("RL") ? rr : rl),
+                        other_ratio),
             fmt::format(
                 "the {} encoder's sign is flipped (or left and right are mixed up with a sign)",
                 name),
             fmt::format("negate the {} wheel column", name));
         ok = false;
-        continue;
-      }
-      const double nominal = name == std::string("RL") ? log_.vehicle.circumference_rl_m
-                                                       : log_.vehicle.circumference_rr_m;
-      if (const auto known = known_wheel_factor(ratio, log_.wheels)) {
+      } else if (const auto known = known_wheel_factor(ratio, log_.wheels)) {
         const std::string fix = *known->fix
                                     ? known->fix
                                     : fmt::format("ticks_per_rev: {:g} in vehicle.yaml",
                                                   *log_.vehicle.ticks_per_rev * known->factor);
-        add(name == std::string("RL") ? "wheels.rl_unit" : "wheels.rr_unit",
-            FindingSeverity::kBlocking,
+        add(fmt::format("wheels.{}_unit", id), FindingSeverity::kBlocking,
             fmt::format("the {} wheel's distance is {:.4g}x the GNSS distance", name, ratio),
             fmt::format("median speed ratio {:.4f} over {:.0f} s of driving", ratio,
                         count(moving_) * signals_.step_s),
             known->cause, fix);
-
       } else if (std::abs(ratio - 1.0) > 0.10) {
-        add(name == std::string("RL") ? "vehicle.rl_circumference" : "vehicle.rr_circumference",
-            FindingSeverity::kBlocking,
+        const std::string key = fmt::format("circumference_{}_m", id);
+        add(fmt::format("vehicle.{}_circumference", id), FindingSeverity::kBlocking,
             fmt::format("the nominal {} circumference is {:.1f} % off the GNSS distance", name,
                         100.0 * (ratio - 1.0)),
             fmt::format("{} {:.4f} m in vehicle.yaml; the GNSS says about {:.4f} m", key, nominal,
@@ -421,12 +421,10 @@ class Doctor {
       double sum = 0.0;
       std::size_t n = 0;
       for (const Standstill& still : standing) {
-        for (std::size_t k = 0; k < log_.imu->size(); ++k) {
-          if (log_.imu->t_s[k] >= still.start_s && log_.imu->t_s[k] <= still.end_s) {
-            sum += log_.imu->wz_radps[k];
-            ++n;
-          }
-        }
+        const WindowSum window =
+            window_sum(log_.imu->t_s, log_.imu->wz_radps, still.start_s, still.end_s);
+        sum += window.sum;
+        n += window.count;
       }
       if (n > 10 && std::abs(sum / n) > rad_from_deg(0.2)) {
         add("imu.gyro_bias", FindingSeverity::kNote, "the gyro has a zero-rate bias",

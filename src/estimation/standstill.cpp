@@ -4,8 +4,9 @@
 #include <array>
 #include <cmath>
 
+#include "odocal/estimation/interpolation.hpp"
+
 namespace odocal {
-namespace {}  // namespace
 
 OptionTable<StandstillOptions> StandstillOptions::fields() {
   using O = StandstillOptions;
@@ -36,15 +37,8 @@ std::vector<Standstill> find_standstills(const Log& log, const OdometryParams& n
   // A stretch the wheels call standing, confirmed by the mean GNSS speed and the mean gyro rate
   // over it (single samples are too noisy).
   const auto confirmed = [&](double start, double end) {
-    const auto mean_over = [&](const std::vector<double>& t_s,
-                               const std::vector<double>& values) -> std::optional<double> {
-      const auto first = std::lower_bound(t_s.begin(), t_s.end(), start);
-      const auto last = std::upper_bound(first, t_s.end(), end);
-      if (first == last) return std::nullopt;
-      double sum = 0.0;
-      for (auto it = first; it != last; ++it)
-        sum += values[static_cast<std::size_t>(it - t_s.begin())];
-      return sum / static_cast<double>(last - first);
+    const auto mean_over = [&](const std::vector<double>& t_s, const std::vector<double>& values) {
+      return window_sum(t_s, values, start, end).mean();
     };
     if (!log.gnss.speed_mps.empty()) {
       const auto speed = mean_over(log.gnss.t_s, log.gnss.speed_mps);

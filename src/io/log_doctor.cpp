@@ -52,7 +52,10 @@ Log read_for_diagnosis(const std::filesystem::path& log_dir) {
 }  // namespace
 
 Diagnosis doctor_log(const std::filesystem::path& log_dir) {
-  const Log log = read_for_diagnosis(log_dir);
+  return doctor_log(read_for_diagnosis(log_dir), log_dir);
+}
+
+Diagnosis doctor_log(const Log& log, const std::filesystem::path& log_dir) {
   Diagnosis diagnosis = diagnose_log(log);
   check_heading_unit(log_dir / "heading.csv", diagnosis);
   // The degree values confuse the heading-rate comparison: one finding says it.

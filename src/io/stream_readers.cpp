@@ -1,7 +1,5 @@
 #include "odocal/io/stream_readers.hpp"
 
-#include <fmt/format.h>
-
 #include <GeographicLib/LocalCartesian.hpp>
 
 #include "odocal/data/physical_limits.hpp"
@@ -11,16 +9,11 @@
 namespace odocal {
 namespace {
 
-void require_within(const CsvTable& table, std::string_view column, PhysicalRange range,
-                    std::string_view what) {
-  detail::require_range(table, column, range.min, range.max,
-                        fmt::format("{} from {:g} to {:g}", what, range.min, range.max));
-}
+using detail::require_within;
 
 void require_rows_and_time(const CsvTable& table) {
   detail::require_increasing_time(table);
   detail::require_rows(table, 1, "need at least 1");
-  require_within(table, "t", kTimeS, "a time in seconds");
 }
 
 }  // namespace

@@ -36,6 +36,7 @@ void require_increasing_time(const CsvTable& table) {
                   t[k], t[k - 1], table.line_of_row[k - 1]);
     throw InputError(table.at(k, "t"), problem);
   }
+  require_within(table, "t", kTimeS, "a time in seconds");
 }
 
 void require_range(const CsvTable& table, std::string_view column, double min, double max,
@@ -47,6 +48,12 @@ void require_range(const CsvTable& table, std::string_view column, double min, d
                        fmt::format("{} is out of range: expected {}", values[k], expected));
     }
   }
+}
+
+void require_within(const CsvTable& table, std::string_view column, PhysicalRange range,
+                    std::string_view what) {
+  require_range(table, column, range.min, range.max,
+                fmt::format("{} from {:g} to {:g}", what, range.min, range.max));
 }
 
 }  // namespace odocal::detail

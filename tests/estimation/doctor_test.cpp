@@ -69,6 +69,15 @@ struct Fault {
   const char* expected_check;
 };
 
+// Multiplies one number in the log's vehicle.yaml.
+void scale_vehicle_value(const fs::path& log, const std::string& key, double factor) {
+  std::string yaml = read_text_file((log / "vehicle.yaml").string());
+  const auto at = yaml.find(key + ": ") + key.size() + 2;
+  const auto end = yaml.find('\n', at);
+  yaml.replace(at, end - at, fmt::format("{:.6f}", factor * std::stod(yaml.substr(at, end - at))));
+  std::ofstream(log / "vehicle.yaml") << yaml;
+}
+
 double wrap16(double ticks) { return std::fmod(std::fmod(ticks, 65536.0) + 65536.0, 65536.0); }
 
 std::vector<Fault> faults() {
@@ -108,27 +117,12 @@ std::vector<Fault> faults() {
        "wheels.rl_unit"},
       {"diameter for circumference", "",
        [](const fs::path& log) {
-         std::ofstream(log / "vehicle.yaml", std::ios::app) << "";
-         std::string yaml = read_text_file((log / "vehicle.yaml").string());
-         for (const char* key : {"circumference_rl_m: ", "circumference_rr_m: "}) {
-           const auto at = yaml.find(key) + std::string(key).size();
-           const auto end = yaml.find('\n', at);
-           const double c = std::stod(yaml.substr(at, end - at));
-           yaml.replace(at, end - at, fmt::format("{:.6f}", c / kPi));
-         }
-         std::ofstream(log / "vehicle.yaml") << yaml;
+         scale_vehicle_value(log, "circumference_rl_m", 1 / kPi);
+         scale_vehicle_value(log, "circumference_rr_m", 1 / kPi);
        },
        "wheels.rl_unit"},
       {"circumference 15 % off", "",
-       [](const fs::path& log) {
-         std::string yaml = read_text_file((log / "vehicle.yaml").string());
-         const std::string key = "circumference_rr_m: ";
-         const auto at = yaml.find(key) + key.size();
-         const auto end = yaml.find('\n', at);
-         yaml.replace(at, end - at,
-                      fmt::format("{:.6f}", 1.15 * std::stod(yaml.substr(at, end - at))));
-         std::ofstream(log / "vehicle.yaml") << yaml;
-       },
+       [](const fs::path& log) { scale_vehicle_value(log, "circumference_rr_m", 1.15); },
        "vehicle.rr_circumference"},
       {"rpm as rad/s", "--wheel-output radps",
        [](const fs::path& log) {

@@ -1,5 +1,5 @@
 #pragma once
-// Interpolation of timed poses and positions at arbitrary times.
+// Interpolation of timed poses and positions at arbitrary times, and means over time windows.
 
 #include <optional>
 #include <vector>
@@ -18,5 +18,16 @@ std::optional<double> interpolate_linear(const std::vector<double>& t_s,
 // As interpolate_linear, for angles: along the shortest arc, result wrapped to (-pi, pi].
 std::optional<double> interpolate_angle(const std::vector<double>& t_s,
                                         const std::vector<double>& angles_rad, double at_s);
+
+// The samples of a sampled scalar with time in [from_s, to_s] (bisection on sorted t_s).
+struct WindowSum {
+  double sum{};
+  std::size_t count{};
+  std::optional<double> mean() const {
+    return count > 0 ? std::optional<double>(sum / static_cast<double>(count)) : std::nullopt;
+  }
+};
+WindowSum window_sum(const std::vector<double>& t_s, const std::vector<double>& values,
+                     double from_s, double to_s);
 
 }  // namespace odocal

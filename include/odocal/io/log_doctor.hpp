@@ -9,5 +9,7 @@
 namespace odocal {
 
 Diagnosis doctor_log(const std::filesystem::path& log_dir);
+// The same for a log already read from `log_dir` (calibrate diagnoses the log it calibrates).
+Diagnosis doctor_log(const Log& log, const std::filesystem::path& log_dir);
 
 }  // namespace odocal
