@@ -41,7 +41,7 @@ fuzz-build: deps
 	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	      -DCMAKE_CXX_COMPILER=clang++ -DODOCAL_FUZZ=ON -DODOCAL_FUNCTION_CLONES=OFF \
 	      -DODOCAL_BUILD_TESTS=OFF -DODOCAL_BUILD_BENCHMARKS=OFF -DODOCAL_BUILD_APPS=OFF \
-	      "-DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all"
+	      "-DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -DEIGEN_MALLOC_ALREADY_ALIGNED=1"
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target $(FUZZERS:%=%_fuzzer)
 
 fuzz: fuzz-build
