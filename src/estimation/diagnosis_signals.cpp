@@ -147,7 +147,7 @@ Lag cross_correlation_lag(const std::vector<double>& x, const std::vector<double
     }
     values.push_back(correlation(xs, ys, std::vector<bool>(xs.size(), true), 50));
   }
-  Lag lag{kNaN, kNaN, values[static_cast<std::size_t>(max_shift)]};
+  Lag lag{kNaN, kNaN, values[static_cast<std::size_t>(max_shift)], kNaN};
   std::size_t best = 0;
   bool found = false;
   for (std::size_t i = 0; i < values.size(); ++i) {
@@ -157,6 +157,9 @@ Lag cross_correlation_lag(const std::vector<double>& x, const std::vector<double
     }
   }
   if (!found) return lag;
+  for (const double value : values) {
+    if (std::isfinite(value) && !(value >= lag.trough)) lag.trough = value;
+  }
   double offset = 0.0;
   if (best > 0 && best + 1 < values.size() && std::isfinite(values[best - 1]) &&
       std::isfinite(values[best + 1])) {

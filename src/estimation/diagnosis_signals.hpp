@@ -42,6 +42,7 @@ struct Lag {
   double lag_s{};
   double peak{};
   double at_zero{};
+  double trough{};  // the most negative correlation in the window
 };
 Lag cross_correlation_lag(const std::vector<double>& x, const std::vector<double>& y, double step_s,
                           double max_lag_s);

@@ -251,7 +251,13 @@ class Doctor {
   void check_yaw_rates() {
     const auto& wheels = signals_.wheel_yaw_rate_radps;
     const auto& course = signals_.gnss_course_rate_radps;
-    if (count(turning_) < 50) return;
+    if (count(turning_) < 50) {
+      add("yaw.too_straight", FindingSeverity::kNote,
+          "too little turning to check left/right, the gyro's sign and the IMU axes",
+          fmt::format("{:.1f} s turning faster than 3 deg/s", count(turning_) * signals_.step_s),
+          "", "");
+      return;
+    }
     const double wheel_course = detail::correlation(wheels, course, turning_);
     const bool gyro = !signals_.gyro_radps.empty();
     const double wheel_gyro =
@@ -319,7 +325,11 @@ class Doctor {
       wheel_speed[k] =
           0.5 * (std::abs(signals_.speed_rl_mps[k]) + std::abs(signals_.speed_rr_mps[k]));
     const auto report = [&](const char* check, const char* stream, const detail::Lag& lag) {
-      if (!std::isfinite(lag.lag_s) || lag.peak < 0.5 || std::abs(lag.lag_s) < kMinOffsetS) return;
+      // A stronger anti-correlation means the signals disagree in sign (swapped wheels, a
+      // negated gyro): their best positive match is then a spurious lag, not a clock.
+      if (!std::isfinite(lag.lag_s) || lag.peak < 0.5 || !(lag.peak > -lag.trough) ||
+          std::abs(lag.lag_s) < kMinOffsetS)
+        return;
       add(check, FindingSeverity::kBlocking,
           fmt::format("the {} clock is offset from the wheels' by {:+.2f} s", stream, lag.lag_s),
           fmt::format("cross-correlation peaks at {:+.2f} s ({:.2f}; {:.2f} at zero lag)",
@@ -335,13 +345,15 @@ class Doctor {
     for (double& v : course) v = std::isfinite(v) ? v : 0.0;
     const detail::Lag by_course = detail::cross_correlation_lag(signals_.wheel_yaw_rate_radps,
                                                                 course, signals_.step_s, kMaxLagS);
-    if (std::isfinite(by_course.lag_s) && by_course.peak > 0.5) {
+    // Yaw rates carry a clock only where the car turns.
+    const bool turns = count(turning_) >= 50;
+    if (turns && std::isfinite(by_course.lag_s) && by_course.peak > 0.5) {
       if (std::abs(by_course.lag_s - by_speed.lag_s) < 0.3 || !std::isfinite(by_speed.lag_s))
         report("time.gnss_offset", "GNSS", by_course);
     } else if (std::abs(by_speed.lag_s) > 3 * kMinOffsetS) {
       report("time.gnss_offset", "GNSS", by_speed);
     }
-    if (!signals_.gyro_radps.empty()) {
+    if (turns && !signals_.gyro_radps.empty()) {
       report("time.imu_offset", "IMU",
              detail::cross_correlation_lag(signals_.wheel_yaw_rate_radps, signals_.gyro_radps,
                                            signals_.step_s, kMaxLagS));

@@ -248,6 +248,28 @@ TEST_F(DoctorMatrix, TheRealCarExampleIsCleanAndItsFaultsAreFound) {
       << checks(doctor_log(log), false);
 }
 
+// A real car (comma2k19, imported with the shipped map): clean, and its faults found. The drive
+// is nearly straight, so left/right cannot be checked there (the doctor says so).
+TEST(DoctorRealLog, Comma2k19IsCleanAndItsFaultsAreFound) {
+  const fs::path data = fs::path(ODOCAL_SOURCE_DIR) / "../shared/data/real/comma2k19";
+  if (!fs::exists(data / "wheel_speeds.csv")) GTEST_SKIP() << "shared data absent: " << data;
+  const TempLogDir dir;
+  const fs::path log = dir.path() / "log";
+  ASSERT_EQ(run_cli(fmt::format("import csv --map {}/examples/comma2k19/map.yaml --in {} --out {}",
+                                ODOCAL_SOURCE_DIR, data.string(), log.string()))
+                .status,
+            0);
+  EXPECT_FALSE(doctor_log(log).blocking()) << checks(doctor_log(log), true);
+  const std::string wheels = read_text_file((log / "wheels.csv").string());
+  edit_csv(log / "wheels.csv", [](Row& r) { r["rl_mps"] = -r["rl_mps"]; });
+  EXPECT_NE(checks(doctor_log(log), true).find("wheels.rl_sign"), std::string::npos)
+      << checks(doctor_log(log), false);
+  std::ofstream(log / "wheels.csv") << wheels;
+  edit_csv(log / "gnss.csv", [](Row& r) { r["t"] += 0.7; });
+  EXPECT_NE(checks(doctor_log(log), true).find("time.gnss_offset"), std::string::npos)
+      << checks(doctor_log(log), false);
+}
+
 TEST(DoctorCli, ExitsThreeOnABlockingFindingAndWritesJson) {
   const TempLogDir dir;
   ASSERT_EQ(run_cli("simulate --laps 1 --out " + dir.file("log")).status, 0);
