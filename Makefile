@@ -36,7 +36,7 @@ sanitize: deps
 # over its corpus and regression reproducers, then FUZZ_SECONDS of fuzzing (0: regression only).
 FUZZ_DIR ?= build-fuzz
 FUZZ_SECONDS ?= 60
-FUZZERS := csv_streams yaml_configs import_map log_pipeline
+FUZZERS := csv_streams yaml_configs import_map log_pipeline ros1_bag mcap sqlite3_bag message_decoder
 fuzz-build: deps
 	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	      -DCMAKE_CXX_COMPILER=clang++ -DODOCAL_FUZZ=ON -DODOCAL_FUNCTION_CLONES=OFF \

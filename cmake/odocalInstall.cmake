@@ -4,7 +4,7 @@ include(CMakePackageConfigHelpers)
 
 set(ODOCAL_CMAKE_DIR "${CMAKE_INSTALL_LIBDIR}/cmake/odocal")
 
-install(TARGETS odocal EXPORT odocalTargets
+install(TARGETS odocal odocal_bag EXPORT odocalTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}

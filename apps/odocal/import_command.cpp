@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <memory>
 
+#include "odocal/bag/bag_import.hpp"
+#include "odocal/bag/bag_listing.hpp"
 #include "odocal/io/csv_import.hpp"
 
 namespace odocal::cli {
@@ -16,12 +18,9 @@ struct ImportArgs {
   std::string source_dir;
 };
 
-void run_import(const ImportArgs& args) {
-  const std::filesystem::path map_file(args.map_file);
-  const std::filesystem::path source =
-      args.source_dir.empty() ? map_file.parent_path() : std::filesystem::path(args.source_dir);
-  const ImportSummary summary = import_csv(map_file, source, args.out_dir);
-  fmt::print("imported     {} -> {}\n", source.string(), args.out_dir);
+void print_summary(const std::string& source, const std::string& out_dir,
+                   const ImportSummary& summary) {
+  fmt::print("imported     {} -> {}\n", source, out_dir);
   fmt::print("{:<8} {:>8} {:>12} {:>10} {:>14}\n", "stream", "rows", "duration s", "rate Hz",
              "largest gap s");
   for (const ImportedStreamSummary& s : summary.streams) {
@@ -30,6 +29,31 @@ void run_import(const ImportArgs& args) {
   }
   fmt::print("distance     {:.1f} m (rear wheels, nominal circumferences)\n",
              summary.wheel_distance_m);
+  for (const std::string& note : summary.notes) fmt::print("note         {}\n", note);
+}
+
+void run_import(const ImportArgs& args) {
+  const std::filesystem::path map_file(args.map_file);
+  const std::filesystem::path source =
+      args.source_dir.empty() ? map_file.parent_path() : std::filesystem::path(args.source_dir);
+  print_summary(source.string(), args.out_dir, import_csv(map_file, source, args.out_dir));
+}
+
+struct BagImportArgs {
+  std::string bag;
+  std::string map_file;
+  std::string out_dir;
+  bool list{};
+};
+
+void run_bag_import(const BagImportArgs& args) {
+  if (args.list) {
+    fmt::print("{}", bag::format_bag_listing(bag::list_bag(args.bag)));
+    return;
+  }
+  if (args.map_file.empty() || args.out_dir.empty())
+    throw CLI::ValidationError("import bag", "needs --map and --out (or --list)");
+  print_summary(args.bag, args.out_dir, bag::import_bag(args.map_file, args.bag, args.out_dir));
 }
 
 }  // namespace
@@ -46,6 +70,16 @@ void add_import_command(CLI::App& app) {
   csv->add_option("--in", args->source_dir,
                   "Directory of the logger's files (default: the map's directory)");
   csv->callback([args] { run_import(*args); });
+
+  auto bag_args = std::make_shared<BagImportArgs>();
+  CLI::App* bag = import->add_subcommand(
+      "bag", "ROS bags: ROS 1 .bag, ROS 2 MCAP and SQLite3 (docs/importing.md)");
+  bag->add_option("BAG", bag_args->bag, "Bag file or rosbag2 directory")->required();
+  bag->add_option("--map", bag_args->map_file, "Topic map YAML (docs/importing.md)");
+  bag->add_option("--out", bag_args->out_dir, "Output log directory");
+  bag->add_flag("--list", bag_args->list,
+                "Print the topics: type, encoding, count, rate and time span");
+  bag->callback([bag_args] { run_bag_import(*bag_args); });
 }
 
 }  // namespace odocal::cli

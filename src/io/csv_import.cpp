@@ -13,11 +13,10 @@
 
 #include "odocal/error.hpp"
 #include "odocal/estimation/interpolation.hpp"
-#include "odocal/estimation/motion_coverage.hpp"
 #include "odocal/io/csv_table.hpp"
+#include "odocal/io/import_output.hpp"
 #include "odocal/io/input_file.hpp"
 #include "odocal/io/log_directory_output.hpp"
-#include "odocal/io/log_reader.hpp"
 #include "odocal/io/text_output.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
 #include "odocal/model/angle.hpp"
@@ -166,49 +165,11 @@ std::vector<std::size_t> complete_rows(const std::vector<const std::vector<doubl
   return keep;
 }
 
-void write_csv(const fs::path& path, const std::string& header, const std::vector<double>& t_s,
-               const std::vector<const std::vector<double>*>& columns,
-               const std::vector<std::size_t>& rows, const std::vector<int>& decimals) {
-  write_text_file(path, [&](TextBuffer& out) {
-    out.print("{}\n", header);
-    for (std::size_t k : rows) {
-      out.print("{:.6f}", t_s[k]);
-      for (std::size_t c = 0; c < columns.size(); ++c)
-        out.print(",{:.{}f}", (*columns[c])[k], decimals[c]);
-      out.print("\n");
-    }
-  });
-}
-
-ImportedStreamSummary summarise(const std::string& name, const std::vector<double>& t_s) {
-  ImportedStreamSummary summary{name, t_s.size(), 0.0, 0.0, 0.0};
-  if (t_s.size() < 2) return summary;
-  summary.duration_s = t_s.back() - t_s.front();
-  std::vector<double> dt(t_s.size() - 1);
-  for (std::size_t k = 1; k < t_s.size(); ++k) dt[k - 1] = t_s[k] - t_s[k - 1];
-  summary.largest_gap_s = *std::max_element(dt.begin(), dt.end());
-  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
-  summary.median_rate_hz = 1.0 / dt[dt.size() / 2];
-  return summary;
-}
-
 std::optional<StreamReader> stream(YamlMap& streams, const std::string& name, TableCache& cache,
                                    const YAML::Node& root) {
   auto map = streams.map(name);
   if (!map) return std::nullopt;
   return StreamReader(std::move(*map), root["streams"][name], cache);
-}
-
-// Reads the staged log back as any log; its errors name the files where they will be.
-Log read_written_log(const fs::path& staged, const fs::path& target) {
-  try {
-    return read_log(staged);
-  } catch (const InputError& e) {
-    InputLocation location = e.location();
-    if (location.file.starts_with(staged.string()))
-      location.file = (target / fs::path(location.file).filename()).string();
-    throw InputError(location, e.problem() + " (after conversion; nothing was written)");
-  }
 }
 
 }  // namespace
@@ -228,7 +189,6 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
   const fs::path& dir = output.staging();
 
   TableCache cache(source_dir);
-  ImportSummary summary;
   constexpr double kPi = std::numbers::pi;
 
   // Wheels: the unit says what the column holds.
@@ -266,8 +226,8 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     for (std::size_t c = 0; c < names.size(); ++c) {
       if (names[c].ends_with("_ticks")) decimals[c] = 0;
     }
-    write_csv(dir / "wheels.csv", fmt::format("t,{}", fmt::join(names, ",")), wheels->t_s(),
-              columns, rows, decimals);
+    write_stream_csv(dir / "wheels.csv", fmt::format("t,{}", fmt::join(names, ",")), wheels->t_s(),
+                     columns, rows, decimals);
   }
 
   // GNSS: lat/lon (degrees) or local metres; optional altitude, sigma and Doppler speed.
@@ -307,8 +267,8 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
       const bool has_alt = std::find(header.begin(), header.end(), "alt") != header.end();
       enu.emplace(values[0][rows[0]], values[1][rows[0]], has_alt ? values[2][rows[0]] : 0.0);
     }
-    write_csv(dir / "gnss.csv", fmt::format("{}", fmt::join(header, ",")), gnss->t_s(), columns,
-              rows, decimals);
+    write_stream_csv(dir / "gnss.csv", fmt::format("{}", fmt::join(header, ",")), gnss->t_s(),
+                     columns, rows, decimals);
   }
 
   // IMU: body accelerations and yaw rate, converted to forward-left-up.
@@ -326,7 +286,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
       for (double& v : wz) v = -v;
     }
     const auto rows = complete_rows({&ax, &ay, &wz}, imu->t_s().size());
-    write_csv(dir / "imu.csv", "t,ax,ay,wz", imu->t_s(), {&ax, &ay, &wz}, rows, {6, 6, 7});
+    write_stream_csv(dir / "imu.csv", "t,ax,ay,wz", imu->t_s(), {&ax, &ay, &wz}, rows, {6, 6, 7});
   }
 
   // Heading: ENU counter-clockwise from east, or compass clockwise from north.
@@ -339,7 +299,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     heading->done();
     for (double& v : values) v = wrap_angle(convention == "compass_cw" ? kPi / 2 - v : v);
     const auto rows = complete_rows({&values}, heading->t_s().size());
-    write_csv(dir / "heading.csv", "t,heading", heading->t_s(), {&values}, rows, {7});
+    write_stream_csv(dir / "heading.csv", "t,heading", heading->t_s(), {&values}, rows, {7});
   }
 
   // Truth: in the GNSS's local frame; heading from a column or from the course of the path.
@@ -407,23 +367,16 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     }
     truth->done();
     const auto rows = complete_rows({&x, &y, &yaw}, truth->t_s().size());
-    write_csv(dir / "truth.csv", "t,x,y,heading", truth->t_s(), {&x, &y, &yaw}, rows, {4, 4, 7});
+    write_stream_csv(dir / "truth.csv", "t,x,y,heading", truth->t_s(), {&x, &y, &yaw}, rows,
+                     {4, 4, 7});
   }
   streams->reject_unknown_keys();
   root.reject_unknown_keys();
   write_vehicle_config(vehicle, dir / "vehicle.yaml");
 
   // Validate the result as any log, and summarise it.
-  const Log log = read_written_log(dir, out_dir);
+  ImportSummary summary = check_staged_import(dir, out_dir);
   output.commit();
-  summary.streams.push_back(summarise("wheels", log.wheels.t_s));
-  summary.streams.push_back(summarise("gnss", log.gnss.t_s));
-  if (log.imu) summary.streams.push_back(summarise("imu", log.imu->t_s));
-  if (log.heading) summary.streams.push_back(summarise("heading", log.heading->t_s));
-  if (log.truth) summary.streams.push_back(summarise("truth", log.truth->t_s));
-  summary.wheel_distance_m = motion_coverage(log, log.vehicle.nominal_params(),
-                                             log.wheels.t_s.front(), log.wheels.t_s.back())
-                                 .distance_m;
   return summary;
 }
 

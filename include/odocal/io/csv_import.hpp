@@ -7,20 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "odocal/io/import_output.hpp"
+
 namespace odocal {
-
-struct ImportedStreamSummary {
-  std::string name;  // wheels, gnss, imu, heading, truth
-  std::size_t rows{};
-  double duration_s{};
-  double median_rate_hz{};
-  double largest_gap_s{};
-};
-
-struct ImportSummary {
-  std::vector<ImportedStreamSummary> streams;
-  double wheel_distance_m{};  // while moving, rear wheels, nominal circumferences (motion_coverage)
-};
 
 // `source_dir` holds the logger's files (relative paths in the map are resolved against it).
 // Throws InputError naming the map key, or the file, line and column, for every problem.

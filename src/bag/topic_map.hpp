@@ -1,0 +1,68 @@
+#pragma once
+// The topic map of `odocal import bag`, parsed and checked (every key named in errors).
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "odocal/data/log.hpp"
+#include "odocal/error.hpp"
+
+namespace odocal::bag {
+
+enum class StampSource { kHeader, kRecord };
+
+struct TopicSource {
+  std::string topic;
+  StampSource stamp{StampSource::kHeader};
+  double offset_s{};
+  InputLocation where;  // the stream's section in the map, for errors
+};
+
+// A number in a message: its field path and the factor to SI units (unit, times `scale`).
+struct FieldSource {
+  std::string path;
+  double to_si{1.0};
+};
+
+struct WheelsSource : TopicSource {
+  // sensor_msgs/JointState: the joints' positions (angle units) or velocities (angular speeds).
+  std::string rl_joint, rr_joint;
+  double rl_to_si{1.0}, rr_to_si{1.0};
+  bool joint_velocity{};
+  // Twist odometry (nav_msgs/Odometry, geometry_msgs/Twist*Stamped): forward speed and yaw
+  // rate, empty paths for the message type's own (twist.twist.linear.x, ...).
+  bool twist{};
+  FieldSource speed, yaw_rate;
+};
+
+enum class GnssSigma { kCovariance, kNone, kFixed };
+
+struct GnssSource : TopicSource {
+  bool altitude{true};
+  GnssSigma sigma{GnssSigma::kCovariance};
+  double fixed_sigma_m{};
+};
+
+struct ImuSource : TopicSource {
+  Eigen::Matrix3d body_R_sensor = Eigen::Matrix3d::Identity();
+};
+
+struct HeadingSource : TopicSource {
+  Eigen::Matrix3d body_R_sensor = Eigen::Matrix3d::Identity();
+  bool compass_cw{};  // the orientation's yaw is clockwise from north (else ENU, as ROS's REP 103)
+};
+
+struct TopicMap {
+  std::string file;
+  VehicleConfig vehicle;
+  WheelsSource wheels;
+  GnssSource gnss;
+  std::optional<ImuSource> imu;
+  std::optional<HeadingSource> heading;
+};
+
+TopicMap read_topic_map(const std::filesystem::path& map_file);
+
+}  // namespace odocal::bag
