@@ -49,6 +49,7 @@ fuzz: fuzz-build
 
 bench: build
 	$(BUILD_DIR)/bench/odocal_bench
+	$(BUILD_DIR)/bench/odocal_bag_bench
 
 # The paper's tables and figures (docs/results.md): the experiments (finished pieces in
 # $(PAPER_DIR) are reused; `make paper FRESH=1` recomputes everything), the speed benchmarks,
