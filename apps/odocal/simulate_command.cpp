@@ -65,7 +65,7 @@ void add_simulate_command(CLI::App& app) {
       app.add_subcommand("simulate", "Simulate a drive and its sensors into a log directory");
   command
       ->add_option("--scenario", args->scenario,
-                   "Built-in scenario (circuit, parking, urban) or a scenario YAML file")
+                   "Built-in scenario (circuit, parking, urban, robot) or a scenario YAML file")
       ->capture_default_str();
   command->add_option("--out", args->out_dir, "Output log directory")->required();
   command->add_option("--track", args->track_file,

@@ -494,6 +494,11 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
     }
   }
   summary.covariance = u.params.topLeftCorner<2, 2>();
+  summary.params_covariance = uncertainty ? u.params : Eigen::Matrix3d::Constant(inf);
+  if (b.estimate_track_width && uncertainty) {
+    summary.odometry_scales =
+        odometry_scales(log.vehicle.nominal_params(), summary.estimate, summary.params_covariance);
+  }
   if (uncertainty) {
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(summary.covariance);
     summary.condition_number =
@@ -653,6 +658,13 @@ std::string BatchSummary::full_report() const {
         fmt::format("{:<13}{} = {:.6g} (1-sigma {:.3g})\n", "parameter", p.name, p.value, p.sigma);
   }
   text += fmt::format("{:<13}{}\n", "observable", identifiability);
+  if (odometry_scales) {
+    const OdometryScales& s = *odometry_scales;
+    text += fmt::format(
+        "{:<13}speed x{:.4f} (1-sigma {:.4f}), yaw rate x{:.4f} (1-sigma {:.4f}) against the "
+        "nominal model\n",
+        "odometry", s.speed_scale, s.sigma_speed_scale, s.yaw_rate_scale, s.sigma_yaw_rate_scale);
+  }
   const GnssNoiseReport& g = gnss_noise;
   if (g.adapted) {
     text += fmt::format(

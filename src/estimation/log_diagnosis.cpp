@@ -353,7 +353,11 @@ class Doctor {
     } else if (std::abs(by_speed.lag_s) > 3 * kMinOffsetS) {
       report("time.gnss_offset", "GNSS", by_speed);
     }
-    if (turns && !signals_.gyro_radps.empty()) {
+    // A slow robot never passes the car-scale motion gate above; its gyro says when it turns.
+    const std::size_t gyro_turning = static_cast<std::size_t>(
+        std::count_if(signals_.gyro_radps.begin(), signals_.gyro_radps.end(),
+                      [](double w) { return std::abs(w) > 0.1; }));
+    if ((turns || gyro_turning >= 100) && !signals_.gyro_radps.empty()) {
       report("time.imu_offset", "IMU",
              detail::cross_correlation_lag(signals_.wheel_yaw_rate_radps, signals_.gyro_radps,
                                            signals_.step_s, kMaxLagS));

@@ -109,6 +109,20 @@ void add_details(json& out, const BatchSummary& s) {
     parameters.push_back(entry);
   }
   out["parameters"] = parameters;
+  json covariance = json::array();
+  for (int r = 0; r < 3; ++r) {
+    json row = json::array();
+    for (int c = 0; c < 3; ++c) row.push_back(number_or_null(s.params_covariance(r, c)));
+    covariance.push_back(row);
+  }
+  out["params_covariance_m2"] = covariance;  // of [c_RL, c_RR, t_R]
+  if (s.odometry_scales) {
+    const OdometryScales& o = *s.odometry_scales;
+    out["odometry_scales"] = {{"speed_scale", o.speed_scale},
+                              {"sigma_speed_scale", o.sigma_speed_scale},
+                              {"yaw_rate_scale", o.yaw_rate_scale},
+                              {"sigma_yaw_rate_scale", o.sigma_yaw_rate_scale}};
+  }
   out["solver_report"] = s.solver_report;
   out["keyframes"] = s.keyframes;
   out["gnss_fixes"] = s.gnss_fixes;

@@ -180,6 +180,11 @@ sim::Scenario parse_scenario(const std::string& yaml_text, const std::string& fi
   }
   if (auto vehicle = root.map("vehicle")) {
     vehicle->read("track_width_m", s.vehicle.track_width_m, 0.1, 10.0);
+    vehicle->read("effective_track_width_m", s.vehicle.effective_track_width_m, 0.0, 30.0);
+    if (s.vehicle.effective_track_width_m > 0.0 && s.vehicle.effective_track_width_m < 0.1) {
+      throw InputError(vehicle->location("effective_track_width_m"),
+                       "expected 0 (the geometric track) or 0.1 to 30 m");
+    }
     vehicle->read("wheelbase_m", s.vehicle.wheelbase_m, 0.1, 20.0);
     vehicle->read("tyre_radius_m", s.vehicle.tyre_radius_m, 0.05, 2.0);
     vehicle->read("wear_rl_mm", s.vehicle.wear_rl_mm, -50.0, 50.0);
@@ -301,6 +306,7 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   out << YAML::EndMap;
   out << YAML::Key << "vehicle" << YAML::Value << YAML::BeginMap;
   key("track_width_m", s.vehicle.track_width_m);
+  key("effective_track_width_m", s.vehicle.effective_track_width_m);
   key("wheelbase_m", s.vehicle.wheelbase_m);
   key("tyre_radius_m", s.vehicle.tyre_radius_m);
   key("wear_rl_mm", s.vehicle.wear_rl_mm);

@@ -230,9 +230,13 @@ SimulatedDrive simulate(const Scenario& scenario) {
     if (scenario.wheels.counter_bits > 0)
       out.nominal_vehicle.counter_bits = scenario.wheels.counter_bits;
   }
+  // The wheels turn as if the track were the effective one: the truth a calibration should find.
+  const double track_m = scenario.vehicle.effective_track_width_m > 0.0
+                             ? scenario.vehicle.effective_track_width_m
+                             : scenario.vehicle.track_width_m;
   out.true_params = {kTwoPi * (scenario.vehicle.tyre_radius_m - 1e-3 * scenario.vehicle.wear_rl_mm),
                      kTwoPi * (scenario.vehicle.tyre_radius_m - 1e-3 * scenario.vehicle.wear_rr_mm),
-                     scenario.vehicle.track_width_m};
+                     track_m};
 
   // One generator per sensor, each seeded from the noise seed: changing one sensor's rate never
   // changes another sensor's noise.
@@ -242,12 +246,10 @@ SimulatedDrive simulate(const Scenario& scenario) {
   std::mt19937_64 wheel_rng(sensor_seeds[0]), gnss_rng(sensor_seeds[1]), imu_rng(sensor_seeds[2]);
   std::unique_ptr<MotionTruth> truth;
   if (scenario.ideal) {
-    truth = std::make_unique<IdealMotion>(path, profile, scenario.vehicle.track_width_m,
-                                          out.true_params);
+    truth = std::make_unique<IdealMotion>(path, profile, track_m, out.true_params);
   } else {
     truth = simulate_vehicle_dynamics(
-        path, profile, scenario.dynamics, scenario.vehicle.wheelbase_m,
-        scenario.vehicle.track_width_m,
+        path, profile, scenario.dynamics, scenario.vehicle.wheelbase_m, track_m,
         {out.true_params.circumference_rl_m / kTwoPi, out.true_params.circumference_rr_m / kTwoPi});
   }
   if (scenario.route.terrain.max_grade > 0.0) {

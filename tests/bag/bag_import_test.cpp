@@ -6,8 +6,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "../support/run_cli.hpp"
 #include "bag_test_support.hpp"
@@ -23,41 +25,116 @@ using ::testing::HasSubstr;
 
 const fs::path kSource = ODOCAL_SOURCE_DIR;
 
-// The Husky's IMU is mounted with its +y up (README): turned into the body frame, gravity
-// leaves the horizontal accelerations and the gyro's yaw rate is the one the odometry reports,
-// which a skid-steer under-reports by about 0.75 (README: odom_wz = 0.75 gyro_wy).
-TEST(BagImport, HuskyImuTurnedUprightAgreesWithTheOdometry) {
+// Issue 18's acceptance on the real Husky bag, from the bag alone with the shipped map and the
+// robot configuration: import, doctor and calibrate succeed; the calibrated yaw-rate scale agrees
+// with the one the bag's own gyro implies (regressed here on 10 s windows, independently of the
+// estimator), the speed scale with the one the GNSS chords imply, each within twice their combined
+// sigma; held-out drift with the calibrated parameters is below the nominal one.
+TEST(HuskyBag, ImportsDiagnosesAndCalibratesFromTheBagAlone) {
   if (!fs::exists(kHuskyBag)) GTEST_SKIP() << "shared data absent: " << kHuskyBag;
   ScratchDir dir("husky");
-  const fs::path out = dir.path() / "log";
+  const fs::path log_dir = dir.path() / "log";
   const ImportSummary summary =
-      bag::import_bag(kSource / "examples/husky/topics.yaml", kHuskyBag, out);
+      bag::import_bag(kSource / "examples/husky/topics.yaml", kHuskyBag, log_dir);
   ASSERT_EQ(summary.streams.size(), 3u);
   EXPECT_EQ(summary.streams[0].rows, 3952u);
   EXPECT_EQ(summary.streams[1].rows, 989u);
   EXPECT_EQ(summary.streams[2].rows, 11865u);
-  const Log log = read_log(out);
+  const Log log = read_log(log_dir);
   ASSERT_TRUE(log.imu);
+  // The mounting turns gravity out of the horizontal accelerations.
   double mean_ax = 0, mean_ay = 0;
   for (std::size_t k = 0; k < log.imu->size(); ++k) {
     mean_ax += log.imu->ax_mps2[k] / static_cast<double>(log.imu->size());
     mean_ay += log.imu->ay_mps2[k] / static_cast<double>(log.imu->size());
   }
   EXPECT_LT(std::hypot(mean_ax, mean_ay), 0.5);
-  // Odometry yaw rate (wheel speed difference over the nominal track) against the gyro.
-  double sxy = 0, sxx = 0;
-  const double track = log.vehicle.track_width_m;
-  const double c = log.vehicle.circumference_rl_m;
-  for (std::size_t k = 1; k < log.wheels.size(); ++k) {
-    const double dt = log.wheels.t_s[k] - log.wheels.t_s[k - 1];
-    const double odom_wz = (log.wheels.rev_rr[k] - log.wheels.rev_rl[k]) * c / track / dt;
-    const double t = 0.5 * (log.wheels.t_s[k] + log.wheels.t_s[k - 1]);
-    const std::optional<double> gyro_wz = interpolate_linear(log.imu->t_s, log.imu->wz_radps, t);
-    if (!gyro_wz) continue;
-    sxy += odom_wz * *gyro_wz;
-    sxx += *gyro_wz * *gyro_wz;
+
+  const CliRun doctor = run_cli("doctor " + log_dir.string());
+  EXPECT_EQ(doctor.status, 0) << doctor.out;
+  const std::string config = (kSource / "examples/robot/calibrate.yaml").string();
+  const fs::path params = dir.path() / "params.json";
+  const CliRun calibrate = run_cli("calibrate " + log_dir.string() + " --config " + config +
+                                   " --json " + params.string());
+  ASSERT_EQ(calibrate.status, 0) << calibrate.out << calibrate.err;
+  const nlohmann::json result = nlohmann::json::parse(read_text_file(params.string()));
+  ASSERT_TRUE(result.at("usable").get<bool>());
+  const auto& scales = result.at("odometry_scales");
+
+  // The gyro's yaw-rate scale: heading change over 10 s windows, gyro on wheel odometry, with a
+  // gyro bias (per second) as second unknown.
+  const double track = log.vehicle.track_width_m, c = log.vehicle.circumference_rl_m;
+  const double t0 = std::max(log.wheels.t_s.front(), log.imu->t_s.front());
+  const double t1 = std::min(log.wheels.t_s.back(), log.imu->t_s.back());
+  const auto integral = [](const std::vector<double>& t, const std::vector<double>& rate,
+                           double from, double to) {
+    double sum = 0;
+    for (std::size_t k = 1; k < t.size(); ++k) {
+      const double a = std::max(t[k - 1], from), b = std::min(t[k], to);
+      if (b > a) sum += rate[k - 1] * (b - a);
+    }
+    return sum;
+  };
+  std::vector<double> odom_turn, gyro_turn;
+  for (double from = t0; from + 10.0 <= t1; from += 10.0) {
+    double turn = 0;
+    for (std::size_t k = 1; k < log.wheels.size(); ++k) {
+      if (log.wheels.t_s[k] > from && log.wheels.t_s[k] <= from + 10.0)
+        turn += (log.wheels.rev_rr[k] - log.wheels.rev_rl[k]) * c / track;
+    }
+    odom_turn.push_back(turn);
+    gyro_turn.push_back(integral(log.imu->t_s, log.imu->wz_radps, from, from + 10.0));
   }
-  EXPECT_NEAR(sxy / sxx, 0.75, 0.05);
+  Eigen::MatrixXd A(odom_turn.size(), 2);
+  Eigen::VectorXd y(odom_turn.size());
+  for (std::size_t i = 0; i < odom_turn.size(); ++i) {
+    A(static_cast<Eigen::Index>(i), 0) = odom_turn[i];
+    A(static_cast<Eigen::Index>(i), 1) = 10.0;
+    y(static_cast<Eigen::Index>(i)) = gyro_turn[i];
+  }
+  const Eigen::Vector2d fit = A.colPivHouseholderQr().solve(y);
+  const double residual_variance =
+      (y - A * fit).squaredNorm() / static_cast<double>(odom_turn.size() - 2);
+  const double gyro_scale_sigma =
+      std::sqrt(residual_variance * (A.transpose() * A).inverse()(0, 0));
+  const double yaw_scale = scales.at("yaw_rate_scale").get<double>();
+  const double yaw_sigma = scales.at("sigma_yaw_rate_scale").get<double>();
+  EXPECT_NEAR(yaw_scale, fit(0), 2 * std::hypot(yaw_sigma, gyro_scale_sigma))
+      << "gyro implies " << fit(0) << " +- " << gyro_scale_sigma;
+
+  // The GNSS's speed scale: straight-line chords of the GNSS track against those of the wheel
+  // speeds dead-reckoned with the gyro's heading, over 40 s windows.
+  const double speed_scale = scales.at("speed_scale").get<double>();
+  const double speed_sigma = scales.at("sigma_speed_scale").get<double>();
+  double gnss_chords = 0, odom_chords = 0;
+  for (double from = log.gnss.t_s.front() + 5; from + 45 < log.gnss.t_s.back(); from += 20) {
+    double x = 0, y_m = 0;
+    for (std::size_t k = 1; k < log.wheels.size(); ++k) {
+      if (log.wheels.t_s[k] <= from || log.wheels.t_s[k] > from + 40) continue;
+      const double yaw = integral(log.imu->t_s, log.imu->wz_radps, from, log.wheels.t_s[k]);
+      const double step = 0.5 * (log.wheels.rev_rl[k] + log.wheels.rev_rr[k]) * c;
+      x += step * std::cos(yaw);
+      y_m += step * std::sin(yaw);
+    }
+    const auto gnss_at = [&](double t) {
+      return Eigen::Vector2d(*interpolate_linear(log.gnss.t_s, log.gnss.x_m, t),
+                             *interpolate_linear(log.gnss.t_s, log.gnss.y_m, t));
+    };
+    const double odom_chord = std::hypot(x, y_m);
+    if (odom_chord < 15) continue;
+    odom_chords += odom_chord;
+    gnss_chords += (gnss_at(from + 40) - gnss_at(from)).norm();
+  }
+  EXPECT_NEAR(speed_scale, gnss_chords / odom_chords, 2 * speed_sigma);
+
+  const fs::path drift = dir.path() / "drift.json";
+  ASSERT_EQ(run_cli("validate " + log_dir.string() + " --params " + params.string() + " --config " +
+                    config + " --json " + drift.string())
+                .status,
+            0);
+  const nlohmann::json held_out = nlohmann::json::parse(read_text_file(drift.string()));
+  EXPECT_LT(held_out.at("calibrated").at("median_drift_percent").get<double>(),
+            held_out.at("nominal").at("median_drift_percent").get<double>());
 }
 
 class MapMistakes : public ::testing::Test {

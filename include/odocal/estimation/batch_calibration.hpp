@@ -10,6 +10,7 @@
 #include "odocal/estimation/batch_options.hpp"
 #include "odocal/estimation/calibration_options.hpp"
 #include "odocal/estimation/calibration_summary.hpp"
+#include "odocal/estimation/odometry_scales.hpp"
 
 namespace odocal {
 
@@ -51,6 +52,12 @@ struct BatchSummary : CalibrationSummary {
   std::size_t gnss_fixes{};  // GNSS residuals in the problem
   int solves{};              // the first, coarse one, the re-linearisations, the adapted one
   GnssNoiseReport gnss_noise;
+  // Of [c_RL, c_RR, t_R] (m^2), inflated as the GNSS noise report says; infinite when Ceres
+  // could not compute it.
+  Eigen::Matrix3d params_covariance = Eigen::Matrix3d::Zero();
+  // The speed and yaw-rate scales of the calibrated model against the nominal one; set when the
+  // track was estimated (twist odometry, robots).
+  std::optional<OdometryScales> odometry_scales;
 
   std::string full_report() const;
 };

@@ -37,7 +37,10 @@ struct Route {
 };
 
 struct VehicleSimConfig {
-  double track_width_m = 1.6;
+  double track_width_m = 1.6;  // the geometric rear track: what vehicle.yaml states
+  // The track the wheels' speed difference implies in a turn (a skid-steer robot's wheels slide
+  // sideways, so its effective track is wider than the geometric one); 0: track_width_m.
+  double effective_track_width_m = 0.0;
   double wheelbase_m = 2.7;
   double tyre_radius_m = 0.3126;  // nominal, unloaded (paper section 1)
   double wear_rl_mm = 0.0;        // radius lost to tyre wear, per rear wheel
