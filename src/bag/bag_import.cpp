@@ -157,6 +157,18 @@ Plan imu_plan(const ImuSource& source, const std::string& type) {
 }
 
 Plan heading_plan(const HeadingSource& source, const std::string& type) {
+  if (!source.angle.path.empty()) {
+    // A number: the sensor's yaw, less the mounting's yaw (a dual-antenna baseline turned
+    // against the body).
+    const double mounting_yaw = std::atan2(source.body_R_sensor(1, 0), source.body_R_sensor(0, 0));
+    return {{source.angle.path},
+            [&source, mounting_yaw](const DecodedFields& f, double t, Rows& rows) {
+              double yaw = f.numbers[1][0] * source.angle.to_si;
+              if (source.compass_cw) yaw = std::numbers::pi / 2 - yaw;
+              rows.t_s.push_back(t);
+              rows.values[0].push_back(wrap_angle(yaw - mounting_yaw));
+            }};
+  }
   std::string prefix;
   if (type == "sensor_msgs/Imu") {
     prefix = "orientation.";
@@ -200,7 +212,10 @@ class ImportVisitor : public BagVisitor {
       if (collector.source->topic != topic.name) continue;
       const std::string type = canonical_type_name(topic.type);
       Plan plan = plan_for(collector, type);
-      std::vector<std::string> paths = {"header.stamp"};
+      // Builders find the stamp at index 0; with record times it is not decoded (a message
+      // without a header, such as std_msgs/Float64, has none) and its slot stays empty.
+      std::vector<std::string> paths;
+      if (collector.source->stamp == StampSource::kHeader) paths.emplace_back("header.stamp");
       paths.insert(paths.end(), plan.paths.begin(), plan.paths.end());
       const MessageEncoding encoding = message_encoding_from_name(topic.encoding, bag_);
       collector.decoder.emplace(topic.type, topic.definition, topic.definition_format, encoding,
@@ -225,6 +240,10 @@ class ImportVisitor : public BagVisitor {
                                      static_cast<double>(message.record_time_ns) * 1e-9, e.what()));
       }
       const bool header = collector.source->stamp == StampSource::kHeader;
+      if (!header) {
+        fields_.numbers.insert(fields_.numbers.begin(), std::vector<double>{});
+        fields_.strings.insert(fields_.strings.begin(), std::vector<std::string>{});
+      }
       const double t_s =
           (header ? fields_.numbers[0][0] : static_cast<double>(message.record_time_ns) * 1e-9) +
           collector.source->offset_s;

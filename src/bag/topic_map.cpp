@@ -160,6 +160,9 @@ TopicMap read_topic_map(const std::filesystem::path& map_file) {
     HeadingSource& source = out.heading.emplace();
     read_topic(*heading, stamp, source);
     source.body_R_sensor = mounting(*heading);
+    source.angle = field_source(*heading, "angle", Quantity::kAngle);
+    if (auto angle = heading->map("angle"); angle && source.angle.path.empty())
+      throw InputError(angle->location(), "'field' is missing");
     std::string convention = "enu_ccw";
     heading->read("convention", convention);
     if (convention != "enu_ccw" && convention != "compass_cw")

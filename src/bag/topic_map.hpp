@@ -51,6 +51,9 @@ struct ImuSource : TopicSource {
 
 struct HeadingSource : TopicSource {
   Eigen::Matrix3d body_R_sensor = Eigen::Matrix3d::Identity();
+  // A heading given as a number (a GNSS heading in std_msgs/Float64, ...): its field and unit;
+  // empty path: the yaw of the message's orientation.
+  FieldSource angle;
   bool compass_cw{};  // the orientation's yaw is clockwise from north (else ENU, as ROS's REP 103)
 };
 

@@ -1,10 +1,14 @@
 // A simulated car log written as a ROS 1 bag by ROS's own rosbag (tests/bag/write_log_as_bag.py)
 // imports through examples/bag-joint-states/topics.yaml into the same log, and calibrates to the
-// same circumferences, as the CSV log. Labelled slow (a drive and four calibrations).
+// same circumferences, as the CSV log; a simulated robot's wheels written as twist odometry
+// calibrate to the robot's truth. Labelled slow (drives and several calibrations).
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "../support/run_cli.hpp"
@@ -65,6 +69,71 @@ TEST(BagImport, SimulatedLogAsBagGivesTheSameLogAndCalibration) {
     EXPECT_EQ(line_starting(a.out, "c_RL"), line_starting(b.out, "c_RL")) << method;
     EXPECT_EQ(line_starting(a.out, "c_RR"), line_starting(b.out, "c_RR")) << method;
   }
+}
+
+}  // namespace
+}  // namespace odocal::testing
+
+namespace odocal::testing {
+namespace {
+
+double parameter(const nlohmann::json& result, const std::string& name, const char* key) {
+  for (const auto& p : result.at("parameters"))
+    if (p.at("name") == name) return p.at(key).get<double>();
+  return NAN;
+}
+
+// Twist odometry: the simulated skid-steer robot's wheels published as a drive controller's
+// nav_msgs/Odometry twist (speed and yaw rate), imported through a twist map and calibrated with
+// the robot configuration, finds the same effective track and odometry scales as its encoder log,
+// and the truth, within 3 sigma.
+TEST(BagImport, TwistOdometryOfASimulatedRobotCalibratesToItsTruth) {
+  ScratchDir dir("twist");
+  const fs::path csv_log = dir.path() / "csv-log";
+  const fs::path bag = dir.path() / "robot.bag";
+  const fs::path bag_log = dir.path() / "bag-log";
+  ASSERT_EQ(run_cli("simulate --scenario robot --out " + csv_log.string()).status, 0);
+  ASSERT_EQ(
+      std::system(("/usr/bin/python3 " + (kSource / "tests/bag/write_log_as_bag.py").string() +
+                   " " + csv_log.string() + " " + bag.string() + " --twist")
+                      .c_str()),
+      0);
+  const fs::path map = dir.path() / "topics.yaml";
+  std::ofstream(map) << "vehicle: {track_width_m: 0.555, circumference_rl_m: 1.03735389422, "
+                        "circumference_rr_m: 1.03735389422}\n"
+                        "streams:\n"
+                        "  wheels: {topic: /odom}\n"
+                        "  gnss: {topic: /fix}\n"
+                        "  imu: {topic: /imu/data}\n";
+  ASSERT_EQ(run_cli("import bag " + bag.string() + " --map " + map.string() + " --out " +
+                    bag_log.string())
+                .status,
+            0);
+  const std::string config = (kSource / "examples/robot/calibrate.yaml").string();
+  nlohmann::json results[2];
+  for (int i = 0; i < 2; ++i) {
+    const fs::path json = dir.path() / ("result" + std::to_string(i) + ".json");
+    const CliRun run = run_cli("calibrate " + (i == 0 ? csv_log : bag_log).string() + " --config " +
+                               config + " --json " + json.string());
+    ASSERT_EQ(run.status, 0) << run.out << run.err;
+    results[i] = nlohmann::json::parse(read_text_file(json.string()));
+  }
+  const double true_speed = (2 * 0.1651 - 0.0015 - 0.0005) / (2 * 0.1651);
+  const double true_yaw = true_speed * 0.555 / 0.72;
+  for (const nlohmann::json& result : results) {
+    const double track = parameter(result, "track_width_m", "value");
+    const double sigma_track = parameter(result, "track_width_m", "sigma");
+    EXPECT_NEAR(track, 0.72, 3 * sigma_track);
+    const auto& scales = result.at("odometry_scales");
+    EXPECT_NEAR(scales.at("speed_scale").get<double>(), true_speed,
+                3 * scales.at("sigma_speed_scale").get<double>());
+    EXPECT_NEAR(scales.at("yaw_rate_scale").get<double>(), true_yaw,
+                3 * scales.at("sigma_yaw_rate_scale").get<double>());
+  }
+  // The twist and the encoders tell the same story.
+  EXPECT_NEAR(parameter(results[1], "track_width_m", "value"),
+              parameter(results[0], "track_width_m", "value"),
+              parameter(results[0], "track_width_m", "sigma"));
 }
 
 }  // namespace

@@ -10,11 +10,13 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "../support/run_cli.hpp"
 #include "bag_test_support.hpp"
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/io/log_reader.hpp"
+#include "odocal/model/angle.hpp"
 #include "scratch_dir.hpp"
 
 namespace odocal::testing {
@@ -169,7 +171,7 @@ TEST_F(MapMistakes, EachIsOneLineNamingTheKey) {
   EXPECT_EQ(import_error(map_with(wheels + "  gnss: {topic: /fix}\n")), "no error");
   EXPECT_THAT(import_error(map_with(wheels + "  gnss: {topic: /gps}\n")),
               HasSubstr("topic /gps is not in the bag (it has /imu/data, /joint_states, /fix, "
-                        "/odom)"));
+                        "/gnss/heading_deg, /odom)"));
   EXPECT_THAT(import_error(map_with(wheels + "  gnss: {topic: /imu/data}\n")),
               HasSubstr("'streams.gnss': topic /imu/data is sensor_msgs/Imu; gnss reads "
                         "sensor_msgs/NavSatFix"));
@@ -186,6 +188,27 @@ TEST_F(MapMistakes, EachIsOneLineNamingTheKey) {
   // rosbag's Odometry carries a zero quaternion here: no usable orientation.
   EXPECT_THAT(import_error(map_with(wheels + "  gnss: {topic: /fix}\n  heading: {topic: /odom}\n")),
               HasSubstr("gives 0 usable message(s) for heading"));
+}
+
+// A GNSS heading as a bare number (std_msgs/Float64, no header: record times), compass degrees.
+TEST_F(MapMistakes, ScalarCompassHeadingOnRecordTime) {
+  const std::string map = map_with(
+      "  wheels: {topic: /joint_states, rl: {joint: rear_left_wheel, unit: rad}, "
+      "rr: {joint: rear_right_wheel, unit: rad}}\n  gnss: {topic: /fix}\n"
+      "  heading: {topic: /gnss/heading_deg, time: record, angle: {field: data, unit: deg}, "
+      "convention: compass_cw}\n");
+  const fs::path map_file = dir_.path() / "map.yaml";
+  std::ofstream(map_file) << map;
+  const fs::path out = dir_.path() / "out";
+  bag::import_bag(map_file, kWrittenBags / "written_lz4.bag", out);
+  const Log log = read_log(out);
+  ASSERT_TRUE(log.heading);
+  ASSERT_EQ(log.heading->size(), 50u);
+  for (std::size_t k = 0; k < 50; k += 7) {
+    EXPECT_NEAR(log.heading->t_s[k], 1000.0 + 0.1 * static_cast<double>(k), 1e-6);
+    EXPECT_NEAR(log.heading->heading_rad[k],
+                wrap_angle(2.0 * static_cast<double>(k) * std::numbers::pi / 180.0), 1e-6);
+  }
 }
 
 TEST(BagImportCli, ListAndBadBagExitCodes) {

@@ -9,7 +9,12 @@ python3-rosbag), in the layout examples/bag-joint-states/topics.yaml maps:
 The log must have wheels in rad, GNSS in lat/lon, and heading.csv on imu.csv's time stamps (as
 `odocal simulate --wheel-output rad --gnss-output latlon` writes them).
 
-Usage: write_log_as_bag.py LOG OUT.bag
+With --twist, the wheels go out as a robot's drive controller publishes them instead:
+  /odom          nav_msgs/Odometry       twist: speed and yaw rate from the wheel increments
+                                         (ticks or rad) with vehicle.yaml's nominal geometry
+and the heading only when heading.csv shares imu.csv's stamps.
+
+Usage: write_log_as_bag.py LOG OUT.bag [--twist]
 """
 import csv
 import math
@@ -17,6 +22,8 @@ import sys
 
 import genpy
 import rosbag
+import yaml
+from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, NavSatFix
 
 
@@ -30,26 +37,60 @@ def stamp(t):
     return genpy.Time(nanoseconds // 1_000_000_000, nanoseconds % 1_000_000_000)
 
 
+def wheel_angles(log, wheels):
+    """Cumulative rear wheel angles (rad) from rad or ticks columns."""
+    if "rl_rad" in wheels[0]:
+        return [(float(r["rl_rad"]), float(r["rr_rad"])) for r in wheels]
+    with open(f"{log}/vehicle.yaml") as f:
+        ticks_per_rev = float(yaml.safe_load(f)["ticks_per_rev"])
+    scale = 2 * math.pi / ticks_per_rev
+    return [(float(r["rl_ticks"]) * scale, float(r["rr_ticks"]) * scale) for r in wheels]
+
+
+def write_twist(bag, log, wheels):
+    with open(f"{log}/vehicle.yaml") as f:
+        vehicle = yaml.safe_load(f)
+    c_rl, c_rr = vehicle["circumference_rl_m"], vehicle["circumference_rr_m"]
+    track = vehicle["track_width_m"]
+    angles = wheel_angles(log, wheels)
+    for k in range(1, len(wheels)):
+        dt = float(wheels[k]["t"]) - float(wheels[k - 1]["t"])
+        left = (angles[k][0] - angles[k - 1][0]) / (2 * math.pi) * c_rl / dt
+        right = (angles[k][1] - angles[k - 1][1]) / (2 * math.pi) * c_rr / dt
+        odom = Odometry()
+        odom.header.stamp = stamp(wheels[k]["t"])
+        odom.child_frame_id = "base_link"
+        odom.twist.twist.linear.x = (left + right) / 2
+        odom.twist.twist.angular.z = (right - left) / track
+        bag.write("/odom", odom, odom.header.stamp)
+
+
 def main():
     log, out = sys.argv[1], sys.argv[2]
+    twist = "--twist" in sys.argv[3:]
     wheels, gnss = rows(f"{log}/wheels.csv"), rows(f"{log}/gnss.csv")
     imu, heading = rows(f"{log}/imu.csv"), rows(f"{log}/heading.csv")
-    if [r["t"] for r in imu] != [r["t"] for r in heading]:
+    same_stamps = [r["t"] for r in imu] == [r["t"] for r in heading]
+    if not same_stamps and not twist:
         sys.exit("heading.csv must have imu.csv's time stamps")
     with rosbag.Bag(out, "w", compression="lz4") as bag:
-        for r in wheels:
-            joints = JointState()
-            joints.header.stamp = stamp(r["t"])
-            joints.name = ["front_left_wheel", "rear_left_wheel", "rear_right_wheel"]
-            joints.position = [0.0, float(r["rl_rad"]), float(r["rr_rad"])]
-            bag.write("/joint_states", joints, joints.header.stamp)
-        for r, h in zip(imu, heading):
+        if twist:
+            write_twist(bag, log, wheels)
+        else:
+            for r, (rl, rr) in zip(wheels, wheel_angles(log, wheels)):
+                joints = JointState()
+                joints.header.stamp = stamp(r["t"])
+                joints.name = ["front_left_wheel", "rear_left_wheel", "rear_right_wheel"]
+                joints.position = [0.0, rl, rr]
+                bag.write("/joint_states", joints, joints.header.stamp)
+        for k, r in enumerate(imu):
             message = Imu()
             message.header.stamp = stamp(r["t"])
             message.header.frame_id = "imu_link"
-            yaw = float(h["heading"])
-            message.orientation.z = math.sin(yaw / 2)
-            message.orientation.w = math.cos(yaw / 2)
+            if same_stamps:
+                yaw = float(heading[k]["heading"])
+                message.orientation.z = math.sin(yaw / 2)
+                message.orientation.w = math.cos(yaw / 2)
             message.angular_velocity.z = float(r["wz"])
             message.linear_acceleration.x = float(r["ax"])
             message.linear_acceleration.y = float(r["ay"])

@@ -9,6 +9,7 @@ import genpy
 import rosbag
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, NavSatFix
+from std_msgs.msg import Float64
 
 COUNT = 50  # messages per topic; --count N for smaller bags (the fuzz corpus)
 
@@ -39,6 +40,9 @@ def write(path, compression, count):
                 fix.position_covariance = [0.25, 0, 0, 0, 0.25, 0, 0, 0, 1.0]
                 fix.position_covariance_type = 2
                 bag.write("/fix", fix, stamp(k))
+            heading = Float64()
+            heading.data = (90.0 - 2.0 * k) % 360.0  # compass degrees: 90 (east) turning left
+            bag.write("/gnss/heading_deg", heading, stamp(k))
             odom = Odometry()
             odom.header.stamp = stamp(k)
             odom.child_frame_id = "base_link"
