@@ -186,8 +186,7 @@ class Doctor {
           "both rear wheels count backwards while the car drives forward",
           fmt::format("wheel speed / GNSS speed: RL {:.3f}, RR {:.3f}", rl, rr),
           "the encoders' sign convention is reversed",
-          "negate both wheel columns (import map: a negative unit scale, or the logger's direction "
-          "setting)");
+          "negate both wheel columns (import map: scale: -1 on rl and rr)");
       return false;
     }
     struct Wheel {
@@ -206,7 +205,7 @@ class Doctor {
             fmt::format(
                 "the {} encoder's sign is flipped (or left and right are mixed up with a sign)",
                 name),
-            fmt::format("negate the {} wheel column", name));
+            fmt::format("negate the {} wheel column (import map: {}: scale: -1)", name, id));
         ok = false;
       } else if (const auto known = known_wheel_factor(ratio, log_.wheels)) {
         const std::string fix = *known->fix
@@ -287,7 +286,8 @@ class Doctor {
     } else if (!gyro && wheel_course < -kAgree) {
       add("wheels.swapped", FindingSeverity::kBlocking,
           "the wheels turn opposite to the GNSS course", evidence,
-          "left and right wheels swapped (or the GNSS mirrored)", "swap rl and rr");
+          "left and right wheels swapped (or the GNSS mirrored)",
+          "swap rl and rr (import map: exchange the two columns)");
     }
     if (gyro) {
       const double scale = turn_scale(wheels, signals_.gyro_radps);

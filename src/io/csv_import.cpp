@@ -101,9 +101,12 @@ class StreamReader {
     auto spec = map_.map(key);
     if (!spec) throw InputError(map_.location(), fmt::format("'{}' is required", key));
     std::string file = file_, column, unit_name;
+    double scale = 1.0;  // -1: a column whose sign is reversed (an encoder counting backwards)
     spec->read("file", file);
     spec->read("column", column);
     spec->read("unit", unit_name);
+    spec->read("scale", scale, -1e6, 1e6);
+    if (scale == 0.0) throw InputError(spec->location("scale"), "must not be 0");
     spec->reject_unknown_keys();
     const auto unit = detail::parse_unit(unit_name);
     if (!unit ||
@@ -121,7 +124,7 @@ class StreamReader {
     std::vector<double> out = table.column(column);
     for (std::size_t k = 0; k < out.size(); ++k) {
       // An empty cell (NaN) is a missing value; a finite one that overflows is an error.
-      const double converted = out[k] * unit->to_si;
+      const double converted = out[k] * unit->to_si * scale;
       if (std::isfinite(out[k]) && !std::isfinite(converted)) {
         throw InputError(
             table.at(k, column),
@@ -215,6 +218,16 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
                          "speeds or speeds)");
       }
       kind = rear ? this_kind : kind;
+      if (quantity == Quantity::kTicks && vehicle.counter_bits) {
+        // A wrapping counter read with scale -1 runs below zero: back into [0, 2^bits), where
+        // the log reader unwraps it.
+        const double modulus = std::ldexp(1.0, *vehicle.counter_bits);
+        for (double& v : column) {
+          if (!std::isfinite(v)) continue;
+          v = std::fmod(v, modulus);
+          if (v < 0.0) v += modulus;
+        }
+      }
       names.push_back(fmt::format("{}_{}", wheel, this_kind));
       values.push_back(std::move(column));
     }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 
 #include "../support/temp_log_dir.hpp"
 #include "odocal/error.hpp"
@@ -83,6 +84,39 @@ TEST(CsvImport, ConvertsUnitsFramesConventionsAndFiles) {
   EXPECT_NEAR(summary.streams[1].median_rate_hz, 10.0, 1e-3);
 }
 
+// An encoder that counts backwards (the right one, on a wrapping 16-bit counter) is read as it
+// is with `scale: -1` in the map, the fix `odocal doctor` names: the same log as the forward one.
+TEST(CsvImport, ScaleMinusOneReadsAReversedWrappingCounter) {
+  const TempLogDir src;
+  write_logger_files(src);
+  const TempLogDir forward;
+  import_csv(kMap, src.path(), forward.path());
+  std::ifstream encoders_in(src.file("encoders.csv"));
+  std::string line, reversed;
+  std::getline(encoders_in, line);
+  reversed = line + "\n";
+  while (std::getline(encoders_in, line)) {
+    const auto comma = line.rfind(',');
+    const long count = std::stol(line.substr(comma + 1));
+    reversed += line.substr(0, comma + 1) + std::to_string((65536 - count) % 65536) + "\n";
+  }
+  src.write("encoders.csv", reversed);
+  std::ifstream example(kMap);
+  std::stringstream map;
+  map << example.rdbuf();
+  std::string text = map.str();
+  const std::string rr = "column: rear_right_count, unit: ticks";
+  ASSERT_NE(text.find(rr), std::string::npos);
+  text.replace(text.find(rr), rr.size(), rr + ", scale: -1");
+  src.write("map.yaml", text);
+  const TempLogDir out;
+  import_csv(src.file("map.yaml"), src.path(), out.path());
+  const Log a = read_log(forward.path()), b = read_log(out.path());
+  ASSERT_EQ(a.wheels.size(), b.wheels.size());
+  for (std::size_t k = 0; k < a.wheels.size(); ++k)
+    ASSERT_DOUBLE_EQ(a.wheels.rev_rr[k], b.wheels.rev_rr[k]) << k;
+}
+
 void expect_map_error(const std::string& map_text, const std::string& field,
                       const std::string& says) {
   const TempLogDir src;
@@ -123,6 +157,11 @@ TEST(CsvImportRejects, MissingColumn) {
 
 TEST(CsvImportRejects, UnknownKey) {
   expect_map_error("frame: frd=>frame: frd\n    axes: 3", "streams.imu.axes", "unknown key");
+}
+
+TEST(CsvImportRejects, ZeroScale) {
+  expect_map_error("unit: ticks}\n    rr=>unit: ticks, scale: 0}\n    rr",
+                   "streams.wheels.rl.scale", "must not be 0");
 }
 
 TEST(CsvImportRejects, BadFrame) {
