@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "exit_codes.hpp"
+#include "odocal/error.hpp"
 #include "odocal/estimation/log_diagnosis.hpp"
 #include "odocal/io/log_doctor.hpp"
 #include "odocal/io/output_file.hpp"
@@ -34,7 +35,15 @@ nlohmann::json to_json(const Diagnosis& diagnosis) {
 }
 
 void run_doctor(const DoctorArgs& args) {
-  const Diagnosis diagnosis = doctor_log(args.log_dir);
+  Diagnosis diagnosis;
+  try {
+    diagnosis = doctor_log(args.log_dir);
+  } catch (const InputError&) {
+    // The log does not read: list the garbage in every column first, then the reader's error.
+    for (const Finding& finding : scan_stream_values(args.log_dir))
+      fmt::print("{}\n", describe(finding));
+    throw;
+  }
   fmt::print("doctor       {}: {:.0f} s of wheels and GNSS compared, {} finding(s)\n", args.log_dir,
              diagnosis.compared_s, diagnosis.findings.size());
   for (const Finding& finding : diagnosis.findings) fmt::print("{}\n", describe(finding));

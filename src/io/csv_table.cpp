@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "odocal/io/input_file.hpp"
@@ -113,8 +114,16 @@ CsvTable parse_csv_table(std::string_view text, const std::string& file_label,
     const std::size_t fields =
         for_each_field(content, [&](std::size_t index, std::string_view field) {
           if (index >= table.header.size()) return;
-          table.columns[index].push_back(
-              parse_finite(field, {file_label, line_number, table.header[index]}));
+          const InputLocation location{file_label, line_number, table.header[index]};
+          if (!options.bad_numbers_as_nan) {
+            table.columns[index].push_back(parse_finite(field, location));
+            return;
+          }
+          try {
+            table.columns[index].push_back(parse_finite(field, location));
+          } catch (const InputError&) {
+            table.columns[index].push_back(std::numeric_limits<double>::quiet_NaN());
+          }
         });
     if (fields != table.header.size()) {
       throw InputError({file_label, line_number, ""},

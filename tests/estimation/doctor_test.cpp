@@ -288,5 +288,40 @@ TEST(DoctorCli, ExitsThreeOnABlockingFindingAndWritesJson) {
   EXPECT_EQ(forced.err.find("odocal doctor"), std::string::npos) << forced.err;
 }
 
+// Garbage values: every bad column counted with its first line, before the reader's error (exit
+// 2); denormals alone are a warning (exit 0).
+TEST(DoctorCli, CountsGarbageValuesPerColumn) {
+  const TempLogDir dir;
+  ASSERT_EQ(run_cli("simulate --laps 1 --ideal --out " + dir.file("log")).status, 0);
+  const fs::path imu = dir.path() / "log" / "imu.csv";
+  std::string text = read_text_file(imu.string());
+  // Rows 2 and 3 of imu.csv (lines 3 and 4) get a denormal yaw rate.
+  std::vector<std::string> lines;
+  for (std::size_t at = 0, next; at < text.size(); at = next + 1) {
+    next = text.find('\n', at);
+    lines.push_back(text.substr(at, next - at));
+  }
+  for (std::size_t line : {2, 3})
+    lines[line] = lines[line].substr(0, lines[line].rfind(',')) + ",4.9e-320";
+  std::string joined;
+  for (const std::string& line : lines) joined += line + "\n";
+  std::ofstream(imu) << joined;
+  const auto denormal = run_cli("doctor " + dir.file("log"));
+  EXPECT_EQ(denormal.status, 0) << denormal.out << denormal.err;
+  EXPECT_NE(denormal.out.find("imu.csv column 'wz' has 2 denormal value(s): 2 of"),
+            std::string::npos)
+      << denormal.out;
+  EXPECT_NE(denormal.out.find("the first at line 3"), std::string::npos) << denormal.out;
+
+  edit_csv(dir.path() / "log" / "gnss.csv", [](Row& r) {
+    if (r["t"] > 10.0 && r["t"] < 10.5) r["x"] = NAN;
+  });
+  const auto not_finite = run_cli("doctor " + dir.file("log"));
+  EXPECT_EQ(not_finite.status, 2);
+  EXPECT_NE(not_finite.out.find("gnss.csv column 'x' has"), std::string::npos) << not_finite.out;
+  EXPECT_NE(not_finite.out.find("(data.not_finite)"), std::string::npos) << not_finite.out;
+  EXPECT_NE(not_finite.err.find("gnss.csv:"), std::string::npos) << not_finite.err;
+}
+
 }  // namespace
 }  // namespace odocal

@@ -31,6 +31,9 @@ struct CsvTable {
 struct CsvOptions {
   // Accept a header written as a comment ("# x_m,y_m,..."), as in the TUMFTM track database.
   bool header_may_be_comment = false;
+  // Keep a cell that is not a finite number as NaN instead of refusing the file (the doctor's
+  // count of garbage values); rows with the wrong number of fields are still refused.
+  bool bad_numbers_as_nan = false;
 };
 
 CsvTable parse_csv_table(std::string_view text, const std::string& file_label,
