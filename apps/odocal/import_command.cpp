@@ -16,6 +16,7 @@ struct ImportArgs {
   std::string map_file;
   std::string out_dir;
   std::string source_dir;
+  bool sync{};
 };
 
 void print_summary(const std::string& source, const std::string& out_dir,
@@ -30,13 +31,17 @@ void print_summary(const std::string& source, const std::string& out_dir,
   fmt::print("distance     {:.1f} m (rear wheels, nominal circumferences)\n",
              summary.wheel_distance_m);
   for (const std::string& note : summary.notes) fmt::print("note         {}\n", note);
+  for (const std::string& warning : summary.warnings)
+    fmt::print(stderr, "odocal: warning: {}\n", warning);
 }
 
 void run_import(const ImportArgs& args) {
   const std::filesystem::path map_file(args.map_file);
   const std::filesystem::path source =
       args.source_dir.empty() ? map_file.parent_path() : std::filesystem::path(args.source_dir);
-  print_summary(source.string(), args.out_dir, import_csv(map_file, source, args.out_dir));
+  CsvImportOptions options;
+  options.sync_clocks = args.sync;
+  print_summary(source.string(), args.out_dir, import_csv(map_file, source, args.out_dir, options));
 }
 
 struct BagImportArgs {
@@ -69,6 +74,9 @@ void add_import_command(CLI::App& app) {
   csv->add_option("--out", args->out_dir, "Output log directory")->required();
   csv->add_option("--in", args->source_dir,
                   "Directory of the logger's files (default: the map's directory)");
+  csv->add_flag("--sync", args->sync,
+                "Estimate the GNSS and IMU clock offsets against the wheels (as odocal doctor) "
+                "and apply them");
   csv->callback([args] { run_import(*args); });
 
   auto bag_args = std::make_shared<BagImportArgs>();

@@ -336,6 +336,7 @@ class Doctor {
                       lag.lag_s, lag.peak, lag.at_zero),
           "two loggers on different clocks, or a latency not taken out",
           fmt::format("time.offset_s: {:+.3f} for {} in the import map", -lag.lag_s, stream));
+      out_.findings.back().estimate = lag.lag_s;
     };
     // The GNSS clock from two signals that must agree: the speeds alone would read drive slip
     // (wheels run ahead while accelerating) as a lag, the course rate alone is noisy.

@@ -11,12 +11,15 @@
 #include <numbers>
 #include <sstream>
 
+#include "csv_stream_reader.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/interpolation.hpp"
+#include "odocal/estimation/log_diagnosis.hpp"
 #include "odocal/io/csv_table.hpp"
 #include "odocal/io/import_output.hpp"
 #include "odocal/io/input_file.hpp"
 #include "odocal/io/log_directory_output.hpp"
+#include "odocal/io/log_reader.hpp"
 #include "odocal/io/text_output.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
 #include "odocal/model/angle.hpp"
@@ -31,130 +34,8 @@ using detail::Quantity;
 using detail::YamlMap;
 namespace fs = std::filesystem;
 
-// Source tables, read once each.
-class TableCache {
- public:
-  explicit TableCache(fs::path source_dir) : source_dir_(std::move(source_dir)) {}
-  const CsvTable& get(const std::string& file) {
-    auto it = tables_.find(file);
-    if (it == tables_.end()) it = tables_.emplace(file, read_csv_table(source_dir_ / file)).first;
-    return it->second;
-  }
-
- private:
-  fs::path source_dir_;
-  std::map<std::string, CsvTable> tables_;
-};
-
-// One mapped stream: the main file's time base and value columns resampled onto it.
-class StreamReader {
- public:
-  // `node` is the stream's raw YAML (the map's view of it tracks which keys were read).
-  StreamReader(YamlMap map, YAML::Node node, TableCache& cache)
-      : node_(std::move(node)), map_(std::move(map)), cache_(cache) {
-    map_.read("file", file_);
-    if (file_.empty())
-      throw InputError(map_.location(), "'file' is required: the CSV that holds this stream");
-    auto time = map_.map("time");
-    if (!time) throw InputError(map_.location(), "'time' is required: {column, unit, offset_s}");
-    std::string column, unit_name = "s";
-    double offset_s = 0.0;
-    time->read("column", column);
-    time->read("unit", unit_name);
-    time->read("offset_s", offset_s, -1e12, 1e12);
-    time->reject_unknown_keys();
-    const auto unit = detail::parse_unit(unit_name);
-    if (!unit || unit->quantity != Quantity::kTime) {
-      throw InputError(time->location("unit"),
-                       "expected a time unit (" + detail::unit_names(Quantity::kTime) + ")");
-    }
-    const CsvTable& table = cache_.get(file_);
-    if (column.empty() || !table.has(column)) {
-      throw InputError(time->location("column"),
-                       fmt::format("column '{}' is not in {}", column, table.file));
-    }
-    t_s_ = table.column(column);
-    for (std::size_t k = 0; k < t_s_.size(); ++k) {
-      t_s_[k] = t_s_[k] * unit->to_si + offset_s;
-      if (!std::isfinite(t_s_[k]))
-        throw InputError(table.at(k, column), "not a finite time after the unit conversion");
-      if (k > 0 && !(t_s_[k] > t_s_[k - 1])) {
-        throw InputError(table.at(k, column), "time must strictly increase");
-      }
-    }
-  }
-
-  bool has(const std::string& key) const { return map_.has(key); }
-  bool is_text(const std::string& key) const { return node_[key].IsScalar(); }
-  YamlMap& map() { return map_; }
-  const std::vector<double>& t_s() const { return t_s_; }
-
-  std::string text(const std::string& key, const std::string& fallback) {
-    std::string value = fallback;
-    map_.read(key, value);
-    return value;
-  }
-
-  // A value column in SI units on the stream's time base; `quantities` are the accepted kinds.
-  std::pair<std::vector<double>, Quantity> values(const std::string& key,
-                                                  std::initializer_list<Quantity> quantities) {
-    auto spec = map_.map(key);
-    if (!spec) throw InputError(map_.location(), fmt::format("'{}' is required", key));
-    std::string file = file_, column, unit_name;
-    double scale = 1.0;  // -1: a column whose sign is reversed (an encoder counting backwards)
-    spec->read("file", file);
-    spec->read("column", column);
-    spec->read("unit", unit_name);
-    spec->read("scale", scale, -1e6, 1e6);
-    if (scale == 0.0) throw InputError(spec->location("scale"), "must not be 0");
-    spec->reject_unknown_keys();
-    const auto unit = detail::parse_unit(unit_name);
-    if (!unit ||
-        std::find(quantities.begin(), quantities.end(), unit->quantity) == quantities.end()) {
-      std::string accepted;
-      for (Quantity q : quantities)
-        accepted += (accepted.empty() ? "" : ", ") + detail::unit_names(q);
-      throw InputError(spec->location("unit"), fmt::format("expected one of {}", accepted));
-    }
-    const CsvTable& table = cache_.get(file);
-    if (column.empty() || !table.has(column)) {
-      throw InputError(spec->location("column"),
-                       fmt::format("column '{}' is not in {}", column, table.file));
-    }
-    std::vector<double> out = table.column(column);
-    for (std::size_t k = 0; k < out.size(); ++k) {
-      // An empty cell (NaN) is a missing value; a finite one that overflows is an error.
-      const double converted = out[k] * unit->to_si * scale;
-      if (std::isfinite(out[k]) && !std::isfinite(converted)) {
-        throw InputError(
-            table.at(k, column),
-            fmt::format("{:g} {} is not a finite value in SI units", out[k], unit_name));
-      }
-      out[k] = converted;
-    }
-    if (file == file_) return {std::move(out), unit->quantity};
-    // Another file of the same sensor: interpolate onto this stream's time base via its own
-    // time column, which must have the same name and unit (the stream's `time` applies).
-    YAML::Node other;
-    other["file"] = file;
-    other["time"] = node_["time"];
-    StreamReader other_time(YamlMap(other, map_.file(), map_.key_path("time")), other, cache_);
-    std::vector<double> resampled(t_s_.size(), NAN);
-    for (std::size_t k = 0; k < t_s_.size(); ++k) {
-      if (const auto v = interpolate_linear(other_time.t_s(), out, t_s_[k])) resampled[k] = *v;
-    }
-    return {std::move(resampled), unit->quantity};
-  }
-
-  void done() { map_.reject_unknown_keys(); }
-
- private:
-  YAML::Node node_;
-  YamlMap map_;
-  TableCache& cache_;
-  std::string file_;
-  std::vector<double> t_s_;
-};
+using detail::StreamReader;
+using detail::TableCache;
 
 // Rows where every column is finite (resampled columns are NaN outside their file's span).
 std::vector<std::size_t> complete_rows(const std::vector<const std::vector<double>*>& columns,
@@ -168,6 +49,92 @@ std::vector<std::size_t> complete_rows(const std::vector<const std::vector<doubl
   return keep;
 }
 
+// What one stream left out, for the summary.
+struct StreamAccount {
+  std::string name;
+  std::size_t source_rows{}, written_rows{};
+  detail::DroppedRows dropped;
+};
+
+StreamAccount account(const std::string& name, const StreamReader& reader, std::size_t written) {
+  return {name, reader.source_rows(), written, reader.dropped()};
+}
+
+// Notes for what was left out; warnings (the CLI prints them on stderr, exit still 0) when more
+// than 1 % of a stream's rows were dropped or a stream covers less than 80 % of the log's span.
+void report_accounts(const std::vector<StreamAccount>& accounts, ImportSummary& summary) {
+  for (const StreamAccount& a : accounts) {
+    if (a.dropped.repeated > 0) {
+      summary.notes.push_back(
+          fmt::format("{}: {} repeated rows collapsed (dedupe)", a.name, a.dropped.repeated));
+    }
+    const std::size_t lost = a.source_rows - a.dropped.repeated - a.written_rows;
+    if (lost == 0) continue;
+    const std::string where =
+        a.dropped.first_bad_line > 0
+            ? fmt::format(", {} not finite, the first at {}:{}", a.dropped.bad_values,
+                          a.dropped.first_bad_file, a.dropped.first_bad_line)
+            : "";
+    const std::string text =
+        fmt::format("{}: {} of {} rows dropped ({:.1f} %{})", a.name, lost, a.source_rows,
+                    100.0 * static_cast<double>(lost) / static_cast<double>(a.source_rows), where);
+    (static_cast<double>(lost) > 0.01 * static_cast<double>(a.source_rows) ? summary.warnings
+                                                                           : summary.notes)
+        .push_back(text);
+  }
+  double first = INFINITY, last = -INFINITY;
+  for (const ImportedStreamSummary& s : summary.streams) {
+    if (s.name == "truth") continue;
+    first = std::min(first, s.start_s);
+    last = std::max(last, s.start_s + s.duration_s);
+  }
+  for (const ImportedStreamSummary& s : summary.streams) {
+    if (last > first && s.duration_s < 0.8 * (last - first)) {
+      summary.warnings.push_back(fmt::format("{}: covers {:.0f} % of the log's {:.1f} s", s.name,
+                                             100.0 * s.duration_s / (last - first), last - first));
+    }
+  }
+}
+
+// Adds `shift_s` to the time (first) column of a log stream file, leaving every other byte.
+void shift_times(const fs::path& file, double shift_s) {
+  const std::string text = read_input_file(file);
+  write_text_file(file, [&](TextBuffer& out) {
+    std::size_t at = 0;
+    bool header = true;
+    while (at < text.size()) {
+      const std::size_t end = std::min(text.find('\n', at), text.size());
+      const std::string_view line(text.data() + at, end - at);
+      at = end + 1;
+      if (header || line.empty()) {
+        out.print("{}\n", line);
+        header = false;
+        continue;
+      }
+      const std::size_t comma = line.find(',');
+      const double t = std::stod(std::string(line.substr(0, comma)));
+      out.print("{:.6f}{}\n", t + shift_s,
+                comma == std::string_view::npos ? std::string_view{} : line.substr(comma));
+    }
+  });
+}
+
+// --sync: the doctor's clock-offset estimates against the wheels, applied to the staged files.
+std::vector<std::string> sync_clocks(const fs::path& staged) {
+  const Diagnosis diagnosis = diagnose_log(read_log(staged));
+  std::vector<std::string> applied;
+  for (const Finding& finding : diagnosis.findings) {
+    const char* file = finding.check == "time.gnss_offset"  ? "gnss.csv"
+                       : finding.check == "time.imu_offset" ? "imu.csv"
+                                                            : nullptr;
+    if (file == nullptr || !std::isfinite(finding.estimate)) continue;
+    shift_times(staged / file, -finding.estimate);
+    applied.push_back(fmt::format("{}: clock moved by {:+.3f} s onto the wheels' ({})", file,
+                                  -finding.estimate, finding.evidence));
+  }
+  return applied;
+}
+
 std::optional<StreamReader> stream(YamlMap& streams, const std::string& name, TableCache& cache,
                                    const YAML::Node& root) {
   auto map = streams.map(name);
@@ -178,7 +145,7 @@ std::optional<StreamReader> stream(YamlMap& streams, const std::string& name, Ta
 }  // namespace
 
 ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
-                         const fs::path& out_dir) {
+                         const fs::path& out_dir, const CsvImportOptions& options) {
   const YAML::Node root_node = detail::parse_yaml(read_input_file(map_file), map_file.string());
   YamlMap root(root_node, map_file.string(), "");
   auto vehicle_map = root.map("vehicle");
@@ -191,8 +158,23 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
   LogDirectoryOutput output(out_dir);
   const fs::path& dir = output.staging();
 
-  TableCache cache(source_dir);
+  // Per-file reading options: `files: {NAME: {skip_lines: N}}` (lines before the header).
+  std::map<std::string, std::size_t> skip_lines;
+  if (auto files = root.map("files")) {
+    for (const auto& entry : root_node["files"]) {
+      const std::string name = entry.first.as<std::string>();
+      auto file = files->map(name);
+      int skip = 0;
+      if (file) {
+        file->read("skip_lines", skip, 0, 1'000'000);
+        file->reject_unknown_keys();
+      }
+      skip_lines[name] = static_cast<std::size_t>(skip);
+    }
+  }
+  TableCache cache(source_dir, skip_lines);
   constexpr double kPi = std::numbers::pi;
+  std::vector<StreamAccount> accounts;
 
   // Wheels: the unit says what the column holds.
   auto wheels = stream(*streams, "wheels", cache, root_node);
@@ -241,6 +223,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     }
     write_stream_csv(dir / "wheels.csv", fmt::format("t,{}", fmt::join(names, ",")), wheels->t_s(),
                      columns, rows, decimals);
+    accounts.push_back(account("wheels", *wheels, rows.size()));
   }
 
   // GNSS: lat/lon (degrees) or local metres; optional altitude, sigma and Doppler speed.
@@ -282,6 +265,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     }
     write_stream_csv(dir / "gnss.csv", fmt::format("{}", fmt::join(header, ",")), gnss->t_s(),
                      columns, rows, decimals);
+    accounts.push_back(account("gnss", *gnss, rows.size()));
   }
 
   // IMU: body accelerations and yaw rate, converted to forward-left-up.
@@ -300,6 +284,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     }
     const auto rows = complete_rows({&ax, &ay, &wz}, imu->t_s().size());
     write_stream_csv(dir / "imu.csv", "t,ax,ay,wz", imu->t_s(), {&ax, &ay, &wz}, rows, {6, 6, 7});
+    accounts.push_back(account("imu", *imu, rows.size()));
   }
 
   // Heading: ENU counter-clockwise from east, or compass clockwise from north.
@@ -313,6 +298,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     for (double& v : values) v = wrap_angle(convention == "compass_cw" ? kPi / 2 - v : v);
     const auto rows = complete_rows({&values}, heading->t_s().size());
     write_stream_csv(dir / "heading.csv", "t,heading", heading->t_s(), {&values}, rows, {7});
+    accounts.push_back(account("heading", *heading, rows.size()));
   }
 
   // Truth: in the GNSS's local frame; heading from a column or from the course of the path.
@@ -382,6 +368,7 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
     const auto rows = complete_rows({&x, &y, &yaw}, truth->t_s().size());
     write_stream_csv(dir / "truth.csv", "t,x,y,heading", truth->t_s(), {&x, &y, &yaw}, rows,
                      {4, 4, 7});
+    accounts.push_back(account("truth", *truth, rows.size()));
   }
   streams->reject_unknown_keys();
   root.reject_unknown_keys();
@@ -389,7 +376,13 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
 
   // Validate the result as any log, and summarise it.
   ImportSummary summary = check_staged_import(dir, out_dir);
+  if (options.sync_clocks) {
+    const std::vector<std::string> synced = sync_clocks(dir);
+    if (!synced.empty()) summary = check_staged_import(dir, out_dir);
+    summary.notes.insert(summary.notes.end(), synced.begin(), synced.end());
+  }
   output.commit();
+  report_accounts(accounts, summary);
   return summary;
 }
 

@@ -83,19 +83,34 @@ CsvTable parse_csv_table(std::string_view text, const std::string& file_label,
 
   std::size_t line_number = 0;
   bool have_header = false;
+  std::size_t trailing_empty = 0;  // logger dialect: empty header fields after the last name
   while (!text.empty()) {
     const std::size_t newline = text.find('\n');
     const std::string_view line = text.substr(0, newline);
     text.remove_prefix(newline == std::string_view::npos ? text.size() : newline + 1);
     ++line_number;
+    if (line_number <= options.skip_lines) continue;
     std::string_view content = trim(line);
     if (content.empty()) continue;
+    if (options.logger_dialect &&
+        (content.front() == '#' || (!have_header && content.starts_with("sep=")))) {
+      continue;
+    }
 
     if (!have_header) {
       if (options.header_may_be_comment && content.front() == '#') {
         content = trim(content.substr(1));
       }
-      for_each_field(content, [&](std::size_t index, std::string_view name) {
+      std::vector<std::string_view> names;
+      for_each_field(content, [&](std::size_t, std::string_view name) { names.push_back(name); });
+      if (options.logger_dialect) {
+        while (names.size() > 1 && names.back().empty()) {
+          names.pop_back();
+          ++trailing_empty;
+        }
+      }
+      for (std::size_t index = 0; index < names.size(); ++index) {
+        const std::string_view name = names[index];
         const InputLocation location{file_label, line_number, std::string(name)};
         if (name.empty()) {
           throw InputError({file_label, line_number, ""},
@@ -105,15 +120,19 @@ CsvTable parse_csv_table(std::string_view text, const std::string& file_label,
           throw InputError(location, "column name appears twice in the header");
         }
         table.header.emplace_back(name);
-      });
+      }
       table.columns.resize(table.header.size());
       have_header = true;
       continue;
     }
 
+    bool extra_cell = false;
     const std::size_t fields =
         for_each_field(content, [&](std::size_t index, std::string_view field) {
-          if (index >= table.header.size()) return;
+          if (index >= table.header.size()) {
+            extra_cell = extra_cell || !field.empty();
+            return;
+          }
           const InputLocation location{file_label, line_number, table.header[index]};
           if (!options.bad_numbers_as_nan) {
             table.columns[index].push_back(parse_finite(field, location));
@@ -125,7 +144,9 @@ CsvTable parse_csv_table(std::string_view text, const std::string& file_label,
             table.columns[index].push_back(std::numeric_limits<double>::quiet_NaN());
           }
         });
-    if (fields != table.header.size()) {
+    const bool trailing_ok = trailing_empty > 0 && !extra_cell && fields >= table.header.size() &&
+                             fields <= table.header.size() + trailing_empty;
+    if (fields != table.header.size() && !trailing_ok) {
       throw InputError({file_label, line_number, ""},
                        "expected " + std::to_string(table.header.size()) + " fields as in the " +
                            "header, got " + std::to_string(fields));

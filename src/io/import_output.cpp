@@ -13,7 +13,7 @@ namespace {
 namespace fs = std::filesystem;
 
 ImportedStreamSummary summarise(const std::string& name, const std::vector<double>& t_s) {
-  ImportedStreamSummary summary{name, t_s.size(), 0.0, 0.0, 0.0};
+  ImportedStreamSummary summary{name, t_s.size(), t_s.empty() ? 0.0 : t_s.front(), 0.0, 0.0, 0.0};
   if (t_s.size() < 2) return summary;
   summary.duration_s = t_s.back() - t_s.front();
   std::vector<double> dt(t_s.size() - 1);

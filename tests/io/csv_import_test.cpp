@@ -159,6 +159,99 @@ TEST(CsvImportRejects, UnknownKey) {
   expect_map_error("frame: frd=>frame: frd\n    axes: 3", "streams.imu.axes", "unknown key");
 }
 
+// Loggers as they are: preamble lines, comments, trailing commas, garbage in a column nobody
+// uses (kept) and in a used one (dropped and counted: a warning above 1 % of rows), a time scale,
+// a column offset, and a column from another file on that file's own clock.
+TEST(CsvImport, LoggerDialectBadValuesTimeScaleOffsetAndOwnClock) {
+  const TempLogDir src;
+  std::string wheels = "logger v2.1\nexported 2026-11-23\nticks,left,right,status,\n";
+  std::string gnss = "sep=,\n# receiver A\nt_half_s,x,y,\n";
+  std::string speed = "clock_ds,v_kmh\n";  // another file: deciseconds, 0.5 s ahead
+  for (int k = 0; k <= 400; ++k) {         // 20 s at 20 Hz, 10 m/s straight east
+    const double t = 0.05 * k;
+    const std::string status = k == 7 ? "garbage" : "ok";
+    wheels += fmt::format("{:.0f},{:.4f},{:.4f},{},\n", t * 1000.0, 36.0,
+                          k == 100 ? -INFINITY : 36.0, status == "ok" ? "1" : "x");
+    if (k % 4 == 0) gnss += fmt::format("{:.3f},{:.3f},{:.3f},\n", t / 2, 10.0 * t, 0.0);
+    if (k % 2 == 0) speed += fmt::format("{:.1f},{:.3f}\n", (t + 0.5) * 10.0, 36.0);
+  }
+  src.write("wheels.csv", wheels);
+  src.write("gps.csv", gnss);
+  src.write("speed.csv", speed);
+  src.write("map.yaml",
+            R"(vehicle: {track_width_m: 1.6, circumference_rl_m: 1.96, circumference_rr_m: 1.96}
+files:
+  wheels.csv: {skip_lines: 2}
+streams:
+  wheels:
+    file: wheels.csv
+    bad_values: drop
+    time: {column: ticks, unit: ms}
+    rl: {column: left, unit: km/h}
+    rr: {column: right, unit: km/h}
+  gnss:
+    file: gps.csv
+    time: {column: t_half_s, unit: s, scale: 2}
+    position: local
+    x: {column: x, unit: m, offset: 5}
+    y: {column: y, unit: m}
+    speed: {file: speed.csv, column: v_kmh, unit: km/h, time: {column: clock_ds, unit: s, scale: 0.1, offset_s: -0.5}}
+)");
+  const TempLogDir out;
+  const ImportSummary summary = import_csv(src.file("map.yaml"), src.path(), out.path());
+  const Log log = read_log(out.path());
+  EXPECT_EQ(log.wheels.size(), 400u);  // one row of 401 dropped: its right wheel is not finite
+  ASSERT_EQ(summary.notes.size(), 1u);
+  EXPECT_NE(summary.notes[0].find("wheels: 1 of 401 rows dropped"), std::string::npos)
+      << summary.notes[0];
+  EXPECT_NE(summary.notes[0].find("wheels.csv:104"), std::string::npos) << summary.notes[0];
+  EXPECT_TRUE(summary.warnings.empty());
+  EXPECT_NEAR(log.gnss.t_s.back(), 20.0, 1e-9);  // t_half_s x 2
+  EXPECT_NEAR(log.gnss.x_m.front(), 5.0, 1e-9);  // the column's offset
+  EXPECT_NEAR(log.gnss.x_m.back(), 205.0, 1e-6);
+  ASSERT_EQ(log.gnss.speed_mps.size(), log.gnss.size());
+  EXPECT_NEAR(log.gnss.speed_mps[3], 10.0, 1e-9);  // km/h on the other file's own clock
+  EXPECT_NEAR(summary.wheel_distance_m, 200.0, 1.0);
+}
+
+TEST(CsvImport, ManyDroppedRowsWarn) {
+  const TempLogDir src;
+  std::string wheels = "t,left,right\n", gnss = "t,x,y\n";
+  for (int k = 0; k <= 400; ++k) {
+    const double t = 0.05 * k;
+    wheels += fmt::format("{:.2f},{},{}\n", t, k % 20 == 3 ? "nan" : "10", "10");
+    if (k % 4 == 0) gnss += fmt::format("{:.2f},{:.3f},0\n", t, 10.0 * t);
+  }
+  src.write("wheels.csv", wheels);
+  src.write("gnss.csv", gnss);
+  src.write("map.yaml",
+            R"(vehicle: {track_width_m: 1.6, circumference_rl_m: 1.96, circumference_rr_m: 1.96}
+streams:
+  wheels: {file: wheels.csv, bad_values: drop, time: {column: t, unit: s}, rl: {column: left, unit: m/s}, rr: {column: right, unit: m/s}}
+  gnss: {file: gnss.csv, time: {column: t, unit: s}, position: local, x: {column: x, unit: m}, y: {column: y, unit: m}}
+)");
+  const TempLogDir out;
+  const ImportSummary summary = import_csv(src.file("map.yaml"), src.path(), out.path());
+  ASSERT_EQ(summary.warnings.size(), 1u);
+  EXPECT_NE(summary.warnings[0].find("wheels: 20 of 401 rows dropped (5.0 %"), std::string::npos)
+      << summary.warnings[0];
+  // Without bad_values: drop the first bad cell is an error naming it.
+  src.write("map.yaml",
+            R"(vehicle: {track_width_m: 1.6, circumference_rl_m: 1.96, circumference_rr_m: 1.96}
+streams:
+  wheels: {file: wheels.csv, time: {column: t, unit: s}, rl: {column: left, unit: m/s}, rr: {column: right, unit: m/s}}
+  gnss: {file: gnss.csv, time: {column: t, unit: s}, position: local, x: {column: x, unit: m}, y: {column: y, unit: m}}
+)");
+  const TempLogDir out2;
+  try {
+    import_csv(src.file("map.yaml"), src.path(), out2.path());
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().line, 5u) << e.what();
+    EXPECT_EQ(e.location().field, "left") << e.what();
+  }
+}
+
 TEST(CsvImportRejects, ZeroScale) {
   expect_map_error("unit: ticks}\n    rr=>unit: ticks, scale: 0}\n    rr",
                    "streams.wheels.rl.scale", "must not be 0");

@@ -6,6 +6,7 @@
 // the zero-rate biases at standstill. Each finding says what, the evidence in numbers, the likely
 // cause and the one-line fix. docs/doctor.md lists every check.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct Finding {
   std::string evidence;  // numbers
   std::string cause;     // the likely cause
   std::string fix;       // which map or vehicle.yaml key, and its value
+  // The estimated quantity where the fix is a number (a clock offset in seconds: the stream's
+  // time minus the wheels'); NaN otherwise.
+  double estimate = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct Diagnosis {

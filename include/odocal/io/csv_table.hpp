@@ -34,6 +34,11 @@ struct CsvOptions {
   // Keep a cell that is not a finite number as NaN instead of refusing the file (the doctor's
   // count of garbage values); rows with the wrong number of fields are still refused.
   bool bad_numbers_as_nan = false;
+  // Loggers as they are (odocal import csv): lines before the header to skip; an Excel "sep=,"
+  // first line, comment lines starting with '#' and trailing empty header fields (a trailing
+  // comma, whose cells must then be empty) are accepted.
+  std::size_t skip_lines = 0;
+  bool logger_dialect = false;
 };
 
 CsvTable parse_csv_table(std::string_view text, const std::string& file_label,

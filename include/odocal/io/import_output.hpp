@@ -14,6 +14,7 @@ namespace odocal {
 struct ImportedStreamSummary {
   std::string name;  // wheels, gnss, imu, heading, truth
   std::size_t rows{};
+  double start_s{};
   double duration_s{};
   double median_rate_hz{};
   double largest_gap_s{};
@@ -23,6 +24,9 @@ struct ImportSummary {
   std::vector<ImportedStreamSummary> streams;
   double wheel_distance_m{};  // while moving, rear wheels, nominal circumferences (motion_coverage)
   std::vector<std::string> notes;  // what the importer dropped or assumed, one line each
+  // What a user should look at before calibrating (many rows dropped, a stream covering little
+  // of the log), one line each; the CLI prints them on stderr.
+  std::vector<std::string> warnings;
 };
 
 // Writes `header`, then t_s[k] and each column's value at the rows `rows`, `decimals[c]` places.
