@@ -32,7 +32,7 @@ std::set<std::string> blocking_checks(const Diagnosis& diagnosis) {
 }
 
 struct Tally {
-  int found = 0, injected = 0;
+  int found = 0, injected = 0, found_alone = 0;
   int clean = 0, clean_blocking = 0, clean_warning = 0, clean_note_only = 0;
   std::vector<std::string> misses;
   std::map<std::string, int> clean_checks;
@@ -88,6 +88,19 @@ int main(int argc, char** argv) {
         const std::set<std::string> checks = blocking_checks(doctor_log(log));
         if (checks.contains(fault.expected_check)) {
           ++tally.found;
+          // Named alone: every other blocking check is of the same stream (a unit on both
+          // wheels is wheels.rl_unit and wheels.rr_unit).
+          const std::string family = std::string(fault.expected_check)
+                                         .substr(0, std::string(fault.expected_check).find('.'));
+          std::string others;
+          for (const std::string& c : checks)
+            if (!c.starts_with(family)) others += " " + c;
+          if (others.empty()) {
+            ++tally.found_alone;
+          } else {
+            tally.misses.push_back(
+                fmt::format("seed {}: {} -> found, also{}", seed, fault.name, others));
+          }
         } else {
           std::string got;
           for (const std::string& c : checks) got += (got.empty() ? "" : " ") + c;
@@ -98,10 +111,11 @@ int main(int argc, char** argv) {
       for (auto& [flags, log] : clean_logs) fs::remove_all(log);
     }
     fmt::print(
-        "{}: faults found {}/{} ({:.1f} %); clean logs {}: {} blocking, {} with a "
-        "warning, {} with notes at most\n",
-        scenario, tally.found, tally.injected, 100.0 * tally.found / tally.injected, tally.clean,
-        tally.clean_blocking, tally.clean_warning, tally.clean_note_only);
+        "{}: faults found {}/{} ({:.1f} %), {} of them with no other stream blamed; clean logs "
+        "{}: {} blocking, {} with a warning, {} with notes at most\n",
+        scenario, tally.found, tally.injected, 100.0 * tally.found / tally.injected,
+        tally.found_alone, tally.clean, tally.clean_blocking, tally.clean_warning,
+        tally.clean_note_only);
     for (const auto& [check, count] : tally.clean_checks)
       fmt::print("  clean-log finding {} x{}\n", check, count);
     for (const std::string& miss : tally.misses) fmt::print("  missed {}\n", miss);

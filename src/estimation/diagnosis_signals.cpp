@@ -65,6 +65,23 @@ DiagnosisSignals diagnosis_signals(const Log& log, double step_s) {
     vy[i] = (y1 - y0) / kHalfWindowS;
     s.gnss_speed_mps.push_back(!log.gnss.speed_mps.empty() ? at(log.gnss.t_s, log.gnss.speed_mps, t)
                                                            : std::hypot(vx[i], vy[i]));
+    // The 4 s baseline: wheel distance over it, GNSS chord between the means of its first and
+    // last 2 s (centres 2 s before and after).
+    constexpr double kLongS = 4.0;
+    const double la = t - 0.5 * kLongS, lb = t + 0.5 * kLongS;
+    s.speed_long_rl_mps.push_back(
+        (at(log.wheels.t_s, rev_rl, lb) - at(log.wheels.t_s, rev_rl, la)) *
+        nominal.circumference_rl_m / kLongS);
+    s.speed_long_rr_mps.push_back(
+        (at(log.wheels.t_s, rev_rr, lb) - at(log.wheels.t_s, rev_rr, la)) *
+        nominal.circumference_rr_m / kLongS);
+    const double gx0 = mean_over(log.gnss.t_s, log.gnss.x_m, la - 1.0, la + 1.0);
+    const double gx1 = mean_over(log.gnss.t_s, log.gnss.x_m, lb - 1.0, lb + 1.0);
+    const double gy0 = mean_over(log.gnss.t_s, log.gnss.y_m, la - 1.0, la + 1.0);
+    const double gy1 = mean_over(log.gnss.t_s, log.gnss.y_m, lb - 1.0, lb + 1.0);
+    s.gnss_speed_long_mps.push_back(!log.gnss.speed_mps.empty()
+                                        ? at(log.gnss.t_s, log.gnss.speed_mps, t)
+                                        : std::hypot(gx1 - gx0, gy1 - gy0) / kLongS);
   }
   // Course rate over 1 s where the GNSS moves (below 2 m/s its course is noise).
   const auto lag = static_cast<std::size_t>(std::lround(kHalfWindowS / step_s));

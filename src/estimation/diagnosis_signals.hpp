@@ -18,6 +18,10 @@ struct DiagnosisSignals {
   std::vector<double> wheel_yaw_rate_radps;
   std::vector<double> gnss_speed_mps;  // from positions (or the Doppler column)
   std::vector<double> gnss_course_rate_radps;
+  // Over a 4 s baseline, for the wheel/GNSS distance ratio on straight driving: the speed of a
+  // noisy track is biased high (|v + n| > |v|), by 3 % at parking speeds with 3 m of noise over
+  // the 1 s baseline above, by a tenth of that over this one.
+  std::vector<double> speed_long_rl_mps, speed_long_rr_mps, gnss_speed_long_mps;
   std::vector<double> gyro_radps, ax_mps2, ay_mps2;  // empty without imu.csv
   std::vector<double> heading_rate_radps;            // empty without heading.csv
 

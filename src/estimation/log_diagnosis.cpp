@@ -95,8 +95,20 @@ class Doctor {
           return f.check.starts_with("vehicle.") || f.check.ends_with("_unit");
         });
       }
+      // The gyro is judged against the wheels' yaw rate: wheels in a wrong unit (which the GNSS
+      // confirms) make a right gyro look wrong by the same factor.
+      if (has("wheels.rl_unit") || has("wheels.rr_unit")) {
+        std::erase_if(out_.findings, [](const Finding& f) { return f.check == "imu.yaw_unit"; });
+      }
     }
     check_gnss_repeats();
+    // Stale repeated positions lag the track and distort its speed: no clock offset and no
+    // circumference can be read from it until they are gone.
+    if (has("gnss.repeated")) {
+      std::erase_if(out_.findings, [](const Finding& f) {
+        return f.check == "time.gnss_offset" || f.check.starts_with("vehicle.");
+      });
+    }
     check_gaps();
     check_standstill_biases();
     check_altitude();
@@ -174,18 +186,38 @@ class Doctor {
     bool ok = true;
     // Driving straight where there is enough of it: in a tight turn the inner and outer wheels
     // run b/(2R) slower and faster than the GNSS antenna (10 % in a parking garage's 8 m turns).
-    std::vector<bool> straight(signals_.size());
-    for (std::size_t k = 0; k < straight.size(); ++k) straight[k] = moving_[k] && !turning_[k];
-    const auto& compared = count(straight) >= 50 ? straight : moving_;
-    const auto ratio_of = [&](const std::vector<double>& speed) {
+    // Straight for the whole 6 s that the 4 s baseline's GNSS means span: there the long
+    // baseline's speeds, with a tenth of the noise bias, are compared.
+    std::vector<bool> straight(signals_.size()), straight_long(signals_.size());
+    // Turning by the gyro where there is one: a wheel unit mistake scales the wheels' yaw rate.
+    for (std::size_t k = 0; k < straight.size(); ++k) {
+      straight[k] =
+          moving_[k] &&
+          (signals_.gyro_radps.empty() ? !turning_[k] : std::abs(signals_.gyro_radps[k]) < 0.05);
+    }
+    const auto span = static_cast<std::size_t>(std::lround(3.0 / signals_.step_s));
+    for (std::size_t k = span; k + span < straight.size(); ++k) {
+      straight_long[k] = std::all_of(straight.begin() + static_cast<std::ptrdiff_t>(k - span),
+                                     straight.begin() + static_cast<std::ptrdiff_t>(k + span + 1),
+                                     [](bool b) { return b; });
+    }
+    const bool long_baseline = count(straight_long) >= 50;
+    const auto& compared = long_baseline           ? straight_long
+                           : count(straight) >= 50 ? straight
+                                                   : moving_;
+    const auto& gnss_speed = long_baseline ? signals_.gnss_speed_long_mps : signals_.gnss_speed_mps;
+    const auto ratio_of = [&](const std::vector<double>& short_speed,
+                              const std::vector<double>& long_speed) {
+      const auto& speed = long_baseline ? long_speed : short_speed;
       std::vector<double> ratios;
       for (std::size_t k = 0; k < speed.size(); ++k) {
-        if (compared[k] && std::isfinite(speed[k]))
-          ratios.push_back(speed[k] / signals_.gnss_speed_mps[k]);
+        if (compared[k] && std::isfinite(speed[k]) && gnss_speed[k] > 0.0)
+          ratios.push_back(speed[k] / gnss_speed[k]);
       }
       return median(std::move(ratios));
     };
-    const double rl = ratio_of(signals_.speed_rl_mps), rr = ratio_of(signals_.speed_rr_mps);
+    const double rl = ratio_of(signals_.speed_rl_mps, signals_.speed_long_rl_mps);
+    const double rr = ratio_of(signals_.speed_rr_mps, signals_.speed_long_rr_mps);
     if (rl < 0.0 && rr < 0.0) {
       add("wheels.sign", FindingSeverity::kBlocking,
           "both rear wheels count backwards while the car drives forward",
@@ -309,13 +341,15 @@ class Doctor {
       }
     }
     if (!signals_.heading_rate_radps.empty()) {
-      const auto& reference = gyro ? signals_.gyro_radps : wheels;
+      // The gyro unless it is the stream found turning the wrong way.
+      const bool use_gyro = gyro && !has("imu.yaw_sign");
+      const auto& reference = use_gyro ? signals_.gyro_radps : wheels;
       const double scale =
           detail::slope_through_origin(reference, signals_.heading_rate_radps, turning_);
       if (std::abs(scale + 1.0) < 0.2) {
         add("heading.convention", FindingSeverity::kBlocking,
             "the heading stream turns the wrong way",
-            fmt::format("heading rate / {} yaw rate {:.3f}", gyro ? "gyro" : "wheel", scale),
+            fmt::format("heading rate / {} yaw rate {:.3f}", use_gyro ? "gyro" : "wheel", scale),
             "a compass heading (clockwise from north) read as ENU (counter-clockwise from east)",
             "heading = 90 deg - compass (import map: heading convention: compass_cw)");
       }
@@ -332,8 +366,10 @@ class Doctor {
     const auto report = [&](const char* check, const char* stream, const detail::Lag& lag) {
       // A stronger anti-correlation means the signals disagree in sign (swapped wheels, a
       // negated gyro): their best positive match is then a spurious lag, not a clock.
+      // A peak hardly above the zero-lag correlation is the vehicle's own dynamics (the course
+      // trails the heading through a turn by its side slip), not a clock.
       if (!std::isfinite(lag.lag_s) || lag.peak < 0.5 || !(lag.peak > -lag.trough) ||
-          std::abs(lag.lag_s) < kMinOffsetS)
+          std::abs(lag.lag_s) < kMinOffsetS || lag.peak - lag.at_zero < 0.02)
         return;
       add(check, FindingSeverity::kBlocking,
           fmt::format("the {} clock is offset from the wheels' by {:+.2f} s", stream, lag.lag_s),
@@ -373,9 +409,12 @@ class Doctor {
   // The lateral acceleration in a turn is speed x yaw rate, to the left.
   void check_imu_axes() {
     if (signals_.gyro_radps.empty() || count(turning_) < 50) return;
+    // The wheels' yaw rate unless they are the ones found swapped.
+    const auto& yaw_rate =
+        has("wheels.swapped") ? signals_.gyro_radps : signals_.wheel_yaw_rate_radps;
     std::vector<double> centripetal(signals_.size());
     for (std::size_t k = 0; k < signals_.size(); ++k)
-      centripetal[k] = signals_.gnss_speed_mps[k] * signals_.wheel_yaw_rate_radps[k];
+      centripetal[k] = signals_.gnss_speed_mps[k] * yaw_rate[k];
     const double with_ay = detail::correlation(centripetal, signals_.ay_mps2, turning_);
     const double with_ax = detail::correlation(centripetal, signals_.ax_mps2, turning_);
     const std::string evidence =
