@@ -1,0 +1,81 @@
+"""The odocal Python module against the same truths as the C++ tests: a simulated drive with
+known wear, the shipped figure-eight example, odocal's own error messages."""
+import gc
+import math
+import os
+
+import numpy as np
+import pytest
+
+import odocal
+
+SOURCE = os.environ.get("ODOCAL_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+EXAMPLE = os.path.join(SOURCE, "examples", "figure-eight")
+NOMINAL = 2 * math.pi * 0.3126
+
+
+@pytest.fixture(scope="module")
+def worn():
+    # One ideal lap of the circuit, rear tyres worn 1.5 / 1.0 mm of radius.
+    return odocal.simulate("circuit", ideal=True, laps=1, wear_rl_mm=1.5, wear_rr_mm=1.0)
+
+
+def test_streams_are_views_without_copies(worn):
+    t = worn.wheels.t_s
+    assert isinstance(t, np.ndarray) and t.dtype == np.float64
+    assert not t.flags.owndata and not t.flags.writeable
+    assert np.shares_memory(t, worn.wheels.t_s)  # the same C++ vector each time
+    assert len(t) == len(worn.wheels) > 10_000
+    assert np.all(np.diff(t) > 0)
+    assert len(worn.gnss.x_m) == len(worn.gnss)
+    assert worn.imu is not None and len(worn.imu.wz_radps) == len(worn.imu)
+
+
+def test_an_array_keeps_its_log_alive():
+    rev = odocal.simulate("circuit", ideal=True, laps=1).wheels.rev_rl
+    gc.collect()
+    assert math.isfinite(float(rev.sum())) and rev.sum() > 100
+
+
+@pytest.mark.parametrize("method", ["iterative", "fixed-p", "augmented", "batch"])
+def test_every_method_finds_the_wear(worn, method):
+    result = odocal.calibrate(worn, method=method)
+    assert result.method == method
+    assert result.usable, result.full_report()
+    truth = (2 * math.pi * (0.3126 - 0.0015), 2 * math.pi * (0.3126 - 0.0010))
+    for estimate, sigma, true in ((result.circumference_rl_m, result.sigma_rl_m, truth[0]),
+                                  (result.circumference_rr_m, result.sigma_rr_m, truth[1])):
+        assert abs(estimate - true) < max(5 * sigma, 0.002), result.full_report()
+    assert result.covariance.shape == (2, 2)
+    as_json = result.to_dict()
+    assert as_json["usable"] is True and as_json["method"] == method
+
+
+def test_options_are_the_config_files_keys(worn):
+    result = odocal.calibrate(worn, method="batch", options={"batch": {"estimate_track_width": True}})
+    names = [p["name"] for p in result.to_dict()["parameters"] if p["estimated"]]
+    assert "track_width_m" in names
+    with pytest.raises(odocal.InputError, match="colour"):
+        odocal.calibrate(worn, options={"colour": "red"})
+    with pytest.raises(ValueError, match="unknown method"):
+        odocal.calibrate(worn, method="magic")
+
+
+def test_doctor_validate_and_dead_reckon(worn):
+    assert odocal.doctor(EXAMPLE) == [] or all(f["severity"] != "blocking" for f in odocal.doctor(EXAMPLE))
+    assert all(f["severity"] != "blocking" for f in odocal.doctor(worn))
+    result = odocal.calibrate(worn)
+    drift = odocal.validate(worn, result, window_s=60)
+    assert drift["calibrated"]["windows"] > 0
+    assert drift["calibrated"]["median_drift_percent"] < drift["nominal"]["median_drift_percent"]
+    track = odocal.dead_reckon(worn, result)
+    assert len(track["x_m"]) == len(worn.wheels)
+    assert np.all(np.isfinite(track["yaw_rad"]))
+
+
+def test_read_log_and_its_errors():
+    log = odocal.read_log(EXAMPLE)
+    assert log.vehicle.track_width_m == pytest.approx(1.6)
+    assert len(log.wheels) > 0 and log.heading is not None
+    with pytest.raises(odocal.InputError, match="nonexistent"):
+        odocal.read_log("/nonexistent-log")
