@@ -1,0 +1,2 @@
+"""odocal-fleet: calibrate a fleet's drives on Dask and keep the results in SQLite
+(docs/fleet.md)."""

@@ -1,0 +1,86 @@
+"""odocal-fleet run: every drive not yet in the database, calibrated as a task on Dask
+distributed (a LocalCluster on this machine by default, or a running scheduler), each result
+stored as it arrives."""
+import json
+import sys
+
+from . import database, drives, tasks
+
+
+class Progress:
+    """A one-line progress bar on a terminal; silent otherwise."""
+
+    def __init__(self, total):
+        self.total, self.done, self.failed = total, 0, 0
+        self.live = sys.stderr.isatty()
+
+    def step(self, failed):
+        self.done += 1
+        self.failed += failed
+        if self.live:
+            width = 30
+            filled = width * self.done // max(self.total, 1)
+            sys.stderr.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {self.done}/{self.total}"
+                             f" drives, {self.failed} failed")
+            sys.stderr.flush()
+
+    def close(self):
+        if self.live:
+            sys.stderr.write("\n")
+
+
+def pending(db, found, retry_failed):
+    done, failed = database.done_keys(db), database.failed_keys(db)
+    return [d for d in found if d.key not in done and (retry_failed or d.key not in failed)]
+
+
+def run(args):
+    options = None
+    if args.config:
+        import yaml
+        with open(args.config) as f:
+            options = yaml.safe_load(f) or {}
+    calibration = json.dumps({"method": args.method, "options": options}, sort_keys=True)
+    found = drives.drives(args.logs, calibration)
+    db = database.connect(args.db)
+    todo = pending(db, found, args.retry_failed)
+    skipped = len(found) - len(todo)
+    print(f"odocal-fleet: {len(found)} drives, {skipped} already in {args.db}, {len(todo)} to do")
+    progress = Progress(len(todo))
+    failed = 0
+    if args.workers == 0 and not args.scheduler:
+        for drive in todo:  # serial, in this process
+            outcome = tasks.calibrate_drive(drive.path, args.method, options)
+            database.store(db, drive, outcome)
+            failed += "error" in outcome
+            progress.step("error" in outcome)
+    else:
+        from distributed import Client, LocalCluster, as_completed
+
+        cluster = None
+        if args.scheduler:
+            client = Client(args.scheduler)
+        else:
+            cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+            client = Client(cluster)
+        try:
+            futures = {client.submit(tasks.calibrate_drive, d.path, args.method, options,
+                                     key=f"odocal-{d.key}", pure=False): d for d in todo}
+            for future in as_completed(futures):
+                drive = futures[future]
+                try:
+                    outcome = future.result()
+                except Exception as error:  # a worker that died: recorded, the run goes on
+                    outcome = {"error": f"worker failed: {type(error).__name__}: {error}"}
+                database.store(db, drive, outcome)
+                failed += "error" in outcome
+                progress.step("error" in outcome)
+        finally:
+            client.close()
+            if cluster is not None:
+                cluster.close()
+    progress.close()
+    print(f"odocal-fleet: {len(todo) - failed} calibrated, {failed} failed "
+          f"(see the failures table; --retry-failed tries them again)")
+    return 0

@@ -1,0 +1,89 @@
+"""odocal-fleet run on a small simulated fleet: every drive calibrated once, results identical
+to a serial run, a broken drive recorded without stopping the run, re-runs skipping what is
+done, --retry-failed, and a run resumed after a partial one counting nothing twice."""
+import os
+import shutil
+import sqlite3
+import subprocess
+import sys
+
+import pytest
+
+from odocal_fleet import cli
+
+ODOCAL = os.environ["ODOCAL_CLI"]
+
+
+@pytest.fixture(scope="module")
+def fleet(tmp_path_factory):
+    root = tmp_path_factory.mktemp("fleet")
+    for vehicle, wear in (("car-a", 1.0), ("car-b", 2.0)):
+        for drive, seed in (("drive-1", 1), ("drive-2", 2)):
+            out = root / vehicle / drive
+            subprocess.run([ODOCAL, "simulate", "--ideal", "--laps", "1", "--seed", str(seed),
+                            "--wear-rl", str(wear), "--wear-rr", "0.5", "--out", str(out)],
+                           check=True, stdout=subprocess.DEVNULL)
+    broken = root / "car-b" / "drive-3"
+    shutil.copytree(root / "car-b" / "drive-1", broken)
+    with open(broken / "gnss.csv", "a") as f:
+        f.write("not,a,row\n")
+    return root
+
+
+def rows(db, sql):
+    with sqlite3.connect(db) as connection:
+        return sorted(connection.execute(sql).fetchall())
+
+
+CALIBRATIONS = "SELECT d.vehicle_id, d.path, c.circumference_rl_m, c.circumference_rr_m, " \
+               "c.termination FROM calibrations c JOIN drives d USING (drive_key)"
+
+
+def test_run_serial_and_parallel_agree_and_failures_are_kept(fleet, tmp_path):
+    serial, parallel = tmp_path / "serial.sqlite", tmp_path / "parallel.sqlite"
+    assert cli.main(["run", str(fleet), "--db", str(serial), "--workers", "0",
+                     "--method", "iterative"]) == 0
+    assert cli.main(["run", str(fleet), "--db", str(parallel), "--workers", "2",
+                     "--method", "iterative"]) == 0
+    done = rows(serial, CALIBRATIONS)
+    assert len(done) == 4 and done == rows(parallel, CALIBRATIONS)
+    # The worn left wheels: car-b's 2 mm shows as a smaller circumference than car-a's 1 mm.
+    by_vehicle = {}
+    for vehicle, _, c_rl, _, termination in done:
+        assert termination == "converged"
+        by_vehicle.setdefault(vehicle, []).append(c_rl)
+    assert max(by_vehicle["car-b"]) < min(by_vehicle["car-a"])
+    failures = rows(serial, "SELECT vehicle_id, error, attempts FROM failures")
+    assert len(failures) == 1 and failures[0][0] == "car-b" and failures[0][2] == 1
+    assert "gnss.csv" in failures[0][1]
+    assert rows(serial, "SELECT count(*) FROM findings") == rows(parallel, "SELECT count(*) FROM findings")
+
+
+def test_reruns_skip_what_is_done_and_retry_failed(fleet, tmp_path, capsys):
+    db = tmp_path / "fleet.sqlite"
+    # A partial run (one vehicle), then the whole fleet: nothing done twice.
+    assert cli.main(["run", str(fleet / "car-a"), "--db", str(db), "--workers", "0",
+                     "--method", "iterative"]) == 0
+    assert cli.main(["run", str(fleet), "--db", str(db), "--workers", "0",
+                     "--method", "iterative"]) == 0
+    assert "5 drives, 2 already in" in capsys.readouterr().out
+    assert rows(db, "SELECT count(*) FROM drives") == [(4,)]
+    assert cli.main(["run", str(fleet), "--db", str(db), "--workers", "0",
+                     "--method", "iterative"]) == 0
+    assert "0 to do" in capsys.readouterr().out
+    assert cli.main(["run", str(fleet), "--db", str(db), "--workers", "0", "--method",
+                     "iterative", "--retry-failed"]) == 0
+    assert rows(db, "SELECT attempts FROM failures") == [(2,)]
+    # Another method is another calibration of the same drives.
+    assert cli.main(["run", str(fleet / "car-a"), "--db", str(db), "--workers", "0",
+                     "--method", "batch"]) == 0
+    assert rows(db, "SELECT count(*) FROM drives") == [(6,)]
+
+
+def test_the_command_runs_as_a_module(fleet, tmp_path):
+    db = tmp_path / "fleet.sqlite"
+    run = subprocess.run([sys.executable, "-m", "odocal_fleet", "run", str(fleet / "car-a"),
+                          "--db", str(db), "--workers", "0", "--method", "iterative"],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert "2 calibrated, 0 failed" in run.stdout
