@@ -129,6 +129,16 @@ PYBIND11_MODULE(odocal, m) {
         py::dict out;
         out["nominal"] = statistics(v.nominal_statistics);
         out["calibrated"] = statistics(v.calibrated_statistics);
+        py::list windows;
+        for (std::size_t i = 0; i < v.nominal.size(); ++i) {
+          py::dict w;
+          w["start_s"] = v.nominal[i].start_s;
+          w["distance_m"] = v.nominal[i].distance_m;
+          w["nominal_end_error_m"] = v.nominal[i].end_error_m;
+          w["calibrated_end_error_m"] = v.calibrated[i].end_error_m;
+          windows.append(w);
+        }
+        out["windows"] = windows;
         return out;
       },
       py::arg("log"), py::arg("params"), py::arg("window_s") = 60.0,

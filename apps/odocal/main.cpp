@@ -13,6 +13,7 @@
 #include "import_command.hpp"
 #include "message_text.hpp"
 #include "odocal/error.hpp"
+#include "report_command.hpp"
 #include "simulate_command.hpp"
 #include "validate_command.hpp"
 
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   add_deadreckon_command(app);
   add_demo_command(app);
   add_doctor_command(app);
+  add_report_command(app);
   add_experiment_command(app, argc, argv);
   add_import_command(app);
   add_simulate_command(app);

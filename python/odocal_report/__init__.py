@@ -1,0 +1,1 @@
+"""odocal report: one calibration as a static HTML page (docs/reports.md)."""

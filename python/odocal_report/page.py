@@ -1,0 +1,80 @@
+"""A calibration report as one static HTML page: the numbers and verdicts as tables, the plots
+with plotly's script embedded once (offline: nothing is fetched from the network)."""
+import html
+import json
+
+import plotly.io
+import plotly.offline
+
+
+def table(rows, header):
+    head = "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>"
+                   for row in rows)
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def summary_rows(result):
+    def mm(value):
+        return f"{1000 * value:.3f} mm" if isinstance(value, (int, float)) else "–"
+
+    nominal = result.get("nominal", {})
+    rows = [("method", result["method"]),
+            ("outcome", f"{'usable' if result['usable'] else 'NOT USABLE'} ({result['termination']})"),
+            ("message", result.get("message", ""))]
+    for wheel in ("rl", "rr"):
+        value = result.get(f"circumference_{wheel}_m")
+        sigma = result.get(f"sigma_circumference_{wheel}_m")
+        base = nominal.get(f"circumference_{wheel}_m")
+        change = f", {1000 * (value - base):+.3f} mm from nominal" if value and base else ""
+        rows.append((f"c_{wheel.upper()}", f"{value:.6f} m (1-sigma {mm(sigma)}{change})"
+                     if value is not None else "–"))
+    rows.append(("identifiability", result.get("identifiability", "")))
+    for when in ("before", "after"):
+        dr = result.get(f"dead_reckoning_{when}")
+        if dr:
+            rows.append((f"dead reckoning {when}", f"mean {dr['mean_position_m']:.3f} m / "
+                         f"{dr['mean_heading_deg']:.3f} deg, max {dr['max_position_m']:.3f} m"))
+    for parameter in result.get("parameters", []):
+        if parameter.get("estimated") and not parameter["name"].startswith("circumference"):
+            rows.append((parameter["name"], f"{parameter['value']:.6g} (1-sigma "
+                         f"{parameter.get('sigma')}){'' if parameter.get('identified', True) else ' — ' + parameter.get('verdict', '')}"))
+    if result.get("odometry_scales"):
+        s = result["odometry_scales"]
+        rows.append(("odometry scales", f"speed x{s['speed_scale']:.4f} (1-sigma "
+                     f"{s['sigma_speed_scale']:.4f}), yaw rate x{s['yaw_rate_scale']:.4f} "
+                     f"(1-sigma {s['sigma_yaw_rate_scale']:.4f})"))
+    return rows
+
+
+def render(title, result, findings, drift, figures):
+    plots = "".join(
+        f'<div class="plot">{plotly.io.to_html(fig, full_html=False, include_plotlyjs=False)}</div>'
+        for fig in figures if fig is not None)
+    drift_rows = [(name, d["windows"], f"{d['median_drift_percent']:.3f}",
+                   f"{d['p95_drift_percent']:.3f}", f"{d['median_end_error_m']:.2f}")
+                  for name, d in (("nominal", drift["nominal"]), ("calibrated", drift["calibrated"]))]
+    finding_rows = [(f["severity"], f["check"], f["what"], f["evidence"], f["fix"]) for f in findings]
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>{html.escape(title)}</title>
+<script type="text/javascript">{plotly.offline.get_plotlyjs()}</script>
+<style>
+body {{ font-family: sans-serif; margin: 2em; color: #222; }}
+table {{ border-collapse: collapse; margin: 1em 0; }}
+td, th {{ border: 1px solid #ccc; padding: 0.3em 0.6em; text-align: left; vertical-align: top; }}
+th {{ background: #f2f2f2; }}
+.plot {{ margin: 1.5em 0; }}
+</style></head><body>
+<h1>{html.escape(title)}</h1>
+<h2>Result</h2>
+{table(summary_rows(result), ("", ""))}
+<h2>Input checks (odocal doctor)</h2>
+{table(finding_rows, ("severity", "check", "what", "evidence", "fix")) if finding_rows else "<p>No finding.</p>"}
+<h2>Held-out drift (odocal validate)</h2>
+{table(drift_rows, ("parameters", "windows", "median drift [%]", "p95 drift [%]", "median end [m]"))}
+<h2>Plots</h2>
+{plots}
+<h2>Configuration</h2>
+<pre>{html.escape(json.dumps(result.get("configuration", {}), indent=2, sort_keys=True))}</pre>
+</body></html>
+"""
