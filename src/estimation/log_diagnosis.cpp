@@ -9,6 +9,7 @@
 
 #include "diagnosis_signals.hpp"
 #include "odocal/estimation/interpolation.hpp"
+#include "odocal/estimation/median.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
 #include "odocal/model/angle.hpp"
@@ -58,13 +59,6 @@ std::optional<KnownFactor> known_wheel_factor(double ratio, const WheelStream& w
     }
   }
   return std::nullopt;
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return NAN;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 class Doctor {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "odocal/estimation/interpolation.hpp"
+#include "odocal/estimation/median.hpp"
 
 namespace odocal {
 
@@ -69,21 +70,25 @@ std::vector<Standstill> find_standstills(const Log& log, const OdometryParams& n
   return standing;
 }
 
+// The median rate over the standing samples: a sensor's bias reads the same in every one, while
+// the creep at the ends of a stop (slowing to it, moving off) is a few samples only; a mean took
+// that creep for a bias.
 WheelRateBias wheel_rate_bias(const WheelStream& wheels, const std::vector<Standstill>& standing) {
   WheelRateBias bias;
-  double rl = 0.0, rr = 0.0;
+  std::vector<double> rl, rr;
   std::size_t k = 1;
   for (const Standstill& s : standing) {
     while (k < wheels.size() && wheels.t_s[k - 1] < s.start_s) ++k;
     for (; k < wheels.size() && wheels.t_s[k] <= s.end_s; ++k) {
-      rl += wheels.rev_rl[k];
-      rr += wheels.rev_rr[k];
-      bias.standing_s += wheels.t_s[k] - wheels.t_s[k - 1];
+      const double dt = wheels.t_s[k] - wheels.t_s[k - 1];
+      rl.push_back(wheels.rev_rl[k] / dt);
+      rr.push_back(wheels.rev_rr[k] / dt);
+      bias.standing_s += dt;
     }
   }
   if (bias.standing_s > 0.0) {
-    bias.rl_rev_per_s = rl / bias.standing_s;
-    bias.rr_rev_per_s = rr / bias.standing_s;
+    bias.rl_rev_per_s = median(std::move(rl));
+    bias.rr_rev_per_s = median(std::move(rr));
   }
   return bias;
 }
