@@ -16,6 +16,7 @@
 #include "../support/doctor_faults.hpp"
 #include "../support/run_cli.hpp"
 #include "../support/temp_log_dir.hpp"
+#include "odocal/error.hpp"
 #include "odocal/io/log_doctor.hpp"
 
 namespace odocal {
@@ -94,14 +95,62 @@ TEST(DoctorRealLog, Comma2k19IsCleanAndItsFaultsAreFound) {
                 .status,
             0);
   EXPECT_FALSE(doctor_log(log).blocking()) << checks(doctor_log(log), true);
-  const std::string wheels = read_text_file((log / "wheels.csv").string());
-  edit_csv(log / "wheels.csv", [](Row& r) { r["rl_mps"] = -r["rl_mps"]; });
-  EXPECT_NE(checks(doctor_log(log), true).find("wheels.rl_sign"), std::string::npos)
-      << checks(doctor_log(log), false);
-  std::ofstream(log / "wheels.csv") << wheels;
-  edit_csv(log / "gnss.csv", [](Row& r) { r["t"] += 0.7; });
-  EXPECT_NE(checks(doctor_log(log), true).find("time.gnss_offset"), std::string::npos)
-      << checks(doctor_log(log), false);
+  // Every fault the drive can show: it is nearly straight (3 deg of heading), so the faults that
+  // only turns reveal (swapped wheels, the gyro's sign and unit, IMU axes, a mirrored track, the
+  // IMU clock) get the yaw.too_straight note instead; and its wheels are the car's own speeds in
+  // m/s, which a wrong nominal circumference in vehicle.yaml does not change.
+  const std::vector<std::pair<std::function<void()>, const char*>> faults = {
+      {[&] { edit_csv(log / "wheels.csv", [](Row& r) { r["rl_mps"] = -r["rl_mps"]; }); },
+       "wheels.rl_sign"},
+      {[&] { edit_csv(log / "wheels.csv", [](Row& r) { r["rr_mps"] = -r["rr_mps"]; }); },
+       "wheels.rr_sign"},
+      {[&] {
+         edit_csv(log / "wheels.csv", [](Row& r) {
+           r["rl_mps"] = -r["rl_mps"];
+           r["rr_mps"] = -r["rr_mps"];
+         });
+       },
+       "wheels.sign"},
+      {[&] {
+         edit_csv(log / "wheels.csv", [](Row& r) {
+           r["rl_mps"] *= 3.6;
+           r["rr_mps"] *= 3.6;
+         });
+       },
+       "wheels.rl_unit"},
+      {[&] { edit_csv(log / "gnss.csv", [](Row& r) { r["t"] += 0.7; }); }, "time.gnss_offset"},
+      {[&] {
+         int row = 0;
+         Row fix;  // a logger repeating a fix repeats every column of it but the time
+         edit_csv(log / "gnss.csv", [&](Row& r) {
+           const double t = r["t"];
+           if (row++ % 4 == 0) fix = r;
+           r = fix;
+           r["t"] = t;
+         });
+       },
+       "gnss.repeated"},
+  };
+  const fs::path clean = dir.path() / "clean";
+  fs::copy(log, clean);
+  for (const auto& [inject, expected] : faults) {
+    fs::remove_all(log);
+    fs::copy(clean, log);
+    inject();
+    EXPECT_NE(checks(doctor_log(log), true).find(expected), std::string::npos)
+        << expected << ": found " << checks(doctor_log(log), false);
+  }
+  // GNSS time x10 on epoch-scale stamps leaves no shared span at all: the reader says so (exit 2).
+  fs::remove_all(log);
+  fs::copy(clean, log);
+  edit_csv(log / "gnss.csv", [](Row& r) { r["t"] *= 10; });
+  try {
+    doctor_log(log);
+    ADD_FAILURE() << "GNSS time x10 read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("streams must share one clock"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(DoctorCli, ExitsThreeOnABlockingFindingAndWritesJson) {
