@@ -40,6 +40,7 @@ void column(py::class_<Stream, Owner>& cls, const char* name, std::vector<double
 
 void bind_log(py::module_& m) {
   py::class_<VehicleConfig>(m, "VehicleConfig", "Nominal vehicle (vehicle.yaml)")
+      .def_readonly("vehicle_id", &VehicleConfig::vehicle_id)
       .def_readonly("track_width_m", &VehicleConfig::track_width_m)
       .def_readonly("circumference_rl_m", &VehicleConfig::circumference_rl_m)
       .def_readonly("circumference_rr_m", &VehicleConfig::circumference_rr_m)

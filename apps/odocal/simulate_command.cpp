@@ -21,6 +21,9 @@ struct SimulateArgs {
   std::optional<int> laps;
   std::optional<double> wear_rl_mm;
   std::optional<double> wear_rr_mm;
+  std::optional<double> pressure_rl;
+  std::optional<double> pressure_rr;
+  std::optional<std::string> vehicle_id;
   std::optional<std::uint64_t> noise_seed;
   std::optional<std::uint64_t> trajectory_seed;
   std::optional<double> gnss_sigma_m;
@@ -39,13 +42,16 @@ void run_simulate(const SimulateArgs& args) {
   if (args.laps) scenario.route.laps = *args.laps;
   if (args.wear_rl_mm) scenario.vehicle.wear_rl_mm = *args.wear_rl_mm;
   if (args.wear_rr_mm) scenario.vehicle.wear_rr_mm = *args.wear_rr_mm;
+  if (args.pressure_rl) scenario.vehicle.pressure_rl = *args.pressure_rl;
+  if (args.pressure_rr) scenario.vehicle.pressure_rr = *args.pressure_rr;
   if (args.noise_seed) scenario.seeds.noise = *args.noise_seed;
   if (args.trajectory_seed) scenario.seeds.trajectory = *args.trajectory_seed;
   if (args.gnss_sigma_m) scenario.gnss.sigma_m = *args.gnss_sigma_m;
   if (args.gnss_output) scenario.gnss.output_latlon = *args.gnss_output == "latlon";
   if (args.wheel_output) scenario.wheels.output = *parse_enum<WheelUnit>(*args.wheel_output);
 
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  sim::SimulatedDrive drive = sim::simulate(scenario);
+  drive.nominal_vehicle.vehicle_id = args.vehicle_id;
   write_simulated_log(drive, scenario, args.out_dir);
   fmt::print("simulated    {} ({}), {} lap(s): {:.1f} m in {:.1f} s\n", scenario.name,
              scenario.ideal ? "ideal" : "realistic", scenario.route.laps, drive.distance_m,
@@ -77,6 +83,16 @@ void add_simulate_command(CLI::App& app) {
       ->check(finite_in(kTyreWearMm));
   command->add_option("--wear-rr", args->wear_rr_mm, "Rear-right tyre wear: radius lost, mm")
       ->check(finite_in(kTyreWearMm));
+  command
+      ->add_option("--pressure-rl", args->pressure_rl,
+                   "Rear-left inflation relative to nominal (0.75: 25 % low)")
+      ->check(finite_in(kTyrePressure));
+  command
+      ->add_option("--pressure-rr", args->pressure_rr,
+                   "Rear-right inflation relative to nominal (0.75: 25 % low)")
+      ->check(finite_in(kTyrePressure));
+  command->add_option("--vehicle-id", args->vehicle_id,
+                      "vehicle_id written to vehicle.yaml (a fleet's vehicle)");
   command->add_option("--seed", args->noise_seed, "Noise seed (sensor errors)");
   command->add_option("--trajectory-seed", args->trajectory_seed,
                       "Trajectory seed (driver variation)");

@@ -2,7 +2,7 @@
 import argparse
 import sys
 
-from . import run
+from . import health_command, run, simulate
 
 
 def main(argv=None):
@@ -22,11 +22,47 @@ def main(argv=None):
     run_parser.add_argument("--config", help="calibration options YAML (odocal calibrate --config)")
     run_parser.add_argument("--retry-failed", action="store_true",
                             help="try the drives that failed before again")
+
+    health_parser = commands.add_parser("health", help="tyre health per vehicle and rear wheel")
+    health_parser.add_argument("--db", required=True, help="the database odocal-fleet run wrote")
+    health_parser.add_argument("--json", help="write everything (series, bands, events) here")
+    health_parser.add_argument("--method", default="batch", help="whose calibrations (default batch)")
+    health_parser.add_argument("--false-alarm-rate", type=float, default=0.01,
+                               help="chance of a false event per vehicle over 50 drives (default 0.01)")
+
+    sim_parser = commands.add_parser("simulate", help="a simulated fleet with known tyre events")
+    sim_parser.add_argument("--vehicles", type=int, required=True)
+    sim_parser.add_argument("--drives", type=int, required=True, help="drives per vehicle")
+    sim_parser.add_argument("--out", required=True, help="directory for VEHICLE/DRIVE/ logs")
+    sim_parser.add_argument("--scenario", default="urban",
+                            help="built-in scenario or scenario YAML (default urban)")
+    sim_parser.add_argument("--laps", type=int, default=3, help="laps per drive (default 3)")
+    sim_parser.add_argument("--ideal", action="store_true", help="the paper's ideal vehicle")
+    sim_parser.add_argument("--seed", type=int, default=1)
+    sim_parser.add_argument("--event-share", type=float, default=0.5,
+                            help="share of vehicles with one event (default 0.5)")
+    sim_parser.add_argument("--step-mm", type=float, default=1.0,
+                            help="radius step of a tyre change, mm (default 1)")
+    sim_parser.add_argument("--pressure", type=float, default=0.75,
+                            help="inflation after a pressure loss, relative (default 0.75)")
+    sim_parser.add_argument("--gap-km", type=float, default=5.0,
+                            help="most driving not logged between two drives, km (default 5)")
+    sim_parser.add_argument("--workers", type=int, default=2, help="simulations in parallel")
     args = parser.parse_args(argv)
     if args.command == "run":
         if args.workers < 0:
             parser.error("--workers must be 0 or more")
         return run.run(args)
+    if args.command == "health":
+        if not 0 < args.false_alarm_rate < 1:
+            parser.error("--false-alarm-rate must be between 0 and 1")
+        return health_command.run(args)
+    if args.command == "simulate":
+        if args.vehicles < 1 or args.drives < 1 or args.laps < 1 or args.workers < 1:
+            parser.error("--vehicles, --drives, --laps and --workers must be 1 or more")
+        if not 0 <= args.event_share <= 1 or not 0.3 <= args.pressure <= 1.5 or args.gap_km < 0:
+            parser.error("--event-share in [0, 1], --pressure in [0.3, 1.5], --gap-km >= 0")
+        return simulate.simulate(args)
     return 2
 
 

@@ -13,6 +13,8 @@ CREATE TABLE IF NOT EXISTS drives (
     vehicle_id TEXT NOT NULL REFERENCES vehicles(vehicle_id),
     path TEXT NOT NULL,
     start_s REAL,                        -- first wheel sample, on the log's clock
+    start_time TEXT,                     -- ISO 8601 (drive.yaml), else NULL
+    odometer_km REAL,                    -- the vehicle's odometer at the start (drive.yaml)
     duration_s REAL,
     distance_m REAL,                     -- odometry distance while moving
     done_at REAL NOT NULL                -- UNIX time the result was stored
@@ -47,6 +49,11 @@ CREATE TABLE IF NOT EXISTS failures (
 def connect(path):
     db = sqlite3.connect(path)
     db.executescript(SCHEMA)
+    columns = {row[1] for row in db.execute("PRAGMA table_info(drives)")}
+    with db:  # databases written before drives had a start time and an odometer
+        for column, kind in (("start_time", "TEXT"), ("odometer_km", "REAL")):
+            if column not in columns:
+                db.execute(f"ALTER TABLE drives ADD COLUMN {column} {kind}")
     return db
 
 
@@ -69,9 +76,10 @@ def store(db, drive, outcome):
             return
         result = outcome["result"]
         db.execute("INSERT OR IGNORE INTO vehicles VALUES (?)", (drive.vehicle,))
-        db.execute("INSERT INTO drives VALUES (?, ?, ?, ?, ?, ?, ?)",
-                   (drive.key, drive.vehicle, drive.path, outcome["start_s"], outcome["duration_s"],
-                    result.get("distance_m"), time.time()))
+        db.execute("INSERT INTO drives (drive_key, vehicle_id, path, start_s, start_time, odometer_km,"
+                   " duration_s, distance_m, done_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                   (drive.key, drive.vehicle, drive.path, outcome["start_s"], drive.start_time,
+                    drive.odometer_km, outcome["duration_s"], result.get("distance_m"), time.time()))
         covariance = result.get("covariance_m2") or [[None, None], [None, None]]
         db.execute("INSERT INTO calibrations VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                    (drive.key, result["method"], result.get("circumference_rl_m"),

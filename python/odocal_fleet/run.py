@@ -41,11 +41,16 @@ def run(args):
         with open(args.config) as f:
             options = yaml.safe_load(f) or {}
     calibration = json.dumps({"method": args.method, "options": options}, sort_keys=True)
-    found = drives.drives(args.logs, calibration)
+    found, broken = drives.drives(args.logs, calibration)
     db = database.connect(args.db)
+    for drive, error in broken:  # metadata that does not read: a failure, the run goes on
+        if args.retry_failed or drive.key not in database.failed_keys(db):
+            database.store(db, drive, {"error": error})
     todo = pending(db, found, args.retry_failed)
     skipped = len(found) - len(todo)
-    print(f"odocal-fleet: {len(found)} drives, {skipped} already in {args.db}, {len(todo)} to do")
+    print(f"odocal-fleet: {len(found) + len(broken)} drives, {skipped} already in {args.db}, "
+          f"{len(todo)} to do" + (f", {len(broken)} with unreadable drive.yaml or vehicle.yaml"
+                                  if broken else ""))
     progress = Progress(len(todo))
     failed = 0
     if args.workers == 0 and not args.scheduler:

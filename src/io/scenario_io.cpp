@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "builtin_scenarios.hpp"
+#include "odocal/data/physical_limits.hpp"
 #include "odocal/io/track_reader.hpp"
 #include "odocal/model/angle.hpp"
 #include "odocal/sim/centreline_route.hpp"
@@ -189,6 +190,8 @@ sim::Scenario parse_scenario(const std::string& yaml_text, const std::string& fi
     vehicle->read("tyre_radius_m", s.vehicle.tyre_radius_m, 0.05, 2.0);
     vehicle->read("wear_rl_mm", s.vehicle.wear_rl_mm, -50.0, 50.0);
     vehicle->read("wear_rr_mm", s.vehicle.wear_rr_mm, -50.0, 50.0);
+    vehicle->read("pressure_rl", s.vehicle.pressure_rl, kTyrePressure.min, kTyrePressure.max);
+    vehicle->read("pressure_rr", s.vehicle.pressure_rr, kTyrePressure.min, kTyrePressure.max);
     vehicle->read("ideal", s.ideal);
     if (auto dynamics = vehicle->map("dynamics")) {
       sim::VehicleDynamicsConfig& d = s.dynamics;
@@ -311,6 +314,8 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("tyre_radius_m", s.vehicle.tyre_radius_m);
   key("wear_rl_mm", s.vehicle.wear_rl_mm);
   key("wear_rr_mm", s.vehicle.wear_rr_mm);
+  key("pressure_rl", s.vehicle.pressure_rl);
+  key("pressure_rr", s.vehicle.pressure_rr);
   key("ideal", s.ideal);
   const sim::VehicleDynamicsConfig& d = s.dynamics;
   out << YAML::Key << "dynamics" << YAML::Value << YAML::BeginMap;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -32,6 +33,19 @@ VehicleConfig parse_vehicle_config(YamlMap& map) {
     map.read(key, read, range.min, range.max);
     value = read;
   };
+  if (map.has("vehicle_id")) {
+    std::string id;
+    map.read("vehicle_id", id);
+    const bool valid =
+        !id.empty() && id.size() <= 64 && std::all_of(id.begin(), id.end(), [](unsigned char ch) {
+          return std::isalnum(ch) || ch == '.' || ch == '_' || ch == '-';
+        });
+    if (!valid) {
+      throw InputError(map.location("vehicle_id"),
+                       "expected 1 to 64 letters, digits, '.', '_' or '-'");
+    }
+    vehicle.vehicle_id = id;
+  }
   required("track_width_m", vehicle.track_width_m, kTrackWidthM);
   required("circumference_rl_m", vehicle.circumference_rl_m, kCircumferenceM);
   required("circumference_rr_m", vehicle.circumference_rr_m, kCircumferenceM);
@@ -63,6 +77,7 @@ void write_vehicle_config(const VehicleConfig& vehicle, const std::filesystem::p
   YAML::Emitter out;
   out.SetDoublePrecision(12);
   out << YAML::BeginMap;
+  if (vehicle.vehicle_id) out << YAML::Key << "vehicle_id" << YAML::Value << *vehicle.vehicle_id;
   out << YAML::Key << "track_width_m" << YAML::Value << vehicle.track_width_m;
   out << YAML::Key << "circumference_rl_m" << YAML::Value << vehicle.circumference_rl_m;
   out << YAML::Key << "circumference_rr_m" << YAML::Value << vehicle.circumference_rr_m;

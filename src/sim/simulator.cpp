@@ -234,9 +234,17 @@ SimulatedDrive simulate(const Scenario& scenario) {
   const double track_m = scenario.vehicle.effective_track_width_m > 0.0
                              ? scenario.vehicle.effective_track_width_m
                              : scenario.vehicle.track_width_m;
-  out.true_params = {kTwoPi * (scenario.vehicle.tyre_radius_m - 1e-3 * scenario.vehicle.wear_rl_mm),
-                     kTwoPi * (scenario.vehicle.tyre_radius_m - 1e-3 * scenario.vehicle.wear_rr_mm),
-                     track_m};
+  // Under-inflation deflects the tyre further under its static load: that radius is lost too.
+  const double radius_per_pressure_m =
+      scenario.dynamics.radius_load_sensitivity_m_per_n *
+      static_rear_wheel_load_n(scenario.dynamics, scenario.vehicle.wheelbase_m);
+  const auto static_radius_m = [&](double wear_mm, double pressure) {
+    return scenario.vehicle.tyre_radius_m - 1e-3 * wear_mm -
+           radius_per_pressure_m * (1.0 / pressure - 1.0);
+  };
+  out.true_params = {
+      kTwoPi * static_radius_m(scenario.vehicle.wear_rl_mm, scenario.vehicle.pressure_rl),
+      kTwoPi * static_radius_m(scenario.vehicle.wear_rr_mm, scenario.vehicle.pressure_rr), track_m};
 
   // One generator per sensor, each seeded from the noise seed: changing one sensor's rate never
   // changes another sensor's noise.
@@ -250,7 +258,8 @@ SimulatedDrive simulate(const Scenario& scenario) {
   } else {
     truth = simulate_vehicle_dynamics(
         path, profile, scenario.dynamics, scenario.vehicle.wheelbase_m, track_m,
-        {out.true_params.circumference_rl_m / kTwoPi, out.true_params.circumference_rr_m / kTwoPi});
+        {out.true_params.circumference_rl_m / kTwoPi, out.true_params.circumference_rr_m / kTwoPi,
+         scenario.vehicle.pressure_rl, scenario.vehicle.pressure_rr});
   }
   if (scenario.route.terrain.max_grade > 0.0) {
     const double lap_length_m = path.length_m() / scenario.route.laps;

@@ -94,21 +94,22 @@ class Vehicle {
     const double transfer_y =
         c_.load_transfer ? (1.0 - c_.front_roll_share) * c_.mass_kg * ay * c_.cg_height_m / t_
                          : 0.0;
-    const double static_wheel_load = c_.mass_kg * kGravity * a_ / L_ / 2.0;
+    const double static_wheel_load = static_rear_wheel_load_n(c_, L_);
     const double load_rl =
         0.5 * load_rear - transfer_y;  // a left turn (ay > 0) loads the right wheel
     const double load_rr = 0.5 * load_rear + transfer_y;
-    d.angle_rl =
-        wheel_rate(s.vx - r * t_ / 2.0, 0.5 * drive_n, load_rl, static_wheel_load, radii_.rl_m);
-    d.angle_rr =
-        wheel_rate(s.vx + r * t_ / 2.0, 0.5 * drive_n, load_rr, static_wheel_load, radii_.rr_m);
+    d.angle_rl = wheel_rate(s.vx - r * t_ / 2.0, 0.5 * drive_n, load_rl, static_wheel_load,
+                            radii_.rl_m, radii_.pressure_rl);
+    d.angle_rr = wheel_rate(s.vx + r * t_ / 2.0, 0.5 * drive_n, load_rr, static_wheel_load,
+                            radii_.rr_m, radii_.pressure_rr);
     return d;
   }
 
-  double wheel_radius(double load_n, double static_load_n, double static_radius_m) const {
-    return c_.load_dependent_radius
-               ? static_radius_m - c_.radius_load_sensitivity_m_per_n * (load_n - static_load_n)
-               : static_radius_m;
+  double wheel_radius(double load_n, double static_load_n, double static_radius_m,
+                      double pressure) const {
+    return c_.load_dependent_radius ? static_radius_m - c_.radius_load_sensitivity_m_per_n /
+                                                            pressure * (load_n - static_load_n)
+                                    : static_radius_m;
   }
 
  private:
@@ -126,9 +127,10 @@ class Vehicle {
   }
 
   double wheel_rate(double contact_speed, double force_n, double load_n, double static_load_n,
-                    double static_radius_m) const {
+                    double static_radius_m, double pressure) const {
     const double slip = longitudinal_slip(force_n, load_n);
-    return contact_speed * (1.0 + slip) / wheel_radius(load_n, static_load_n, static_radius_m);
+    return contact_speed * (1.0 + slip) /
+           wheel_radius(load_n, static_load_n, static_radius_m, pressure);
   }
 
   const VehicleDynamicsConfig& c_;
@@ -167,6 +169,10 @@ class RecordedMotion : public MotionTruth {
 };
 
 }  // namespace
+
+double static_rear_wheel_load_n(const VehicleDynamicsConfig& config, double wheelbase_m) {
+  return config.mass_kg * kGravity * config.cg_to_front_axle_m / wheelbase_m / 2.0;
+}
 
 std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
                                                        const SpeedProfile& profile,

@@ -242,6 +242,14 @@ TEST(LogReaderRejects, NaNInVehicleYaml) {
   expect_input_error(dir, {"vehicle.yaml", 1, "track_width_m", "finite"});
 }
 
+TEST(LogReaderRejects, VehicleIdWithSpacesOrSlashes) {
+  const TempLogDir dir;
+  dir.write(
+      "vehicle.yaml",
+      "vehicle_id: car/1\ntrack_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\n");
+  expect_input_error(dir, {"vehicle.yaml", 1, "vehicle_id", "letters, digits"});
+}
+
 TEST(LogReaderRejects, UnknownVehicleKey) {
   const TempLogDir dir;
   dir.write("vehicle.yaml",
@@ -339,8 +347,10 @@ TEST(VehicleConfigIo, WriteThenReadRoundTrips) {
   vehicle.ticks_per_rev = 96;
   vehicle.counter_bits = 16;
   vehicle.wheelbase_m = 2.7;
+  vehicle.vehicle_id = "van-07.b";
   write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
   const VehicleConfig read = read_vehicle_config(dir.file("vehicle.yaml"));
+  EXPECT_EQ(read.vehicle_id, "van-07.b");
   EXPECT_DOUBLE_EQ(read.track_width_m, 1.58);
   EXPECT_NEAR(read.circumference_rl_m, 1.964123456789, 1e-11);
   EXPECT_EQ(read.ticks_per_rev, 96.0);

@@ -135,6 +135,29 @@ TEST(Simulator, WearShrinksTheTrueCircumferences) {
   EXPECT_NEAR(drive.nominal_vehicle.circumference_rl_m, 2 * M_PI * 0.3126, 1e-12);
 }
 
+// Under-inflation deflects the tyre further under its static load: 1 / pressure times the
+// load-sensitivity radius loss (1500 kg, 1.25 of 2.7 m to the front axle: 3405 N per rear wheel).
+TEST(Simulator, UnderInflationShrinksTheTrueCircumference) {
+  Scenario scenario = load_scenario("parking");
+  scenario.vehicle.pressure_rl = 0.75;
+  scenario.wheels.output = WheelUnit::kRadians;  // no counter wrap in the angle sums below
+  const SimulatedDrive drive = simulate(scenario);
+  const double static_load_n = 1500.0 * 9.81 * 1.25 / 2.7 / 2.0;
+  const double radius_loss_m = 4e-7 * static_load_n * (1.0 / 0.75 - 1.0);
+  EXPECT_NEAR(drive.true_params.circumference_rl_m, 2 * M_PI * (0.3126 - radius_loss_m), 1e-12);
+  EXPECT_NEAR(drive.true_params.circumference_rr_m, 2 * M_PI * 0.3126, 1e-12);
+  // The wheel turns faster in proportion: its angle over the drive grows by the radius ratio.
+  scenario.vehicle.pressure_rl = 1.0;
+  const SimulatedDrive inflated = simulate(scenario);
+  const auto turned = [](const std::vector<double>& angle) {
+    double sum = 0.0;
+    for (std::size_t k = 1; k < angle.size(); ++k) sum += std::abs(angle[k] - angle[k - 1]);
+    return sum;
+  };
+  const double ratio = turned(drive.wheel_rl) / turned(inflated.wheel_rl);
+  EXPECT_NEAR(ratio, 0.3126 / (0.3126 - radius_loss_m), 2e-4);
+}
+
 TEST(Simulator, SensorNoiseHasItsConfiguredSigma) {
   Scenario scenario = load_scenario("circuit");
   scenario.ideal = true;

@@ -26,6 +26,7 @@ struct VehicleConfig {
   std::optional<double> wheelbase_m;
   std::optional<double> circumference_fl_m;
   std::optional<double> circumference_fr_m;
+  std::optional<std::string> vehicle_id;  // which vehicle of a fleet (letters, digits, . _ -)
 
   OdometryParams nominal_params() const {
     return {circumference_rl_m, circumference_rr_m, track_width_m};

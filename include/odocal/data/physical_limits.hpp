@@ -14,6 +14,7 @@ struct PhysicalRange {
 inline constexpr PhysicalRange kTrackWidthM{0.05, 5.0};
 inline constexpr PhysicalRange kWheelbaseM{0.05, 20.0};
 inline constexpr PhysicalRange kCircumferenceM{0.05, 10.0};  // wheel radius 8 mm to 1.6 m
+inline constexpr PhysicalRange kTyrePressure{0.3, 1.5};      // relative to the nominal inflation
 inline constexpr PhysicalRange kTyreWearMm{-50.0, 50.0};     // radius lost (negative: grown)
 
 // Log streams. Times are seconds on any clock up to 300 years from its zero (Unix time fits);

@@ -45,6 +45,11 @@ struct VehicleSimConfig {
   double tyre_radius_m = 0.3126;  // nominal, unloaded (paper section 1)
   double wear_rl_mm = 0.0;        // radius lost to tyre wear, per rear wheel
   double wear_rr_mm = 0.0;
+  // Inflation pressure per rear wheel relative to the nominal one (0.75: 25 % under-inflated).
+  // The tyre's vertical stiffness scales with it, so its deflection under load, and the rolling
+  // radius lost to that deflection, grow as 1 / pressure.
+  double pressure_rl = 1.0;
+  double pressure_rr = 1.0;
 };
 
 struct Outage {

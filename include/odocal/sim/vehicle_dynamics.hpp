@@ -51,7 +51,12 @@ struct VehicleDynamicsConfig {
 struct StaticRearRadii {
   double rl_m;  // effective rolling radius under static load (what truth.yaml calls true)
   double rr_m;
+  double pressure_rl = 1.0;  // relative inflation: the load sensitivity grows as 1 / pressure
+  double pressure_rr = 1.0;
 };
+
+// Static load on one rear wheel, N.
+double static_rear_wheel_load_n(const VehicleDynamicsConfig& config, double wheelbase_m);
 
 // Simulates the drive; the wheel radii at static load are given (nominal minus wear).
 std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,

@@ -1,0 +1,115 @@
+"""Tyre health across drives: the smoother and the step detector against series with a known
+truth (drawn from the stated noise), then odocal-fleet simulate -> run -> health end to end."""
+import json
+import math
+import os
+import sqlite3
+
+import numpy as np
+import pytest
+
+from odocal_fleet import cli, health
+
+SIGMA = 0.5e-3  # a drive's circumference sigma, as the batch gives on a 6 km urban drive
+
+
+def series(rng, n, step_at=None, step_m=0.0, wear_m_per_km=-0.4e-6, km_per_drive=20.0,
+           sigma=SIGMA, start=1.95):
+    drives, truth = [], []
+    for k in range(n):
+        odometer = 10_000.0 + km_per_drive * k
+        value = start + wear_m_per_km * (odometer - 10_000.0)
+        if step_at is not None and k >= step_at:
+            value += step_m
+        truth.append(value)
+        drives.append(health.Drive(odometer_km=odometer, start_time=f"drive {k}", path=f"d{k}",
+                                   value_m=value + sigma * rng.standard_normal(), sigma_m=sigma))
+    return drives, np.array(truth)
+
+
+def test_no_event_on_unchanged_tyres_at_the_stated_rate():
+    model = health.HealthModel()
+    rng = np.random.default_rng(1)
+    vehicles, alarms, covered, points = 300, 0, 0, 0
+    for _ in range(vehicles):
+        drives, truth = series(rng, model.design_drives)
+        result = health.wheel_health(model, "rl", drives)
+        alarms += bool(result.events)
+        covered += int(np.sum(np.abs(result.circumference_m - truth) < 2.0 * result.sigma_m))
+        points += len(truth)
+    assert alarms / vehicles <= 3 * model.false_alarm_rate  # 1 % stated; 3 on 300 is 2 sigma out
+    assert covered / points > 0.9  # the 2-sigma band holds the truth (95 % nominal)
+
+
+def test_a_one_millimetre_radius_step_is_found_at_its_drive():
+    model = health.HealthModel()
+    rng = np.random.default_rng(2)
+    step = 2 * math.pi * 1e-3  # 1 mm of radius
+    for sign in (1.0, -1.0):
+        for _ in range(20):
+            drives, _ = series(rng, 30, step_at=12, step_m=sign * step)
+            result = health.wheel_health(model, "rl", drives)
+            assert [e.drive_index for e in result.events] == [12]
+            event = result.events[0]
+            assert event.detected_at_index <= 13
+            assert abs(event.step_m - sign * step) < 4 * event.sigma_m
+
+
+def test_sigma_shrinks_as_one_over_sqrt_n_while_the_tyre_is_unchanged():
+    model = health.HealthModel(walk_m_per_sqrt_km=0.0, adapt_sigma=False)
+    rng = np.random.default_rng(3)
+    drives, _ = series(rng, 64, wear_m_per_km=0.0, km_per_drive=0.0)
+    sigmas = [health.wheel_health(model, "rl", drives[:n]).sigma_m[-1] for n in (4, 16, 64)]
+    assert sigmas[0] / sigmas[1] == pytest.approx(2.0, rel=0.15)
+    assert sigmas[1] / sigmas[2] == pytest.approx(2.0, rel=0.15)
+
+
+def test_overconfident_drive_sigmas_are_scaled_to_the_scatter():
+    model = health.HealthModel()
+    rng = np.random.default_rng(4)
+    drives, _ = series(rng, 40, sigma=3 * SIGMA)
+    for d in drives:
+        d.sigma_m = SIGMA  # the drives claim a third of their real scatter
+    result = health.wheel_health(model, "rl", drives)
+    assert result.sigma_scale == pytest.approx(3.0, rel=0.3)
+    assert not result.events
+
+
+def test_rotation_and_pressure_loss_are_named():
+    model = health.HealthModel()
+    rng = np.random.default_rng(5)
+    rl, _ = series(rng, 20, start=1.950, step_at=8, step_m=+6e-3)
+    rr, _ = series(rng, 20, start=1.956, step_at=8, step_m=-6e-3)
+    _, events = health.vehicle_health(model, {"rl": rl, "rr": rr})
+    assert sorted((e.wheel, e.kind, e.drive_index) for e in events) == \
+        [("rl", "rotation", 8), ("rr", "rotation", 8)]
+    rl, _ = series(rng, 20, step_at=10, step_m=-3e-3)
+    rr, _ = series(rng, 20)
+    _, events = health.vehicle_health(model, {"rl": rl, "rr": rr})
+    assert [(e.wheel, e.kind, e.drive_index) for e in events] == [("rl", "pressure loss", 10)]
+
+
+def test_simulated_fleet_events_found_at_their_drives(tmp_path):
+    out = tmp_path / "fleet"
+    assert cli.main(["simulate", "--vehicles", "3", "--drives", "7", "--out", str(out),
+                     "--seed", "11", "--event-share", "1", "--laps", "2"]) == 0
+    truth = json.loads((out / "fleet_truth.json").read_text())
+    drive = out / "car-000" / "drive-000"
+    assert "vehicle_id: car-000" in (drive / "vehicle.yaml").read_text()
+    assert "odometer_km:" in (drive / "drive.yaml").read_text()
+    db = tmp_path / "fleet.sqlite"
+    assert cli.main(["run", str(out), "--db", str(db), "--workers", "0"]) == 0
+    with sqlite3.connect(db) as connection:
+        assert connection.execute("SELECT count(*) FROM drives WHERE odometer_km IS NOT NULL "
+                                  "AND start_time IS NOT NULL").fetchone() == (21,)
+    report_file = tmp_path / "health.json"
+    assert cli.main(["health", "--db", str(db), "--json", str(report_file)]) == 0
+    report = {v["vehicle_id"]: v for v in json.loads(report_file.read_text())["vehicles"]}
+    for vehicle in truth["vehicles"]:
+        event = vehicle["event"]
+        found = report[vehicle["vehicle_id"]]["events"]
+        assert found, f"{vehicle['vehicle_id']}: {event['kind']} not found"
+        at = {os.path.basename(e["drive"]) for e in found}
+        assert at == {f"drive-{event['drive_index']:03d}"}
+        wheels = {e["wheel"] for e in found}
+        assert wheels == ({"rl", "rr"} if event["wheel"] == "both" else {event["wheel"]})
