@@ -2,7 +2,7 @@
 import argparse
 import sys
 
-from . import health_command, run, simulate
+from . import health_command, report, run, simulate
 
 
 def main(argv=None):
@@ -30,6 +30,13 @@ def main(argv=None):
     health_parser.add_argument("--false-alarm-rate", type=float, default=0.01,
                                help="chance of a false event per vehicle over 50 drives (default 0.01)")
 
+    report_parser = commands.add_parser("report", help="the fleet as static HTML pages")
+    report_parser.add_argument("--db", required=True, help="the database odocal-fleet run wrote")
+    report_parser.add_argument("--out", required=True, help="directory for index.html and a page per vehicle")
+    report_parser.add_argument("--method", default="batch", help="whose calibrations (default batch)")
+    report_parser.add_argument("--false-alarm-rate", type=float, default=0.01,
+                               help="as for health (default 0.01)")
+
     sim_parser = commands.add_parser("simulate", help="a simulated fleet with known tyre events")
     sim_parser.add_argument("--vehicles", type=int, required=True)
     sim_parser.add_argument("--drives", type=int, required=True, help="drives per vehicle")
@@ -53,10 +60,10 @@ def main(argv=None):
         if args.workers < 0:
             parser.error("--workers must be 0 or more")
         return run.run(args)
-    if args.command == "health":
+    if args.command in ("health", "report"):
         if not 0 < args.false_alarm_rate < 1:
             parser.error("--false-alarm-rate must be between 0 and 1")
-        return health_command.run(args)
+        return health_command.run(args) if args.command == "health" else report.run(args)
     if args.command == "simulate":
         if args.vehicles < 1 or args.drives < 1 or args.laps < 1 or args.workers < 1:
             parser.error("--vehicles, --drives, --laps and --workers must be 1 or more")

@@ -3,12 +3,17 @@ truth (drawn from the stated noise), then odocal-fleet simulate -> run -> health
 import json
 import math
 import os
+import re
+import shutil
 import sqlite3
 
 import numpy as np
 import pytest
 
 from odocal_fleet import cli, health
+from test_report import drawn_plots, load
+
+CHROMIUM = shutil.which("chromium")
 
 SIGMA = 0.5e-3  # a drive's circumference sigma, as the batch gives on a 6 km urban drive
 
@@ -89,16 +94,23 @@ def test_rotation_and_pressure_loss_are_named():
     assert [(e.wheel, e.kind, e.drive_index) for e in events] == [("rl", "pressure loss", 10)]
 
 
-def test_simulated_fleet_events_found_at_their_drives(tmp_path):
-    out = tmp_path / "fleet"
+@pytest.fixture(scope="module")
+def simulated_fleet(tmp_path_factory):
+    """Three vehicles, each with an event, calibrated: (fleet directory, database)."""
+    work = tmp_path_factory.mktemp("fleet")
+    out, db = work / "fleet", work / "fleet.sqlite"
     assert cli.main(["simulate", "--vehicles", "3", "--drives", "7", "--out", str(out),
                      "--seed", "11", "--event-share", "1", "--laps", "2"]) == 0
+    assert cli.main(["run", str(out), "--db", str(db), "--workers", "0"]) == 0
+    return out, db
+
+
+def test_simulated_fleet_events_found_at_their_drives(simulated_fleet, tmp_path):
+    out, db = simulated_fleet
     truth = json.loads((out / "fleet_truth.json").read_text())
     drive = out / "car-000" / "drive-000"
     assert "vehicle_id: car-000" in (drive / "vehicle.yaml").read_text()
     assert "odometer_km:" in (drive / "drive.yaml").read_text()
-    db = tmp_path / "fleet.sqlite"
-    assert cli.main(["run", str(out), "--db", str(db), "--workers", "0"]) == 0
     with sqlite3.connect(db) as connection:
         assert connection.execute("SELECT count(*) FROM drives WHERE odometer_km IS NOT NULL "
                                   "AND start_time IS NOT NULL").fetchone() == (21,)
@@ -113,3 +125,28 @@ def test_simulated_fleet_events_found_at_their_drives(tmp_path):
         assert at == {f"drive-{event['drive_index']:03d}"}
         wheels = {e["wheel"] for e in found}
         assert wheels == ({"rl", "rr"} if event["wheel"] == "both" else {event["wheel"]})
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="Debian's chromium is not installed")
+def test_fleet_report_loads_in_a_browser_with_every_plot_drawn(simulated_fleet, tmp_path):
+    _, db = simulated_fleet
+    out = tmp_path / "report"
+    assert cli.main(["report", "--db", str(db), "--out", str(out)]) == 0
+    pages = sorted(p.name for p in out.glob("vehicle-*.html"))
+    assert pages == ["vehicle-car-000.html", "vehicle-car-001.html", "vehicle-car-002.html"]
+    index = (out / "index.html").read_text()
+    for page in [out / "index.html"] + [out / p for p in pages]:
+        text = page.read_text()
+        assert not re.search(r"(src|href)=\"(https?:)?//", text)  # offline: nothing fetched
+        assert page == out / "index.html" or f'href="{page.name}"' in index
+        dom, errors = load(page)
+        assert not errors, (page, errors)
+        assert dom.count('class="plot-container') == 1 and drawn_plots(dom) == 1, page
+    assert "pressure loss" in index or "tyre change" in index or "rotation" in index
+    # Written again over itself: replaced whole; into a directory that is not a report: refused.
+    assert cli.main(["report", "--db", str(db), "--out", str(out)]) == 0
+    other = tmp_path / "other"
+    other.mkdir()
+    (other / "notes.txt").write_text("mine")
+    assert cli.main(["report", "--db", str(db), "--out", str(other)]) == 2
+    assert sorted(p.name for p in other.iterdir()) == ["notes.txt"]
