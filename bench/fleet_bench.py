@@ -82,25 +82,31 @@ def summarise(rows, seconds):
     return lines
 
 
-def synthetic_false_alarms(report, vehicles, drives, seed):
-    """Event-free vehicles drawn with the noise the simulated fleet showed (each wheel's sigma
-    times its scale): the false-alarm rate over many more vehicles than were simulated."""
+def synthetic_vehicles(report, vehicles, drives, seed, step_at=None, step_m=0.0, km=7.3):
+    """Vehicles drawn with the noise the simulated fleet showed (each wheel's sigma times its
+    scale), `km` apart, optionally with a step on RL: detection and false-alarm rates over many
+    more vehicles than were simulated. Returns (vehicles with any event, RL steps found within
+    50 km of their drive)."""
     sigmas = [w["sigma_scale"] * float(np.median(w["measured_sigma_m"]))
               for v in report["vehicles"] for w in v["wheels"].values()]
     rng = np.random.default_rng(seed)
     model = health.HealthModel()
-    alarms = 0
+    alarms = found = 0
     for v in range(vehicles):
         sigma = sigmas[v % len(sigmas)]
         series = {}
         for wheel in ("rl", "rr"):
-            series[wheel] = [health.Drive(odometer_km=1e4 + 7.0 * k, start_time="", path=str(k),
-                                          value_m=1.95 - 0.4e-6 * 7.0 * k
-                                          + sigma * rng.standard_normal(), sigma_m=sigma)
-                             for k in range(drives)]
+            series[wheel] = [health.Drive(
+                odometer_km=1e4 + km * k, start_time="", path=str(k),
+                value_m=1.95 - 0.4e-6 * km * k + sigma * rng.standard_normal()
+                + (step_m if wheel == "rl" and step_at is not None and k >= step_at else 0.0),
+                sigma_m=sigma) for k in range(drives)]
         _, events = health.vehicle_health(model, series)
         alarms += bool(events)
-    return alarms
+        found += any(e.wheel == "rl" and e.drive_index >= step_at
+                     and (e.detected_at_index + 1 - step_at) * km <= 50.0
+                     for e in events) if step_at is not None else 0
+    return alarms, found
 
 
 def main():
@@ -110,22 +116,29 @@ def main():
     parser.add_argument("--speed-vehicles", type=int, default=6,
                         help="vehicles timed with 1 and 2 workers")
     parser.add_argument("--synthetic-vehicles", type=int, default=2000)
+    parser.add_argument("--synthetic-drives", type=int, default=50,
+                        help="drives of each drawn event-free vehicle (the rate is stated for 50)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--work", required=True, help="scratch directory (replaced)")
+    parser.add_argument("--score-only", action="store_true",
+                        help="reuse the fleet and database in --work: health and scores only")
     args = parser.parse_args()
-    shutil.rmtree(args.work, ignore_errors=True)
     fleet = os.path.join(args.work, "fleet")
-    start = time.perf_counter()
-    assert cli.main(["simulate", "--vehicles", str(args.vehicles), "--drives", str(args.drives),
-                     "--out", fleet, "--seed", str(args.seed)]) == 0
-    simulate_s = time.perf_counter() - start
-    subset = [os.path.join(fleet, f"car-{v:03d}") for v in range(args.speed_vehicles)]
-    one = timed_run(subset, os.path.join(args.work, "one.sqlite"), 1)
-    two = timed_run(subset, os.path.join(args.work, "two.sqlite"), 2)
-    subset_drives = args.speed_vehicles * args.drives
     db = os.path.join(args.work, "fleet.sqlite")
-    shutil.copy(os.path.join(args.work, "two.sqlite"), db)
-    whole = timed_run([fleet], db, 2)
+    subset_drives = args.speed_vehicles * args.drives
+    if args.score_only:
+        simulate_s = one = two = whole = float("nan")
+    else:
+        shutil.rmtree(args.work, ignore_errors=True)
+        start = time.perf_counter()
+        assert cli.main(["simulate", "--vehicles", str(args.vehicles), "--drives",
+                         str(args.drives), "--out", fleet, "--seed", str(args.seed)]) == 0
+        simulate_s = time.perf_counter() - start
+        subset = [os.path.join(fleet, f"car-{v:03d}") for v in range(args.speed_vehicles)]
+        one = timed_run(subset, os.path.join(args.work, "one.sqlite"), 1)
+        two = timed_run(subset, os.path.join(args.work, "two.sqlite"), 2)
+        shutil.copy(os.path.join(args.work, "two.sqlite"), db)
+        whole = timed_run([fleet], db, 2)
     report_file = os.path.join(args.work, "health.json")
     start = time.perf_counter()
     assert cli.main(["health", "--db", db, "--json", report_file]) == 0
@@ -136,16 +149,21 @@ def main():
         report = json.load(f)
     rows = score(truth, report)
     early = sum(e["early_alarms"] > 0 for k in ("steps", "pressure", "rotations") for e in rows[k])
-    synthetic = synthetic_false_alarms(report, args.synthetic_vehicles, args.drives, args.seed)
-    per_drive = one / subset_drives
+    synthetic, _ = synthetic_vehicles(report, args.synthetic_vehicles, args.synthetic_drives,
+                                      args.seed)
+    _, steps_found = synthetic_vehicles(report, args.synthetic_vehicles, args.synthetic_drives,
+                                        args.seed + 1, step_at=args.synthetic_drives // 2,
+                                        step_m=2 * math.pi * 1e-3)
     print(f"\nfleet: {args.vehicles} vehicles x {args.drives} drives ({truth['scenario']}, "
           f"{truth['laps']} laps each), simulated in {simulate_s:.0f} s")
-    print(f"speed: {subset_drives} drives, 1 worker {one:.1f} s ({per_drive:.2f} s per drive), "
-          f"2 workers {two:.1f} s: speed-up {one / two:.2f}x; the rest of the fleet {whole:.1f} s "
-          f"on 2 workers; health {health_s:.1f} s")
-    print(f"a 10 000-drive day at {per_drive:.2f} s per drive per worker: "
-          f"{math.ceil(10_000 * per_drive / 3600 / 8)} workers for 8 hours, "
-          f"{math.ceil(10_000 * per_drive / 3600 / 1)} worker-hours in all")
+    if not args.score_only:
+        per_drive = one / subset_drives
+        print(f"speed: {subset_drives} drives, 1 worker {one:.1f} s ({per_drive:.2f} s per drive), "
+              f"2 workers {two:.1f} s: speed-up {one / two:.2f}x; the rest of the fleet "
+              f"{whole:.1f} s on 2 workers; health {health_s:.1f} s")
+        print(f"a 10 000-drive day at {per_drive:.2f} s per drive per worker: "
+              f"{10_000 * per_drive / 3600:.1f} worker-hours: "
+              f"{math.ceil(10_000 * per_drive / 3600 / 8)} worker(s) over 8 hours")
     print("\n| event | vehicles | found | within target | delay (to the end of the drive that found it) | named so |")
     print("|---|---|---|---|---|---|")
     for line in summarise(rows, None):
@@ -153,9 +171,12 @@ def main():
     clean = rows["clean_vehicles"]
     print(f"\nfalse alarms: {rows['false_vehicles']} of {clean} simulated vehicles without event; "
           f"{early} event vehicles alarmed before their event; {synthetic} of "
-          f"{args.synthetic_vehicles} drawn event-free vehicles ({args.drives} drives, the "
+          f"{args.synthetic_vehicles} drawn event-free vehicles ({args.synthetic_drives} drives, the "
           f"fleet's own per-drive noise): {synthetic / args.synthetic_vehicles:.2%} "
           f"(stated {health.HealthModel().false_alarm_rate:.0%} over 50 drives)")
+    print(f"1 mm radius step on RL of {args.synthetic_vehicles} drawn vehicles (the same noise, "
+          f"7.3 km per drive): found within 50 km in {steps_found} "
+          f"({steps_found / args.synthetic_vehicles:.1%})")
     ratios = rows["sigma_ratio"]
     if ratios:
         print(f"smoothed sigma after N drives / (drive sigma / sqrt(N)): median "

@@ -113,7 +113,8 @@ PYBIND11_MODULE(odocal, m) {
 
   m.def(
       "validate",
-      [](const Log& input, py::object params, double window_s, double min_distance_m) {
+      [](const Log& input, py::object params, double window_s, double min_distance_m,
+         double step_s) {
         const OdometryParams calibrated = params_of(input, params);
         CalibrationOptions options;
         options.reference.mode = ReferenceMode::kSmoother;
@@ -122,6 +123,7 @@ PYBIND11_MODULE(odocal, m) {
         const Log& log = prepared ? *prepared : input;
         DriftValidationOptions drift;
         drift.window_s = window_s;
+        drift.step_s = step_s;
         drift.min_window_distance_m = min_distance_m;
         const DriftValidation v =
             validate_drift(log.wheels, compute_reference(log, options.reference),
@@ -142,7 +144,7 @@ PYBIND11_MODULE(odocal, m) {
         return out;
       },
       py::arg("log"), py::arg("params"), py::arg("window_s") = 60.0,
-      py::arg("min_distance_m") = 20.0,
+      py::arg("min_distance_m") = 20.0, py::arg("step_s") = 0.0,
       "Held-out drift of nominal and calibrated parameters (a CalibrationSummary or "
       "(c_RL, c_RR, track) in metres), as `odocal validate`");
 

@@ -52,8 +52,11 @@ void run_validate(const ValidateArgs& args) {
   const ReferenceTrajectory reference = compute_reference(log, options.reference);
   const DriftValidation v =
       validate_drift(log.wheels, reference, log.vehicle.nominal_params(), calibrated, args.options);
-  fmt::print("{} windows of {:.0f} s, dead-reckoned from the {} reference at their start:\n",
-             v.nominal_statistics.windows, args.options.window_s, args.reference);
+  fmt::print("{} windows of {:.0f} s{}, dead-reckoned from the {} reference at their start:\n",
+             v.nominal_statistics.windows, args.options.window_s,
+             args.options.step_s > 0.0 ? fmt::format(" starting every {:g} s", args.options.step_s)
+                                       : std::string(),
+             args.reference);
   fmt::print("{:<12} {:>18} {:>16} {:>18} {:>16}\n", "parameters", "median drift [%]",
              "p95 drift [%]", "median end [m]", "p95 end [m]");
   const auto row = [](const char* name, const DriftStatistics& s) {
@@ -72,6 +75,7 @@ void run_validate(const ValidateArgs& args) {
     }
     write_output_file(args.json_file,
                       nlohmann::json{{"window_s", args.options.window_s},
+                                     {"step_s", args.options.step_s},
                                      {"reference", args.reference},
                                      {"nominal", statistics_json(v.nominal_statistics)},
                                      {"calibrated", statistics_json(v.calibrated_statistics)},
@@ -95,6 +99,11 @@ void add_validate_command(CLI::App& app) {
   command->add_option("--window", args->options.window_s, "Window length, s")
       ->capture_default_str()
       ->check(finite_in(1.0, 86400.0));
+  command
+      ->add_option("--step", args->options.step_s,
+                   "Start a window every STEP s (overlapping windows); 0: every window length")
+      ->capture_default_str()
+      ->check(finite_in(0.0, 86400.0));
   command
       ->add_option("--min-distance", args->options.min_window_distance_m,
                    "Skip windows with less driving than this, m")

@@ -49,7 +49,7 @@ def main(argv=None):
     sim_parser.add_argument("--event-share", type=float, default=0.5,
                             help="share of vehicles with one event (default 0.5)")
     sim_parser.add_argument("--step-mm", type=float, default=1.0,
-                            help="radius step of a tyre change, mm (default 1)")
+                            help="radius a tyre change adds, mm (default 1)")
     sim_parser.add_argument("--pressure", type=float, default=0.75,
                             help="inflation after a pressure loss, relative (default 0.75)")
     sim_parser.add_argument("--gap-km", type=float, default=5.0,

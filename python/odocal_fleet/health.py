@@ -21,8 +21,9 @@ class HealthModel:
     # Wear: 1 mm of radius per 10 000-40 000 km is 0.16-0.63 um of circumference per km.
     wear_rate_prior_m_per_km: float = -0.4e-6
     wear_rate_sigma_m_per_km: float = 0.6e-6
-    # Slow changes that are not wear (temperature, slow pressure drift), per sqrt(km).
-    walk_m_per_sqrt_km: float = 0.05e-3
+    # Slow changes that are not wear, per sqrt(km): 1 mm of circumference over 10 000 km.
+    # Day-to-day scatter (temperature, load) is white per drive: the drive-sigma scale takes it.
+    walk_m_per_sqrt_km: float = 0.01e-3
     initial_sigma_m: float = 0.03
     # A stated false-alarm rate: the probability that a vehicle without any event gets one
     # alarm over `design_drives` drives; each of the drives' `window` tests gets its share.

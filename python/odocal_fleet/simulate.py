@@ -46,8 +46,8 @@ def plan_vehicle(index, args):
         if event and d == event["drive_index"]:
             wheel = event["wheel"]
             before = dict(wear)
-            if event["kind"] == "tyre change":  # a tyre of another wear: +-step mm of radius
-                wear[wheel] += args.step_mm * (1.0 if rng.uniform() < 0.5 else -1.0)
+            if event["kind"] == "tyre change":  # a fresher tyre replaces a worn one
+                wear[wheel] -= args.step_mm
             elif event["kind"] == "rotation":
                 wear["rl"], wear["rr"] = wear["rr"], wear["rl"]
                 event["wheel"] = "both"

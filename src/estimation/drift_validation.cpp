@@ -60,6 +60,7 @@ WindowDrift window_drift(const WheelStream& wheels, const ReferenceTrajectory& r
 
 std::string DriftValidationOptions::validate() const {
   if (!(window_s > 0.0)) return "window_s must be positive";
+  if (!(step_s >= 0.0)) return "step_s must not be negative";
   if (min_window_distance_m < 0.0) return "min_window_distance_m must not be negative";
   return "";
 }
@@ -72,6 +73,13 @@ DriftValidation validate_drift(const WheelStream& wheels, const ReferenceTraject
   DriftValidation result;
   const double max_gap_s = default_max_wheel_gap_s(wheels);
   const auto& t = reference.poses.t_s;
+  // Disjoint windows share their end and start sample; overlapping ones start step_s apart.
+  const auto next_start = [&](std::size_t first, std::size_t last) {
+    if (options.step_s <= 0.0) return last;
+    std::size_t next = first + 1;
+    while (next + 1 < t.size() && t[next] - t[first] < options.step_s) ++next;
+    return next;
+  };
   std::size_t first = 0;
   while (first + 1 < t.size()) {
     std::size_t last = first;
@@ -79,7 +87,7 @@ DriftValidation validate_drift(const WheelStream& wheels, const ReferenceTraject
     if (t[last] - t[first] < 0.99 * options.window_s) break;     // the short tail
     if (spans_gap(wheels, reference, first, last, max_gap_s)) {  // unknown motion inside
       ++result.windows_with_gaps;
-      first = last;
+      first = next_start(first, last);
       continue;
     }
     const WindowDrift with_nominal = window_drift(wheels, reference, first, last, nominal);
@@ -87,7 +95,7 @@ DriftValidation validate_drift(const WheelStream& wheels, const ReferenceTraject
       result.nominal.push_back(with_nominal);
       result.calibrated.push_back(window_drift(wheels, reference, first, last, calibrated));
     }
-    first = last;
+    first = next_start(first, last);
   }
   if (result.nominal.empty()) {
     throw InsufficientDataError(

@@ -44,6 +44,20 @@ TEST(DriftValidation, OnePercentScaleErrorDriftsOnePercentPerWindow) {
   EXPECT_EQ(v.calibrated_statistics.windows, 2u);
 }
 
+// Overlapping windows: one every 10 s over 130 s of 60 s windows starts at 0, 10, ..., 70 s.
+TEST(DriftValidation, OverlappingWindowsStartEveryStep) {
+  const StraightDrive d = straight_drive(130.0);
+  const DriftValidation v =
+      validate_drift(d.wheels, d.reference, {2.02, 2.02, 1.6}, {2.0, 2.0, 1.6}, {60.0, 20.0, 10.0});
+  ASSERT_EQ(v.nominal.size(), 8u);
+  for (std::size_t i = 0; i < v.nominal.size(); ++i) {
+    EXPECT_NEAR(v.nominal[i].start_s, 10.0 * static_cast<double>(i), 1e-9);
+    EXPECT_NEAR(v.nominal[i].end_error_m, 6.0, 1e-6);
+  }
+  EXPECT_THROW(validate_drift(d.wheels, d.reference, {2, 2, 1.6}, {2, 2, 1.6}, {60.0, 20.0, -1.0}),
+               Error);
+}
+
 TEST(DriftValidation, RefusesALogWithoutALongEnoughWindow) {
   const StraightDrive d = straight_drive(30.0);
   EXPECT_THROW(validate_drift(d.wheels, d.reference, {2, 2, 1.6}, {2, 2, 1.6}, {60.0, 20.0}),

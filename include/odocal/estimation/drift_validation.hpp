@@ -15,7 +15,10 @@ namespace odocal {
 struct DriftValidationOptions {
   double window_s = 60.0;
   double min_window_distance_m = 20.0;  // shorter windows (standing, creeping) are skipped
-  std::string validate() const;         // empty when valid
+  // A window starts every step_s seconds; 0: every window_s (disjoint windows). Overlapping
+  // windows give more, correlated windows: steadier medians on a short log.
+  double step_s = 0.0;
+  std::string validate() const;  // empty when valid
 };
 
 struct WindowDrift {
