@@ -64,8 +64,11 @@ class Vehicle {
     d.y = s.vx * sin_yaw + vy * cos_yaw;
     d.yaw = r;
 
-    const double drive_n = u.force_n >= 0.0 ? u.force_n : (1.0 - c_.brake_front_share) * u.force_n;
-    const double front_brake_n = u.force_n >= 0.0 ? 0.0 : c_.brake_front_share * u.force_n;
+    // The longitudinal force splits between the axles: the drive by the drivetrain, the brakes by
+    // their split. The front axle's force acts along its steered wheels.
+    const double front_share = u.force_n >= 0.0 ? drive_front_share() : c_.brake_front_share;
+    const double drive_n = (1.0 - front_share) * u.force_n;  // rear axle
+    const double front_brake_n = front_share * u.force_n;
     const double transfer_x =
         c_.load_transfer ? c_.mass_kg * u.ax_estimate_mps2 * c_.cg_height_m / L_ : 0.0;
     const double load_front = c_.mass_kg * kGravity * b_ / L_ - transfer_x;
@@ -103,6 +106,18 @@ class Vehicle {
     d.angle_rr = wheel_rate(s.vx + r * t_ / 2.0, 0.5 * drive_n, load_rr, static_wheel_load,
                             radii_.rr_m, radii_.pressure_rr);
     return d;
+  }
+
+  double drive_front_share() const {
+    switch (c_.drivetrain) {
+      case Drivetrain::kFront:
+        return 1.0;
+      case Drivetrain::kAll:
+        return c_.drive_front_share_all;
+      case Drivetrain::kRear:
+        break;
+    }
+    return 0.0;
   }
 
   double wheel_radius(double load_n, double static_load_n, double static_radius_m,

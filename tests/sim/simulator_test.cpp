@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <numeric>
 
@@ -230,9 +231,11 @@ TEST(Simulator, GnssOutagesOutliersAndLatLon) {
 
 // The realistic vehicle with one set of effects on; exact wheel angles, one lap.
 TrajectoryErrors realistic_errors(const std::string& name, bool lateral, bool slip, bool radius,
-                                  bool transfer) {
+                                  bool transfer,
+                                  const std::function<void(Scenario&)>& adjust = nullptr) {
   const TempLogDir dir;
   Scenario scenario = load_scenario(name);
+  if (adjust) adjust(scenario);
   scenario.route.laps = 1;
   scenario.wheels.output = WheelUnit::kRadians;
   scenario.dynamics.dynamic_lateral = lateral;
@@ -262,6 +265,48 @@ TEST(RealisticSimulator, EachEffectAloneMovesDeadReckoningOffTruth) {
   EXPECT_LT(realistic_errors("circuit", false, false, true, false).max_position_m, 0.01);
   EXPECT_GT(realistic_errors("circuit", false, false, true, true).max_heading_rad,
             rad_from_deg(1.0));
+}
+
+// A front-driven car whose front axle also does all the braking: the rear wheels roll free, so
+// with slip the only effect on they still follow the odometry model exactly; driven from the
+// rear (or all four) they slip.
+TEST(RealisticSimulator, FreeRollingRearWheelsDoNotSlip) {
+  const auto drivetrain = [](Drivetrain drive, double brake_front_share) {
+    return [=](Scenario& s) {
+      s.dynamics.drivetrain = drive;
+      s.dynamics.brake_front_share = brake_front_share;
+    };
+  };
+  const TrajectoryErrors front =
+      realistic_errors("circuit", false, true, false, false, drivetrain(Drivetrain::kFront, 1.0));
+  EXPECT_LT(front.max_position_m, 0.01);
+  EXPECT_LT(front.max_heading_rad, 1e-6);
+  const TrajectoryErrors all =
+      realistic_errors("circuit", false, true, false, false, drivetrain(Drivetrain::kAll, 1.0));
+  EXPECT_GT(all.max_heading_rad, rad_from_deg(0.05));
+  // Front drive with the usual brake split: only braking slips the rear wheels.
+  const TrajectoryErrors braking =
+      realistic_errors("circuit", false, true, false, false, drivetrain(Drivetrain::kFront, 0.65));
+  const TrajectoryErrors rear =
+      realistic_errors("circuit", false, true, false, false, drivetrain(Drivetrain::kRear, 0.65));
+  EXPECT_GT(braking.max_heading_rad, 1e-6);
+  EXPECT_LT(braking.max_heading_rad, rear.max_heading_rad);
+}
+
+TEST(ScenarioYaml, DrivetrainIsReadAndChecked) {
+  const std::string route = "route: {segments: [{straight: 100}]}\n";
+  const Scenario front = parse_scenario(
+      route + "vehicle: {dynamics: {drivetrain: front, drive_front_share_all: 0.3}}\n", "s.yaml");
+  EXPECT_EQ(front.dynamics.drivetrain, Drivetrain::kFront);
+  EXPECT_EQ(front.dynamics.drive_front_share_all, 0.3);
+  EXPECT_EQ(load_scenario("urban").dynamics.drivetrain, Drivetrain::kRear);
+  try {
+    parse_scenario(route + "vehicle:\n  dynamics: {drivetrain: sideways}\n", "s.yaml");
+    ADD_FAILURE() << "an unknown drivetrain was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected rear, front or all"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(RealisticSimulator, ParkingFollowsItsRouteAndReverses) {

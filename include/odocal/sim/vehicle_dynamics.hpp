@@ -1,6 +1,7 @@
 #pragma once
 // The realistic vehicle: a single-track (bicycle) model with magic-formula lateral tyre forces,
-// longitudinal and lateral load transfer, rear-wheel drive and a front/rear brake split,
+// longitudinal and lateral load transfer, rear-, front- or all-wheel drive and a front/rear
+// brake split,
 // aerodynamic drag and rolling resistance, integrated by RK4 at a fixed step, steered along the
 // path and driven along the speed profile by controllers. Each rear wheel turns at its own
 // contact-point speed (vx -+ r t_R / 2) times (1 + longitudinal slip) over an effective rolling
@@ -13,6 +14,10 @@
 #include "odocal/sim/speed_profile.hpp"
 
 namespace odocal::sim {
+
+// Which axle the engine drives. On a front-driven car the rear wheels roll free: no drive slip
+// in their speeds, only the brakes' share of slip.
+enum class Drivetrain { kRear, kFront, kAll };
 
 struct VehicleDynamicsConfig {
   // Effects, each switchable alone (docs/simulator.md measures each one's drift).
@@ -36,6 +41,8 @@ struct VehicleDynamicsConfig {
   double air_density_kgpm3 = 1.2;
   double rolling_resistance = 0.012;
   double brake_front_share = 0.65;
+  Drivetrain drivetrain = Drivetrain::kRear;
+  double drive_front_share_all = 0.4;  // all-wheel drive: the front axle's share of the drive
   // Effective rolling radius change per N of load: radial tyres keep it nearly load-independent
   // (stiff belt), ~0.4 mm per kN; a third of the deflection (1.3e-6) would be a bias-ply tyre.
   double radius_load_sensitivity_m_per_n = 4e-7;
