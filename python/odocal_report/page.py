@@ -30,6 +30,8 @@ def summary_rows(result):
         rows.append((f"c_{wheel.upper()}", f"{value:.6f} m (1-sigma {mm(sigma)}{change})"
                      if value is not None else "–"))
     rows.append(("identifiability", result.get("identifiability", "")))
+    if result.get("model_adequacy", {}).get("verdict"):
+        rows.append(("model adequacy", result["model_adequacy"]["verdict"]))
     for when in ("before", "after"):
         dr = result.get(f"dead_reckoning_{when}")
         if dr:

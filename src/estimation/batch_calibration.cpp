@@ -125,6 +125,39 @@ class BatchProblem {
     return errors;
   }
 
+  // Every odometry interval in the problem: fitted poses, and their relative motion minus the
+  // wheels' at the fitted parameters (model_adequacy.hpp). Where the gyro is used, the heading
+  // residual is its turn (less the fitted bias) minus the wheels': the poses' own turn is
+  // partly the wheels', which would hide what the wheels get wrong.
+  std::vector<OdometryResidualSample> odometry_errors() const {
+    std::vector<OdometryResidualSample> samples;
+    samples.reserve(odometry_blocks_.size());
+    for (const OdometryBlock& b : odometry_blocks_) {
+      Eigen::Vector3d whitened;
+      double cost = 0.0;
+      problem_->EvaluateResidualBlock(b.id, false, &cost, whitened.data(), nullptr);
+      const std::size_t i = b.segment;
+      OdometryResidualSample sample{
+          log_.wheels.t_s[keyframes_[i]],
+          log_.wheels.t_s[keyframes_[i + 1]],
+          Eigen::Vector3d(poses_[i][0], poses_[i][1], poses_[i][2]),
+          Eigen::Vector3d(poses_[i + 1][0], poses_[i + 1][1], poses_[i + 1][2]),
+          b.sqrt_covariance * whitened,
+          whitened};
+      if (i < gyro_turns_.size() && gyro_turns_[i]) {
+        const batch::GyroResidual& gyro = *gyro_turns_[i];
+        const double wheels_turn = sample.pose1(2) - sample.pose0(2) - sample.error(2);
+        const double gyro_turn = gyro.integrated_rad - gyro_bias_ * gyro.duration_s;
+        const double odometry_variance = (b.sqrt_covariance * b.sqrt_covariance.transpose())(2, 2);
+        sample.error(2) = gyro_turn - wheels_turn;
+        sample.whitened(2) =
+            sample.error(2) / std::sqrt(odometry_variance + gyro.sigma_rad * gyro.sigma_rad);
+      }
+      samples.push_back(sample);
+    }
+    return samples;
+  }
+
   // Integrates the odometry of every segment at the current parameters. `slip_floor` loosens the
   // slip noise for a first, coarse solve: started from the layer-1 reference, a nearly rigid
   // odometry chain would take the solver many small steps.
@@ -258,6 +291,7 @@ class BatchProblem {
   bool gap_segment(std::size_t i) const { return log_.wheels.breaks_at(keyframes_[i + 1]); }
 
   void add_odometry() {
+    odometry_blocks_.clear();
     for (std::size_t i = 0; i < segments_.size(); ++i) {
       if (gap_segment(i)) continue;
       const PreintegratedSegment& seg = segments_[i];
@@ -270,7 +304,8 @@ class BatchProblem {
            params_lin_},
           seg.J_end_last_increment,
           L.triangularView<Eigen::Lower>().solve(Eigen::Matrix3d::Identity())};
-      problem_->AddResidualBlock(
+      odometry_blocks_.push_back({nullptr, i, L});
+      odometry_blocks_.back().id = problem_->AddResidualBlock(
           new ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, 3, 2, 2>(residual),
           nullptr, poses_[i].data(), poses_[i + 1].data(), params_.data(), count_error_[i].data(),
           count_error_[i + 1].data());
@@ -356,6 +391,7 @@ class BatchProblem {
 
   // Zero-order hold of the yaw rate over each keyframe interval the IMU covers.
   void add_gyro() {
+    gyro_turns_.assign(keyframes_.size(), std::nullopt);
     const ImuStream& imu = *log_.imu;
     const double step_s = median_step_s(imu.t_s);
     if (imu.size() < 2 || step_s <= 0.0) return;
@@ -374,6 +410,7 @@ class BatchProblem {
       const double duration = end - begin;
       auto* residual = new batch::GyroResidual{
           integrated, duration, sensors_.yaw_rate_sigma_radps * std::sqrt(step_s * duration)};
+      gyro_turns_[i] = *residual;
       problem_->AddResidualBlock(
           new ceres::AutoDiffCostFunction<batch::GyroResidual, 1, 3, 3, 1>(residual), nullptr,
           poses_[i].data(), poses_[i + 1].data(), &gyro_bias_);
@@ -427,6 +464,13 @@ class BatchProblem {
     double sigma_m;
   };
   std::vector<GnssBlock> gnss_blocks_;
+  struct OdometryBlock {
+    ceres::ResidualBlockId id;
+    std::size_t segment;
+    Eigen::Matrix3d sqrt_covariance;  // lower Cholesky factor: error = it x whitened
+  };
+  std::vector<OdometryBlock> odometry_blocks_;
+  std::vector<std::optional<batch::GyroResidual>> gyro_turns_;  // per interval, where used
   // The GNSS noise model (configured, or adapted by set_gnss_noise).
   bool adapted_noise_ = false;
   double white_scale_ = 1.0;
@@ -512,6 +556,7 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   summary.identifiability = problems.empty()
                                 ? "every requested parameter identified"
                                 : fmt::format("not identified: {}", fmt::join(problems, "; "));
+  summary.model_adequacy = assess_model_adequacy(batch.odometry_errors());
   summary.solver_report = solver.BriefReport();
   summary.keyframes = batch.keyframes();
   summary.gnss_fixes = batch.gnss_residuals();
@@ -687,6 +732,8 @@ std::string BatchSummary::full_report() const {
     text += fmt::format("{:<13}residuals {:.3g} m RMS, as configured ({:.3g} m)\n", "gnss noise",
                         g.residual_sigma_m, g.configured_sigma_m);
   }
+  if (!model_adequacy.verdict.empty())
+    text += fmt::format("{:<13}{}\n", "model", model_adequacy.verdict);
   text += fmt::format("{:<13}{}\n", "solver", usable() ? message : solver_report);
   return text + report_ending(*this);
 }

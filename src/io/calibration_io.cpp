@@ -123,6 +123,20 @@ void add_details(json& out, const BatchSummary& s) {
                               {"yaw_rate_scale", o.yaw_rate_scale},
                               {"sigma_yaw_rate_scale", o.sigma_yaw_rate_scale}};
   }
+  const ModelAdequacy& m = s.model_adequacy;
+  json dependences = json::array();
+  for (const ResidualDependence& d : m.dependences) {
+    dependences.push_back({{"residual", d.residual},
+                           {"quantity", d.quantity},
+                           {"correlation", d.correlation},
+                           {"t_statistic", d.t_statistic}});
+  }
+  out["model_adequacy"] = {{"intervals", m.intervals},
+                           {"chi2_per_dof", number_or_null(m.chi2_per_dof)},
+                           {"autocorrelation", number_or_null(m.autocorrelation)},
+                           {"dependences", dependences},
+                           {"explains", m.explains},
+                           {"verdict", m.verdict}};
   out["solver_report"] = s.solver_report;
   out["keyframes"] = s.keyframes;
   out["gnss_fixes"] = s.gnss_fixes;

@@ -10,6 +10,7 @@
 #include "odocal/estimation/batch_options.hpp"
 #include "odocal/estimation/calibration_options.hpp"
 #include "odocal/estimation/calibration_summary.hpp"
+#include "odocal/estimation/model_adequacy.hpp"
 #include "odocal/estimation/odometry_scales.hpp"
 
 namespace odocal {
@@ -58,6 +59,9 @@ struct BatchSummary : CalibrationSummary {
   // The speed and yaw-rate scales of the calibrated model against the nominal one; set when the
   // track was estimated (twist odometry, robots).
   std::optional<OdometryScales> odometry_scales;
+  // Whether the two-wheel model explains the log (whitened odometry residuals against the
+  // driving state).
+  ModelAdequacy model_adequacy;
 
   std::string full_report() const;
 };

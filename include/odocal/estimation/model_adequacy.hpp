@@ -1,0 +1,49 @@
+#pragma once
+// Does the two-wheel odometry model (paper eqs. 1-2: a constant rolling circumference per rear
+// wheel) explain a log? After a batch fit, the odometry residual of every keyframe interval
+// (what the poses did minus what the wheels say at the fitted parameters) is compared with the
+// driving state there. A model that fits leaves white residuals that depend on nothing; a tyre
+// whose rolling radius moves with load, slip or speed leaves residuals that follow lateral
+// acceleration (load transfer in turns: the heading residual), longitudinal acceleration
+// (drive and brake slip: the along-track residual) or speed (radius growth).
+// docs/model-adequacy.md.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace odocal {
+
+// One keyframe interval of a fitted batch problem.
+struct OdometryResidualSample {
+  double t0_s{}, t1_s{};
+  Eigen::Vector3d pose0, pose1;  // fitted keyframe poses [x m, y m, yaw rad]
+  Eigen::Vector3d error;     // poses' relative motion minus the wheels' [along m, left m, yaw rad]
+  Eigen::Vector3d whitened;  // the same, whitened by the interval's odometry covariance
+};
+
+// A residual's linear dependence on one driving quantity.
+struct ResidualDependence {
+  std::string residual;  // "heading" or "along-track"
+  std::string quantity;  // "lateral acceleration", "curvature", "longitudinal acceleration",
+                         // "speed squared"
+  double correlation{};  // partial correlation over the moving intervals (model_adequacy.cpp)
+  double t_statistic{};  // rho sqrt(n - 2) / sqrt(1 - rho^2)
+};
+
+struct ModelAdequacy {
+  std::size_t intervals{};   // moving keyframe intervals used
+  double chi2_per_dof{};     // mean squared whitened odometry residual per component
+  double autocorrelation{};  // lag-1, whitened heading residuals
+  std::vector<ResidualDependence> dependences;  // every pair tested
+  bool explains{true};
+  std::string verdict;  // in words
+};
+
+// Intervals shorter than min_distance_m are left out (standing, creeping). A dependence counts
+// when |rho| >= min_correlation and its t statistic >= min_t.
+ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& samples,
+                                    double min_distance_m = 1.0, double min_correlation = 0.3,
+                                    double min_t = 5.0);
+
+}  // namespace odocal

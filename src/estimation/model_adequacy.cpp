@@ -1,0 +1,130 @@
+#include "odocal/estimation/model_adequacy.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+
+namespace odocal {
+namespace {
+
+// The correlation of y and x once both are cleared of a constant and the controls (least
+// squares): what x explains of y beyond what the controls already could.
+double partial_correlation(const std::vector<double>& y, const std::vector<double>& x,
+                           const std::vector<const std::vector<double>*>& controls) {
+  const auto n = static_cast<Eigen::Index>(y.size());
+  Eigen::MatrixXd Z(n, 1 + static_cast<Eigen::Index>(controls.size()));
+  Eigen::VectorXd yv(n), xv(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    Z(i, 0) = 1.0;
+    for (std::size_t c = 0; c < controls.size(); ++c)
+      Z(i, static_cast<Eigen::Index>(c) + 1) = (*controls[c])[k];
+    yv(i) = y[k];
+    xv(i) = x[k];
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Z);
+  const Eigen::VectorXd ry = yv - Z * qr.solve(yv);
+  const Eigen::VectorXd rx = xv - Z * qr.solve(xv);
+  const double denominator = std::sqrt(ry.squaredNorm() * rx.squaredNorm());
+  return denominator > 0.0 ? ry.dot(rx) / denominator : 0.0;
+}
+
+// What a dependence says about the tyre, in the verdict.
+std::string likely_cause(const ResidualDependence& d) {
+  if (d.quantity == "lateral acceleration")
+    return "the rolling radius changes with load (load transfer in turns)";
+  if (d.quantity == "longitudinal acceleration")
+    return "the driven or braked wheels slip (drive and brake slip)";
+  if (d.quantity == "curvature")
+    return "the track width is off, or the rolling radius changes in turns (estimate_track_width "
+           "tells which)";
+  return "the rolling radius grows with speed";
+}
+
+}  // namespace
+
+ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& samples,
+                                    double min_distance_m, double min_correlation, double min_t) {
+  ModelAdequacy result;
+  // The driving state of each interval from the fitted poses: speed, yaw rate, and the
+  // longitudinal acceleration from the neighbouring intervals' speeds.
+  std::vector<double> speed(samples.size()), distance(samples.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const OdometryResidualSample& s = samples[i];
+    distance[i] = (s.pose1.head<2>() - s.pose0.head<2>()).norm();
+    speed[i] = distance[i] / std::max(s.t1_s - s.t0_s, 1e-9);
+  }
+  std::vector<double> heading_per_m, along_per_m, lateral, longitudinal, speed_squared, curvature;
+  std::vector<double> whitened_heading;
+  double chi2 = 0.0;
+  for (std::size_t i = 1; i + 1 < samples.size(); ++i) {
+    const OdometryResidualSample& s = samples[i];
+    if (distance[i] < min_distance_m) continue;
+    const double dt = s.t1_s - s.t0_s;
+    const double mid_prev = 0.5 * (samples[i - 1].t0_s + samples[i - 1].t1_s);
+    const double mid_next = 0.5 * (samples[i + 1].t0_s + samples[i + 1].t1_s);
+    heading_per_m.push_back(s.error(2) / distance[i]);
+    along_per_m.push_back(s.error(0) / distance[i]);
+    lateral.push_back(speed[i] * (s.pose1(2) - s.pose0(2)) / dt);
+    curvature.push_back((s.pose1(2) - s.pose0(2)) / distance[i]);
+    longitudinal.push_back((speed[i + 1] - speed[i - 1]) / std::max(mid_next - mid_prev, 1e-9));
+    speed_squared.push_back(speed[i] * speed[i]);
+    whitened_heading.push_back(s.whitened(2));
+    chi2 += s.whitened.squaredNorm();
+  }
+  result.intervals = heading_per_m.size();
+  if (result.intervals < 10) {
+    result.verdict = "too few moving keyframe intervals to judge the model";
+    return result;
+  }
+  const auto n = static_cast<double>(result.intervals);
+  result.chi2_per_dof = chi2 / (3.0 * n);
+  double lag = 0.0, zero = 0.0;
+  for (std::size_t i = 0; i < whitened_heading.size(); ++i) {
+    zero += whitened_heading[i] * whitened_heading[i];
+    if (i > 0) lag += whitened_heading[i] * whitened_heading[i - 1];
+  }
+  result.autocorrelation = zero > 0.0 ? lag / zero : 0.0;
+
+  // The heading error per metre against lateral acceleration (load) and against curvature (a
+  // track that is off, which at one speed looks the same: both are reported). Along-track:
+  // acceleration beyond what speed explains, and speed beyond acceleration.
+  const auto test = [&](const char* residual, const std::vector<double>& r, const char* quantity,
+                        const std::vector<double>& q,
+                        const std::vector<const std::vector<double>*>& controls) {
+    const double rho = partial_correlation(r, q, controls);
+    const double dof = n - 2.0 - static_cast<double>(controls.size());
+    const double t = std::abs(rho) * std::sqrt(dof / std::max(1.0 - rho * rho, 1e-12));
+    result.dependences.push_back({residual, quantity, rho, t});
+  };
+  test("heading", heading_per_m, "lateral acceleration", lateral, {});
+  test("heading", heading_per_m, "curvature", curvature, {});
+  test("along-track", along_per_m, "longitudinal acceleration", longitudinal, {&speed_squared});
+  test("along-track", along_per_m, "speed squared", speed_squared, {&longitudinal});
+
+  const ResidualDependence* strongest = nullptr;
+  for (const ResidualDependence& d : result.dependences) {
+    if (std::abs(d.correlation) < min_correlation || d.t_statistic < min_t) continue;
+    if (strongest == nullptr || std::abs(d.correlation) > std::abs(strongest->correlation))
+      strongest = &d;
+  }
+  if (strongest == nullptr) {
+    result.verdict = fmt::format(
+        "the two-wheel model explains this log: its odometry residuals follow neither "
+        "acceleration nor speed (|rho| < {:.1f} over {} intervals; chi2/dof {:.2f})",
+        min_correlation, result.intervals, result.chi2_per_dof);
+    return result;
+  }
+  result.explains = false;
+  result.verdict = fmt::format(
+      "the two-wheel model does not explain this log: the {} residual follows {} (rho = {:.2f} "
+      "over {} intervals): {}; a constant circumference per wheel cannot express that, so "
+      "dead reckoning drifts where the driving differs from this log's average",
+      strongest->residual, strongest->quantity, strongest->correlation, result.intervals,
+      likely_cause(*strongest));
+  return result;
+}
+
+}  // namespace odocal
