@@ -17,6 +17,7 @@
 #include "calibration_run.hpp"
 #include "gnss_noise_estimate.hpp"
 #include "odocal/error.hpp"
+#include "odocal/estimation/driving_state.hpp"
 #include "odocal/estimation/odometry_preintegration.hpp"
 
 namespace odocal {
@@ -24,6 +25,17 @@ namespace {
 
 using Block3 = std::array<double, 3>;
 using Block2 = std::array<double, 2>;
+using ParamsBlock = std::array<double, batch::kParams>;  // [c_RL, c_RR, t_R, tyre coefficients]
+constexpr int kTyreOffset = 3;
+
+// The segment's Jacobian at sample s with respect to every parameter.
+batch::ParamsJacobian params_jacobian(const PreintegratedSegment& segment, std::size_t s) {
+  batch::ParamsJacobian J = batch::ParamsJacobian::Zero();
+  J.leftCols<3>() = segment.J_delta_params[s];
+  if (!segment.J_delta_tyre.empty())
+    J.rightCols<TyreModel::kCoefficients>() = segment.J_delta_tyre[s];
+  return J;
+}
 
 // Keyframes every interval_s, and on both sides of every break of the odometry chain (a wheel
 // gap), so that the gap is a segment of its own, without odometry.
@@ -73,6 +85,17 @@ class BatchProblem {
       poses_.push_back({pose.x(), pose.y(), pose.z()});
     }
     params_ = {nominal.circumference_rl_m, nominal.circumference_rr_m, nominal.track_width_m};
+    if (batch_.tyre_model != TyreModelChoice::kNone) {
+      // The driving state from the log at the nominal parameters: a per mille off in speed
+      // moves a coefficient by as much, far inside its sigma.
+      states_ = driving_states(log, nominal);
+      TyreModel::Vector sum = TyreModel::Vector::Zero();
+      for (std::size_t k = reference.first_wheel_index; k < states_.size(); ++k) {
+        sum += tyre_regressors(states_[k], RearWheel::kLeft).cwiseAbs2();
+      }
+      const double n = static_cast<double>(states_.size() - reference.first_wheel_index);
+      regressor_rms_ = (sum / std::max(n, 1.0)).cwiseSqrt();
+    }
     gm_sigma_m_ = batch_.gnss_gauss_markov_sigma_m;
     const double gnss_step_s = median_step_s(log.gnss.t_s);
     if (gnss_step_s > 0.0)
@@ -90,6 +113,25 @@ class BatchProblem {
   }
 
   bool gauss_markov() const { return gm_sigma_m_ > 0.0; }
+
+  // Fits the extended tyre model from here on (true), or the plain one with its coefficients
+  // back at zero.
+  void set_tyre_model(bool extended) {
+    tyre_extended_ = extended;
+    if (!extended) std::fill(params_.begin() + kTyreOffset, params_.end(), 0.0);
+  }
+  bool tyre_extended() const { return tyre_extended_; }
+  TyreModel tyre_model() const {
+    return TyreModel::from(Eigen::Map<const TyreModel::Vector>(params_.data() + kTyreOffset));
+  }
+  const TyreModel::Vector& regressor_rms() const { return regressor_rms_; }
+  // The Bayesian information criterion of the last solve: its cost (robust where the loss is)
+  // as -log-likelihood, and the unknowns that the model choice adds.
+  double information_criterion(const ceres::Solver::Summary& solver) const {
+    const double residuals = static_cast<double>(problem_->NumResiduals());
+    const int extra = tyre_extended_ ? TyreModel::kCoefficients : 0;
+    return 2.0 * solver.final_cost + extra * std::log(residuals);
+  }
 
   // The GNSS noise model from here on: every fix's white sigma scaled by `white_scale`, and a
   // Gauss-Markov error (0: none).
@@ -163,13 +205,21 @@ class BatchProblem {
   // odometry chain would take the solver many small steps.
   void preintegrate_all(double slip_floor = 0.0) {
     const OdometryParams at{params_[0], params_[1], params_[2]};
+    if (tyre_extended_ && !tyre_model().plain()) {
+      // The driving state from the wheels as the current model counts them: a slipping wheel
+      // overstates speed and acceleration by its slip.
+      const WheelStream counted = with_tyre_model(log_.wheels, states_, tyre_model());
+      states_ = driving_states(counted, log_.imu ? &*log_.imu : nullptr, at);
+    }
+    const TyreConditions tyre{states_, tyre_model()};
     const WheelNoise noise{std::max(noise_.slip_sigma_m_per_sqrt_m, slip_floor),
                            noise_.quantisation_sigma_rev,
                            std::max(noise_.lateral_sigma_m_per_sqrt_m, slip_floor)};
     segments_.clear();
     for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i)
-      segments_.push_back(preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise));
-    params_lin_ = Eigen::Vector3d(params_[0], params_[1], params_[2]);
+      segments_.push_back(preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise,
+                                       tyre_extended_ ? &tyre : nullptr));
+    params_lin_ = Eigen::Map<const batch::ParamsVector>(params_.data());
   }
 
   ceres::Solver::Summary solve() {
@@ -195,18 +245,24 @@ class BatchProblem {
     return summary;
   }
 
-  // Largest relative change of the parameters since the last pre-integration.
+  // Largest relative change of the parameters since the last pre-integration (for the tyre
+  // coefficients: of the circumference they make at the log's RMS driving state).
   double relative_change() const {
     double change = 0.0;
     for (int p = 0; p < 3; ++p)
       change = std::max(change, std::abs(params_[p] - params_lin_(p)) / std::abs(params_lin_(p)));
+    for (int j = 0; j < TyreModel::kCoefficients; ++j) {
+      const int p = kTyreOffset + j;
+      change = std::max(change, std::abs(params_[p] - params_lin_(p)) * regressor_rms_(j));
+    }
     return change;
   }
 
   // 1-sigma covariance blocks of the global unknowns; empty when Ceres cannot compute them
   // (rank-deficient problem).
   struct Uncertainty {
-    Eigen::Matrix3d params = Eigen::Matrix3d::Zero();
+    Eigen::Matrix<double, batch::kParams, batch::kParams> params =
+        Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
     Eigen::Matrix2d lever = Eigen::Matrix2d::Zero();
     double gyro_bias{}, heading_bias{}, latency{};
   };
@@ -233,7 +289,7 @@ class BatchProblem {
     const auto get = [&](const double* block, double* out) {
       if (estimated(block)) covariance.GetCovarianceBlock(block, block, out);
     };
-    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> params;
+    Eigen::Matrix<double, batch::kParams, batch::kParams, Eigen::RowMajor> params;
     params.setZero();
     get(params_.data(), params.data());
     u.params = params;
@@ -247,7 +303,7 @@ class BatchProblem {
     return u;
   }
 
-  const Block3& params() const { return params_; }
+  const ParamsBlock& params() const { return params_; }
   const Block2& lever() const { return lever_; }
   double gyro_bias() const { return gyro_bias_; }
   double heading_bias() const { return heading_bias_; }
@@ -279,7 +335,8 @@ class BatchProblem {
     const double w = (t_s - t[k]) / dt;
     MotionAt at{static_cast<std::size_t>(segment), {}, {}};
     at.motion.delta = (1.0 - w) * seg.delta[s] + w * seg.delta[s + 1];
-    at.motion.J_delta_params = (1.0 - w) * seg.J_delta_params[s] + w * seg.J_delta_params[s + 1];
+    at.motion.J_delta_params =
+        (1.0 - w) * params_jacobian(seg, s) + w * params_jacobian(seg, s + 1);
     at.motion.J_delta_first_increment =
         (1.0 - w) * seg.J_delta_first_increment[s] + w * seg.J_delta_first_increment[s + 1];
     at.motion.params_lin = params_lin_;
@@ -300,13 +357,14 @@ class BatchProblem {
           seg.covariance + Eigen::Vector3d(1e-10, 1e-10, 1e-12).asDiagonal().toDenseMatrix();
       const Eigen::Matrix3d L = covariance.llt().matrixL();
       auto* residual = new batch::OdometryResidual{
-          {seg.delta.back(), seg.J_delta_params.back(), seg.J_delta_first_increment.back(),
-           params_lin_},
+          {seg.delta.back(), params_jacobian(seg, seg.delta.size() - 1),
+           seg.J_delta_first_increment.back(), params_lin_},
           seg.J_end_last_increment,
           L.triangularView<Eigen::Lower>().solve(Eigen::Matrix3d::Identity())};
       odometry_blocks_.push_back({nullptr, i, L});
       odometry_blocks_.back().id = problem_->AddResidualBlock(
-          new ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, 3, 2, 2>(residual),
+          new ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, batch::kParams, 2, 2>(
+              residual),
           nullptr, poses_[i].data(), poses_[i + 1].data(), params_.data(), count_error_[i].data(),
           count_error_[i + 1].data());
     }
@@ -364,7 +422,8 @@ class BatchProblem {
                                                white_gnss_sigma(j)};
       double* bias = gauss_markov() ? gnss_bias_[at->segment].data() : zero_bias_.data();
       const ceres::ResidualBlockId block = problem_->AddResidualBlock(
-          new ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, 3, 2, 1, 2, 2>(residual),
+          new ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, batch::kParams, 2, 1, 2, 2>(
+              residual),
           gnss_loss(), poses_[at->segment].data(), params_.data(), lever_.data(), &latency_, bias,
           count_error_[at->segment].data());
       ++gnss_residuals_;
@@ -383,8 +442,9 @@ class BatchProblem {
       auto* residual = new batch::HeadingResidual{at->motion, heading.heading_rad[j],
                                                   sensors_.heading_sigma_rad};
       problem_->AddResidualBlock(
-          new ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, 3, 1, 2>(residual), nullptr,
-          poses_[at->segment].data(), params_.data(), &heading_bias_,
+          new ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, batch::kParams, 1, 2>(
+              residual),
+          nullptr, poses_[at->segment].data(), params_.data(), &heading_bias_,
           count_error_[at->segment].data());
     }
   }
@@ -442,8 +502,12 @@ class BatchProblem {
     hold(&latency_, batch_.estimate_latency);
     hold(&heading_bias_, batch_.estimate_heading_bias);
     hold(&gyro_bias_, batch_.estimate_gyro_bias);
-    if (!batch_.estimate_track_width)
-      problem_->SetManifold(params_.data(), new ceres::SubsetManifold(3, {2}));
+    std::vector<int> held;
+    if (!batch_.estimate_track_width) held.push_back(2);
+    for (int j = 0; j < TyreModel::kCoefficients && !tyre_extended_; ++j)
+      held.push_back(kTyreOffset + j);
+    if (!held.empty())
+      problem_->SetManifold(params_.data(), new ceres::SubsetManifold(batch::kParams, held));
   }
 
   const Log& log_;
@@ -454,7 +518,10 @@ class BatchProblem {
   std::vector<PreintegratedSegment> segments_;
   WheelNoise noise_;
   double quantisation_sigma_rev_ = 0.0;
-  Eigen::Vector3d params_lin_ = Eigen::Vector3d::Zero();
+  batch::ParamsVector params_lin_ = batch::ParamsVector::Zero();
+  std::vector<DrivingState> states_;  // per wheel sample; empty with tyre_model none
+  TyreModel::Vector regressor_rms_ = TyreModel::Vector::Zero();
+  bool tyre_extended_ = false;
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
   struct GnssBlock {
@@ -479,7 +546,7 @@ class BatchProblem {
   double gm_tau_s_ = 60.0;
   // Unknowns.
   std::vector<Block3> poses_;
-  Block3 params_{};
+  ParamsBlock params_{};
   Block2 lever_{0.0, 0.0};
   double latency_ = 0.0;
   double heading_bias_ = 0.0;
@@ -515,14 +582,25 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
       {"lever_arm_x_m", batch.lever()[0], sigma(u.lever(0, 0)), b.estimate_lever_arm, true, ""},
       {"lever_arm_y_m", batch.lever()[1], sigma(u.lever(1, 1)), b.estimate_lever_arm, true, ""},
       {"latency_s", batch.latency(), sigma(u.latency), b.estimate_latency, true, ""}};
-  const double thresholds[] = {b.max_sigma_circumference_m,  b.max_sigma_circumference_m,
-                               b.max_sigma_track_width_m,    b.max_sigma_gyro_bias_radps,
-                               b.max_sigma_heading_bias_rad, b.max_sigma_lever_arm_m,
-                               b.max_sigma_lever_arm_m,      b.max_sigma_latency_s};
+  std::vector<double> thresholds{b.max_sigma_circumference_m,  b.max_sigma_circumference_m,
+                                 b.max_sigma_track_width_m,    b.max_sigma_gyro_bias_radps,
+                                 b.max_sigma_heading_bias_rad, b.max_sigma_lever_arm_m,
+                                 b.max_sigma_lever_arm_m,      b.max_sigma_latency_s};
   const LogCoverage coverage = log_coverage(log, summary.coverage);
-  const bool block_used[] = {
+  std::vector<bool> block_used{
       true, true, true, log.imu.has_value() && b.use_gyro, log.heading.has_value() && b.use_heading,
       true, true, true};
+  const char* tyre_names[] = {"tyre_speed_s2pm2", "tyre_lateral_s2pm", "tyre_drive_s2pm",
+                              "tyre_brake_s2pm", "tyre_turn_s2prad2"};
+  for (int j = 0; j < TyreModel::kCoefficients; ++j) {
+    const int p_index = kTyreOffset + j;
+    summary.parameters.push_back({tyre_names[j], p[p_index], sigma(u.params(p_index, p_index)),
+                                  batch.tyre_extended(), true, ""});
+    const double rms = batch.regressor_rms()(j);
+    thresholds.push_back(rms > 0.0 ? b.max_sigma_tyre_effect / rms : 0.0);
+    block_used.push_back(rms > 0.0);
+  }
+  if (batch.tyre_extended()) summary.tyre_model = batch.tyre_model();
   std::vector<std::string> problems;
   for (std::size_t i = 0; i < summary.parameters.size(); ++i) {
     EstimatedParameter& parameter = summary.parameters[i];
@@ -538,7 +616,8 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
     }
   }
   summary.covariance = u.params.topLeftCorner<2, 2>();
-  summary.params_covariance = uncertainty ? u.params : Eigen::Matrix3d::Constant(inf);
+  summary.params_covariance =
+      uncertainty ? u.params.topLeftCorner<3, 3>().eval() : Eigen::Matrix3d::Constant(inf);
   if (b.estimate_track_width && uncertainty) {
     summary.odometry_scales =
         odometry_scales(log.vehicle.nominal_params(), summary.estimate, summary.params_covariance);
@@ -557,6 +636,11 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                                 ? "every requested parameter identified"
                                 : fmt::format("not identified: {}", fmt::join(problems, "; "));
   summary.model_adequacy = assess_model_adequacy(batch.odometry_errors());
+  if (!summary.model_adequacy.explains && !batch.tyre_extended()) {
+    summary.model_adequacy.verdict +=
+        "; batch tyre_model: extended fits a circumference that follows the driving state "
+        "(docs/tyre-model.md)";
+  }
   summary.solver_report = solver.BriefReport();
   summary.keyframes = batch.keyframes();
   summary.gnss_fixes = batch.gnss_residuals();
@@ -680,6 +764,37 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
   }
 }
 
+// tyre_model auto: the extended model replaces the plain one where the information criterion
+// says that the log supports its coefficients.
+void choose_tyre_model(BatchProblem& batch, const BatchOptions& options, double max_change,
+                       BatchSummary& summary, ceres::Solver::Summary& solver) {
+  constexpr double kMaxTyreEffect = 0.03;
+  if (!solver.IsSolutionUsable()) return;
+  TyreModelSelection& selection = summary.tyre_selection;
+  selection.plain_bic = batch.information_criterion(solver);
+  batch.set_tyre_model(true);
+  ceres::Solver::Summary extended = solve_relinearised(batch, options, summary);
+  selection.extended_bic = extended.IsSolutionUsable() ? batch.information_criterion(extended)
+                                                       : std::numeric_limits<double>::infinity();
+  selection.compared = true;
+  // Coefficients that change the circumference by percents at the log's typical driving state
+  // are not a tyre: they are the model explaining something else (a skid-steer robot, a wrong
+  // input), and so is a circumference that leaves the plausible band.
+  const TyreModel::Vector effect =
+      batch.tyre_model().coefficients().cwiseProduct(batch.regressor_rms()).cwiseAbs();
+  const auto& p = batch.params();
+  const bool physical = effect.maxCoeff() <= kMaxTyreEffect &&
+                        std::abs(p[0] / summary.nominal.circumference_rl_m - 1.0) <= max_change &&
+                        std::abs(p[1] / summary.nominal.circumference_rr_m - 1.0) <= max_change;
+  selection.physical = physical;
+  if (physical && selection.extended_bic < selection.plain_bic) {
+    solver = extended;
+    return;
+  }
+  batch.set_tyre_model(false);
+  solver = solve_relinearised(batch, options, summary);
+}
+
 }  // namespace
 
 BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
@@ -688,7 +803,10 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   BatchSummary summary;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
   BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
+  batch.set_tyre_model(options.tyre_model == TyreModelChoice::kExtended);
   ceres::Solver::Summary solver = solve_relinearised(batch, options, summary);
+  if (options.tyre_model == TyreModelChoice::kAuto)
+    choose_tyre_model(batch, options, common.max_relative_change, summary, solver);
   adapt_gnss_noise(batch, options, common, summary, solver);
   summarise(run.log(), options, batch, solver, summary);
   run.finish(summary);
@@ -731,6 +849,17 @@ std::string BatchSummary::full_report() const {
   } else if (g.residual_sigma_m > 0.0) {
     text += fmt::format("{:<13}residuals {:.3g} m RMS, as configured ({:.3g} m)\n", "gnss noise",
                         g.residual_sigma_m, g.configured_sigma_m);
+  }
+  if (tyre_selection.compared) {
+    const bool extended = !tyre_model.plain();
+    text += fmt::format(
+        "{:<13}{}: BIC {:.1f} with the condition-dependent circumference, {:.1f} without\n",
+        "tyre model",
+        extended                  ? "extended (the log supports it)"
+        : tyre_selection.physical ? "plain (the log does not need more)"
+                                  : "plain (the extended fit was not physical: coefficients of "
+                                    "percents, or a circumference out of its band)",
+        tyre_selection.extended_bic, tyre_selection.plain_bic);
   }
   if (!model_adequacy.verdict.empty())
     text += fmt::format("{:<13}{}\n", "model", model_adequacy.verdict);

@@ -54,6 +54,17 @@ std::string unidentified_reason(const std::string& name, const LogCoverage& c, b
         "needs more turning ({}): a GNSS antenna offset only shows when the vehicle rotates",
         turns);
   }
+  if (name.starts_with("tyre_")) {
+    const std::string what = name == "tyre_speed_s2pm2"    ? "a range of speeds"
+                             : name == "tyre_lateral_s2pm" ? "turns at speed, both ways"
+                             : name == "tyre_drive_s2pm"   ? "accelerations"
+                             : name == "tyre_brake_s2pm"   ? "braking"
+                                                           : "turns";
+    return fmt::format(
+        "the drive has too little of what shows it ({}); set tyre_model: none or drive more of "
+        "it",
+        what);
+  }
   if (name == "latency_s") {
     return "needs speed and turns: a GNSS latency only shows as a lag along the velocity";
   }

@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 25> kFields{{
+  static const std::array<OptionField<O>, 27> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -38,6 +38,10 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"estimate_lever_arm", "", 0, 0, "also estimate the GNSS antenna's lever arm",
        &O::estimate_lever_arm},
       {"estimate_latency", "", 0, 0, "also estimate the GNSS latency", &O::estimate_latency},
+      {"tyre_model", "", 0, 0,
+       "rolling circumference: plain (none), following speed, lateral and longitudinal "
+       "acceleration (extended), or chosen by BIC (auto)",
+       enum_member<&O::tyre_model>()},
       {"max_solver_iterations", "1", 1.0, 1e5, "Ceres iterations per solve",
        &O::max_solver_iterations},
       {"relinearise_relative_change", "1", 1e-12, 1.0,
@@ -57,6 +61,10 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"max_sigma_lever_arm_m", "m", 0.0, 100.0, "the same for the lever arm",
        &O::max_sigma_lever_arm_m},
       {"max_sigma_latency_s", "s", 0.0, 100.0, "the same for the latency", &O::max_sigma_latency_s},
+      {"max_sigma_tyre_effect", "1", 0.0, 1.0,
+       "a tyre coefficient whose 1-sigma moves the circumference by more than this fraction (at "
+       "the log's RMS driving state) counts as not identified",
+       &O::max_sigma_tyre_effect},
   }};
   return kFields;
 }

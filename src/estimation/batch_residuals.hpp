@@ -3,7 +3,8 @@
 // templated functors for Ceres' automatic differentiation. Every residual is whitened (divided
 // by its standard deviation or multiplied by a square-root information matrix).
 //
-// Parameter blocks: pose [x m, y m, yaw rad] per keyframe; params [c_RL m, c_RR m, t_R m];
+// Parameter blocks: pose [x m, y m, yaw rad] per keyframe; params [c_RL m, c_RR m, t_R m, the
+// tyre model's coefficients k_speed, k_lateral, k_drive, k_brake (odocal/model/tyre_model.hpp)];
 // lever [x m forward, y m left] (GNSS antenna in the vehicle frame); latency [s] (a fix stamped t
 // reports the position at t - latency); gnss_bias [x m, y m] per keyframe (Gauss-Markov GNSS
 // error, constant zero when not modelled); heading_bias [rad]; gyro_bias [rad/s]; count
@@ -16,21 +17,27 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "odocal/model/tyre_model.hpp"
+
 namespace odocal::batch {
+
+inline constexpr int kParams = 3 + TyreModel::kCoefficients;
+using ParamsVector = Eigen::Matrix<double, kParams, 1>;
+using ParamsJacobian = Eigen::Matrix<double, 3, kParams>;
 
 // The pre-integrated odometry from a keyframe to one instant, linear in the parameters around
 // the values it was integrated with and in the keyframe's count error q (which takes q from the
 // segment's first increment): delta(p, q) = delta + J_p (p - p_lin) - J_first q.
 struct RelativeMotion {
   Eigen::Vector3d delta = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d J_delta_params = Eigen::Matrix3d::Zero();
+  ParamsJacobian J_delta_params = ParamsJacobian::Zero();
   Eigen::Matrix<double, 3, 2> J_delta_first_increment = Eigen::Matrix<double, 3, 2>::Zero();
-  Eigen::Vector3d params_lin = Eigen::Vector3d::Zero();
+  ParamsVector params_lin = ParamsVector::Zero();
 
   template <typename T>
   Eigen::Matrix<T, 3, 1> at(const T* params, const T* count) const {
-    const Eigen::Matrix<T, 3, 1> change(params[0] - params_lin(0), params[1] - params_lin(1),
-                                        params[2] - params_lin(2));
+    Eigen::Matrix<T, kParams, 1> change;
+    for (int p = 0; p < kParams; ++p) change(p) = params[p] - params_lin(p);
     const Eigen::Matrix<T, 2, 1> count_error(count[0], count[1]);
     return delta.cast<T>() + J_delta_params.cast<T>() * change -
            J_delta_first_increment.cast<T>() * count_error;

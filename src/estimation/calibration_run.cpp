@@ -7,6 +7,7 @@
 
 #include "input_mistake_hint.hpp"
 #include "odocal/error.hpp"
+#include "odocal/estimation/driving_state.hpp"
 #include "odocal/model/angle.hpp"
 
 namespace odocal {
@@ -123,7 +124,14 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
   const bool finite_estimate = std::isfinite(e.circumference_rl_m) &&
                                std::isfinite(e.circumference_rr_m) &&
                                std::isfinite(e.track_width_m);
-  summary.after = finite_estimate ? evaluator_.evaluate(e) : summary.before;
+  const bool finite_tyre = summary.tyre_model.coefficients().allFinite();
+  if (!finite_estimate || !finite_tyre) {
+    summary.after = summary.before;
+  } else if (summary.tyre_model.plain()) {
+    summary.after = evaluator_.evaluate(e);
+  } else {
+    summary.after = evaluator_.evaluate(e, with_tyre_model(log(), e, summary.tyre_model));
+  }
   // The hills' projection is uncertain by the noise of the fitted grades: a common scale.
   if (summary.preparation.grade_scale_variance > 0.0 && finite_estimate) {
     const Eigen::Vector2d c(e.circumference_rl_m, e.circumference_rr_m);

@@ -8,7 +8,7 @@ namespace odocal {
 
 PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_sample,
                                   std::size_t last_sample, const OdometryParams& params,
-                                  const WheelNoise& noise) {
+                                  const WheelNoise& noise, const TyreConditions* tyre) {
   PreintegratedSegment segment;
   segment.first_sample = first_sample;
   segment.last_sample = last_sample;
@@ -16,6 +16,8 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
   segment.delta.resize(count, Pose2::Zero());
   segment.J_delta_params.resize(count, Eigen::Matrix3d::Zero());
   segment.J_delta_first_increment.resize(count, OdometryJacobianWheels::Zero());
+  using TyreJacobian = Eigen::Matrix<double, 3, TyreModel::kCoefficients>;
+  if (tyre != nullptr) segment.J_delta_tyre.resize(count, TyreJacobian::Zero());
   OdometryJacobianPose F;
   OdometryJacobianWheels G = OdometryJacobianWheels::Zero();
   OdometryJacobianWheels G_previous = OdometryJacobianWheels::Zero();
@@ -24,11 +26,29 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
   Eigen::Matrix3d& sigma = segment.covariance;
   const double slip_variance = noise.slip_sigma_m_per_sqrt_m * noise.slip_sigma_m_per_sqrt_m;
   for (std::size_t s = 1; s < count; ++s) {
-    const WheelIncrement n = wheels.increment(first_sample + s);
+    const WheelIncrement raw = wheels.increment(first_sample + s);
+    WheelIncrement n = raw;
+    TyreModel::Vector regressors_rl, regressors_rr;
+    if (tyre != nullptr) {
+      const DrivingState& state = tyre->states[first_sample + s];
+      regressors_rl = tyre_regressors(state, RearWheel::kLeft);
+      regressors_rr = tyre_regressors(state, RearWheel::kRight);
+      n.rev_rl *= 1.0 + tyre->model.coefficients().dot(regressors_rl);
+      n.rev_rr *= 1.0 + tyre->model.coefficients().dot(regressors_rr);
+    }
     segment.delta[s] =
         predict_pose(segment.delta[s - 1], n, params, 0.0,
                      {.J_pose_pose = &F, .J_pose_wheels = &G, .J_pose_params = &J_params});
     segment.J_delta_params[s] = F * segment.J_delta_params[s - 1] + J_params;
+    if (tyre != nullptr) {
+      Eigen::Matrix<double, 2, TyreModel::kCoefficients> J_increment_tyre;
+      J_increment_tyre.row(0) = raw.rev_rl * regressors_rl.transpose();
+      J_increment_tyre.row(1) = raw.rev_rr * regressors_rr.transpose();
+      segment.J_delta_tyre[s] = F * segment.J_delta_tyre[s - 1] + G * J_increment_tyre;
+      // The count errors are errors of the raw counts: they carry the factors too.
+      if (raw.rev_rl != 0.0) G.col(0) *= n.rev_rl / raw.rev_rl;
+      if (raw.rev_rr != 0.0) G.col(1) *= n.rev_rr / raw.rev_rr;
+    }
     // Slip variance in revolutions^2: slip^2 |arc| / c^2.
     const Eigen::Vector2d wheel_variance(
         slip_variance * std::abs(n.rev_rl) / params.circumference_rl_m,

@@ -30,16 +30,17 @@ WholeLogEvaluator::WholeLogEvaluator(const WheelStream& wheels,
     if (wheels.breaks_at(reference.first_wheel_index + i)) breaks_.push_back(i);
 }
 
-ODOCAL_HOT_LOOP DeadReckoningSummary WholeLogEvaluator::evaluate(const OdometryParams& params) {
+ODOCAL_HOT_LOOP DeadReckoningSummary WholeLogEvaluator::evaluate(const OdometryParams& params,
+                                                                 const WheelStream& wheels) {
   path_[0] = reference_.poses.pose[0];
   const std::size_t first_chain_end = breaks_.empty() ? path_.size() : breaks_.front();
-  dead_reckon_into(wheels_, reference_.first_wheel_index, params, path_, 1, first_chain_end);
+  dead_reckon_into(wheels, reference_.first_wheel_index, params, path_, 1, first_chain_end);
   if (options_.dr_start != DeadReckoningStart::kFirstReference) align_start(first_chain_end);
   for (std::size_t b = 0; b < breaks_.size(); ++b) {
     const std::size_t start = breaks_[b];
     path_[start] = reference_.poses.pose[start];
     const std::size_t end = b + 1 < breaks_.size() ? breaks_[b + 1] : path_.size();
-    dead_reckon_into(wheels_, reference_.first_wheel_index, params, path_, start + 1, end);
+    dead_reckon_into(wheels, reference_.first_wheel_index, params, path_, start + 1, end);
   }
   DeadReckoningSummary summary;
   for (std::size_t i = 0; i < path_.size(); ++i) {

@@ -21,7 +21,9 @@ class WholeLogEvaluator {
   WholeLogEvaluator(const WheelStream& wheels, const ReferenceTrajectory& reference,
                     const CalibrationOptions& options);
 
-  DeadReckoningSummary evaluate(const OdometryParams& params);
+  DeadReckoningSummary evaluate(const OdometryParams& params) { return evaluate(params, wheels_); }
+  // With other increments of the same samples (the wheels with a tyre model applied).
+  DeadReckoningSummary evaluate(const OdometryParams& params, const WheelStream& wheels);
   // Length of the dead-reckoned path over the reference span.
   double distance_m(const OdometryParams& params);
 

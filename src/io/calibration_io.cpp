@@ -137,6 +137,12 @@ void add_details(json& out, const BatchSummary& s) {
                            {"dependences", dependences},
                            {"explains", m.explains},
                            {"verdict", m.verdict}};
+  if (s.tyre_selection.compared) {
+    out["tyre_selection"] = {{"plain_bic", number_or_null(s.tyre_selection.plain_bic)},
+                             {"extended_bic", number_or_null(s.tyre_selection.extended_bic)},
+                             {"extended_physical", s.tyre_selection.physical},
+                             {"chosen", s.tyre_model.plain() ? "none" : "extended"}};
+  }
   out["solver_report"] = s.solver_report;
   out["keyframes"] = s.keyframes;
   out["gnss_fixes"] = s.gnss_fixes;

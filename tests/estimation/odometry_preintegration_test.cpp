@@ -53,6 +53,62 @@ TEST(OdometryPreintegration, ParameterJacobianMatchesNumerical) {
   }
 }
 
+// Driving states that exercise every regressor: speed, both turn directions, acceleration
+// and braking.
+std::vector<DrivingState> varied_states(std::size_t count) {
+  std::vector<DrivingState> states(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const double phase = 0.1 * static_cast<double>(k);
+    states[k] = {10.0 + 3.0 * std::sin(phase), 4.0 * std::cos(0.7 * phase),
+                 2.5 * std::sin(1.3 * phase), 0.4 * std::cos(0.7 * phase)};
+  }
+  return states;
+}
+
+TEST(OdometryPreintegration, TyreJacobianMatchesNumerical) {
+  const WheelStream wheels = curving_wheels();
+  const std::vector<DrivingState> states = varied_states(wheels.size());
+  const OdometryParams params{1.95, 1.96, 1.6};
+  const TyreModel::Vector at = TyreModel{2e-6, 3e-4, 8e-3, -2e-3, -5e-3}.coefficients();
+  const TyreConditions tyre{states, TyreModel::from(at)};
+  const PreintegratedSegment segment = preintegrate(wheels, 0, 120, params, {}, &tyre);
+  ASSERT_EQ(segment.J_delta_tyre.size(), segment.delta.size());
+  for (const std::size_t s : {1ul, 37ul, 120ul}) {
+    const auto numerical = testing::numerical_jacobian<3, TyreModel::kCoefficients>(
+        [&](const TyreModel::Vector& k) -> Eigen::Vector3d {
+          const TyreConditions moved{states, TyreModel::from(k)};
+          return preintegrate(wheels, 0, 120, params, {}, &moved).delta[s];
+        },
+        at);
+    EXPECT_LT((segment.J_delta_tyre[s] - numerical).cwiseAbs().maxCoeff(),
+              1e-6 * std::max(1.0, numerical.cwiseAbs().maxCoeff()))
+        << s;
+  }
+}
+
+TEST(OdometryPreintegration, TyreModelIsDeadReckoningOfTheScaledIncrements) {
+  const WheelStream wheels = curving_wheels();
+  const std::vector<DrivingState> states = varied_states(wheels.size());
+  const OdometryParams params{1.95, 1.96, 1.6};
+  const TyreModel model{2e-6, 3e-4, 8e-3, 2e-3, -5e-3};
+  const TyreConditions tyre{states, model};
+  const PreintegratedSegment segment = preintegrate(wheels, 0, 120, params, {}, &tyre);
+  // Independent: each increment scaled by hand with the formula of tyre_model.hpp.
+  WheelStream scaled = wheels;
+  for (std::size_t k = 0; k < wheels.size(); ++k) {
+    const DrivingState& x = states[k];
+    const double common = 1.0 + 2e-6 * x.speed_mps * x.speed_mps -
+                          (x.longitudinal_mps2 > 0 ? 8e-3 : 2e-3) * x.longitudinal_mps2 -
+                          5e-3 * x.yaw_rate_radps * x.yaw_rate_radps;
+    scaled.rev_rl[k] *= common + 3e-4 * x.lateral_mps2;
+    scaled.rev_rr[k] *= common - 3e-4 * x.lateral_mps2;
+  }
+  const PoseStream path = dead_reckon(scaled, params, Pose2::Zero());
+  EXPECT_LT((segment.delta.back() - path.pose.back()).norm(), 1e-12);
+  EXPECT_GT((segment.delta.back() - dead_reckon(wheels, params, Pose2::Zero()).pose.back()).norm(),
+            1e-3);
+}
+
 TEST(OdometryPreintegration, CovarianceMatchesMonteCarloOfNoisyWheels) {
   // Slip: each increment's arc gets white noise of variance slip^2 |arc|; quantisation: every
   // inner sample's cumulative count is off by sigma q (+e in its increment, -e in the next one).

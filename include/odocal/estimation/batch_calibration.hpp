@@ -46,6 +46,14 @@ struct GnssNoiseReport {
   double covariance_scale = 1.0;
 };
 
+// tyre_model auto: the information criteria of both models (lower is better).
+struct TyreModelSelection {
+  bool compared = false;
+  double plain_bic{};
+  double extended_bic{};
+  bool physical = true;  // false: the extended fit was refused (coefficients, circumferences)
+};
+
 struct BatchSummary : CalibrationSummary {
   std::vector<EstimatedParameter> parameters;  // every unknown besides the poses
   std::string solver_report;                   // Ceres' brief report of the last solve
@@ -62,6 +70,7 @@ struct BatchSummary : CalibrationSummary {
   // Whether the two-wheel model explains the log (whitened odometry residuals against the
   // driving state).
   ModelAdequacy model_adequacy;
+  TyreModelSelection tyre_selection;
 
   std::string full_report() const;
 };

@@ -19,6 +19,18 @@ struct EnumNames<RobustLoss> {
                                                                {RobustLoss::kCauchy, "cauchy"}}};
 };
 
+// Which rolling circumference the batch fits: the plain model of eqs. 1-2, the extended one
+// whose circumference follows the driving state (odocal/model/tyre_model.hpp), or whichever the
+// log supports by the Bayesian information criterion.
+enum class TyreModelChoice { kNone, kExtended, kAuto };
+template <>
+struct EnumNames<TyreModelChoice> {
+  static constexpr std::array<EnumName<TyreModelChoice>, 3> kTable{
+      {{TyreModelChoice::kNone, "none"},
+       {TyreModelChoice::kExtended, "extended"},
+       {TyreModelChoice::kAuto, "auto"}}};
+};
+
 struct BatchOptions {
   double keyframe_interval_s = 1.0;
   // Wheel noise: slip as a random walk in arc length; the encoder quantisation is derived from
@@ -46,6 +58,8 @@ struct BatchOptions {
   bool estimate_heading_bias = false;
   bool estimate_lever_arm = false;
   bool estimate_latency = false;
+  // none by default until auto is validated on fleets and robots (docs/tyre-model.md).
+  TyreModelChoice tyre_model = TyreModelChoice::kNone;
   int max_solver_iterations = 100;
   // The odometry is pre-integrated at the current parameters and used to first order; when the
   // solution moves them by more than this fraction, it is integrated again and re-solved.
@@ -58,6 +72,9 @@ struct BatchOptions {
   double max_sigma_heading_bias_rad = 0.01;
   double max_sigma_lever_arm_m = 0.2;
   double max_sigma_latency_s = 0.02;
+  // A tyre coefficient counts as not identified when its 1-sigma moves the circumference by
+  // more than this fraction at the log's RMS value of its regressor (never: infinite sigma).
+  double max_sigma_tyre_effect = 5e-4;
 
   static OptionTable<BatchOptions> fields();
   std::string validate() const;  // empty when valid

@@ -14,6 +14,7 @@
 #include "odocal/estimation/log_preparation.hpp"
 #include "odocal/estimation/motion_coverage.hpp"
 #include "odocal/model/odometry_model.hpp"
+#include "odocal/model/tyre_model.hpp"
 #include "odocal/options/enum_names.hpp"
 
 namespace odocal {
@@ -62,6 +63,8 @@ struct CalibrationSummary {
   std::string message;  // why it stopped, or why the result is not usable
   OdometryParams nominal;
   OdometryParams estimate;  // the nominal parameters where no estimate was reached
+  // The condition-dependent part of the estimate (batch with tyre_model); plain otherwise.
+  TyreModel tyre_model;
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();  // of [c_RL, c_RR], m^2
   double condition_number{};                             // of the circumference problem
   // false: c_RL / c_RR kept at the nominal ratio, only their common scale estimated.

@@ -43,7 +43,7 @@ struct ModelAdequacy {
 // Intervals shorter than min_distance_m are left out (standing, creeping). A dependence counts
 // when |rho| >= min_correlation and its t statistic >= min_t.
 ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& samples,
-                                    double min_distance_m = 1.0, double min_correlation = 0.3,
+                                    double min_distance_m = 0.25, double min_correlation = 0.3,
                                     double min_t = 5.0);
 
 }  // namespace odocal

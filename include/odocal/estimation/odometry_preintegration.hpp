@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "odocal/data/log.hpp"
+#include "odocal/model/tyre_model.hpp"
 
 namespace odocal {
 
@@ -37,11 +38,21 @@ struct PreintegratedSegment {
   // d delta.back() / d [n_RL, n_RR] of the last increment (an error in the end counts).
   Eigen::Matrix<double, 3, 2> J_end_last_increment = Eigen::Matrix<double, 3, 2>::Zero();
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of delta.back()
+  // d delta / d tyre coefficients (tyre_model.hpp); empty without a tyre model.
+  std::vector<Eigen::Matrix<double, 3, TyreModel::kCoefficients>> J_delta_tyre;
 };
 
-// Requires first_sample < last_sample < wheels.size().
+// The tyre model to integrate with: its coefficients and the driving state at every wheel
+// sample of the stream (driving_state.hpp).
+struct TyreConditions {
+  const std::vector<DrivingState>& states;
+  TyreModel model;
+};
+
+// Requires first_sample < last_sample < wheels.size(). With a tyre model, every increment
+// carries its factors (c_i,eff / c_i) and J_delta_tyre is filled.
 PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_sample,
                                   std::size_t last_sample, const OdometryParams& params,
-                                  const WheelNoise& noise);
+                                  const WheelNoise& noise, const TyreConditions* tyre = nullptr);
 
 }  // namespace odocal

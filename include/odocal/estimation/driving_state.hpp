@@ -1,0 +1,34 @@
+#pragma once
+// The driving state at every wheel sample (speed, lateral and longitudinal acceleration), the
+// regressors of the tyre model (odocal/model/tyre_model.hpp), and the wheel stream with the
+// model applied. Measured from the log itself: speed from the wheels at the given parameters,
+// the turn rate from the gyro where imu.csv has it (the wheels' own turn is what a tyre model
+// corrects) else from the wheels; smoothed over a short window so that encoder steps do not
+// become accelerations.
+
+#include <vector>
+
+#include "odocal/data/log.hpp"
+#include "odocal/model/tyre_model.hpp"
+
+namespace odocal {
+
+// One state per wheel sample. half_window_s: speeds are mean speeds over +-half_window_s, and
+// accelerations differences of those over the same spacing (the window shrinks at the ends and
+// across chain breaks, whose increments are zero).
+std::vector<DrivingState> driving_states(const Log& log, const OdometryParams& params,
+                                         double half_window_s = 0.25);
+// The same from a wheel stream and the gyro (null: none).
+std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
+                                         const OdometryParams& params, double half_window_s = 0.25);
+
+// The wheel stream whose rear increments carry the model's factors (c_i,eff / c_i): dead
+// reckoning it with c_i is dead reckoning with the condition-dependent circumference.
+WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<DrivingState>& states,
+                            const TyreModel& model);
+
+// Both at once, for a log and a calibrated vehicle: the states at the given parameters, from the
+// wheels as the model counts them (a slipping wheel overstates its speed by its slip).
+WheelStream with_tyre_model(const Log& log, const OdometryParams& params, const TyreModel& model);
+
+}  // namespace odocal

@@ -1,0 +1,102 @@
+#include "odocal/estimation/driving_state.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace odocal {
+namespace {
+
+// A cumulative quantity sampled at increasing times; its value at any time by linear
+// interpolation, clamped to the span.
+struct Cumulative {
+  std::vector<double> t_s;
+  std::vector<double> value;
+
+  double at(double t) const {
+    if (t <= t_s.front()) return value.front();
+    if (t >= t_s.back()) return value.back();
+    const auto upper = std::upper_bound(t_s.begin(), t_s.end(), t);
+    const std::size_t k = static_cast<std::size_t>(upper - t_s.begin());
+    const double w = (t - t_s[k - 1]) / (t_s[k] - t_s[k - 1]);
+    return (1.0 - w) * value[k - 1] + w * value[k];
+  }
+  // Mean rate over [t - h, t + h] clipped to the span.
+  double rate(double t, double h) const {
+    const double from = std::max(t - h, t_s.front()), to = std::min(t + h, t_s.back());
+    return to > from ? (at(to) - at(from)) / (to - from) : 0.0;
+  }
+};
+
+Cumulative cumulative(const std::vector<double>& t_s, const std::vector<double>& steps) {
+  Cumulative c{t_s, std::vector<double>(t_s.size(), 0.0)};
+  for (std::size_t k = 1; k < t_s.size(); ++k) c.value[k] = c.value[k - 1] + steps[k];
+  return c;
+}
+
+// The gyro's turn integrated on its own time base (trapezoids); empty without samples.
+Cumulative gyro_turn(const ImuStream& imu) {
+  std::vector<double> steps(imu.size(), 0.0);
+  for (std::size_t k = 1; k < imu.size(); ++k)
+    steps[k] = 0.5 * (imu.wz_radps[k] + imu.wz_radps[k - 1]) * (imu.t_s[k] - imu.t_s[k - 1]);
+  return cumulative(imu.t_s, steps);
+}
+
+}  // namespace
+
+std::vector<DrivingState> driving_states(const Log& log, const OdometryParams& params,
+                                         double half_window_s) {
+  return driving_states(log.wheels, log.imu ? &*log.imu : nullptr, params, half_window_s);
+}
+
+std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
+                                         const OdometryParams& params, double half_window_s) {
+  std::vector<DrivingState> states(wheels.size());
+  if (wheels.size() < 2) return states;
+  std::vector<double> distance(wheels.size(), 0.0), turn(wheels.size(), 0.0);
+  for (std::size_t k = 1; k < wheels.size(); ++k) {
+    const BodyIncrement step = body_increment(wheels.increment(k), params);
+    distance[k] = step.distance_m;
+    turn[k] = step.yaw_rad;
+  }
+  const Cumulative path = cumulative(wheels.t_s, distance);
+  const Cumulative wheel_turn = cumulative(wheels.t_s, turn);
+  const bool gyro = imu != nullptr && imu->size() >= 2;
+  static const ImuStream kNoImu;
+  const Cumulative gyro_path = gyro_turn(gyro ? *imu : kNoImu);
+  const double h = half_window_s;
+  for (std::size_t k = 0; k < wheels.size(); ++k) {
+    const double t = wheels.t_s[k];
+    DrivingState& state = states[k];
+    state.speed_mps = path.rate(t, h);
+    const bool gyro_here = gyro && t >= imu->t_s.front() && t <= imu->t_s.back();
+    const double yaw_rate = gyro_here ? gyro_path.rate(t, h) : wheel_turn.rate(t, h);
+    state.yaw_rate_radps = yaw_rate;
+    state.lateral_mps2 = state.speed_mps * yaw_rate;
+    state.longitudinal_mps2 = (path.rate(t + h, h) - path.rate(t - h, h)) / (2.0 * h);
+  }
+  return states;
+}
+
+WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<DrivingState>& states,
+                            const TyreModel& model) {
+  if (states.size() != wheels.size())
+    throw std::invalid_argument("with_tyre_model: one driving state per wheel sample");
+  WheelStream corrected = wheels;
+  if (model.plain()) return corrected;
+  for (std::size_t k = 0; k < wheels.size(); ++k) {
+    corrected.rev_rl[k] *= tyre_factor(model, states[k], RearWheel::kLeft);
+    corrected.rev_rr[k] *= tyre_factor(model, states[k], RearWheel::kRight);
+  }
+  return corrected;
+}
+
+WheelStream with_tyre_model(const Log& log, const OdometryParams& params, const TyreModel& model) {
+  if (model.plain()) return log.wheels;
+  // Once more with the state the corrected wheels show, as the batch measures it.
+  const ImuStream* imu = log.imu ? &*log.imu : nullptr;
+  const WheelStream first = with_tyre_model(log.wheels, driving_states(log, params), model);
+  return with_tyre_model(log.wheels, driving_states(first, imu, params), model);
+}
+
+}  // namespace odocal

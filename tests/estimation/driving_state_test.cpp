@@ -1,0 +1,108 @@
+// The driving state measured from a log against closed-form motions: a circle at constant speed
+// and a straight line at constant acceleration; the gyro's turn preferred to the wheels'.
+
+#include "odocal/estimation/driving_state.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace odocal {
+namespace {
+
+constexpr double kTrack = 1.6;
+constexpr double kCircumference = 2.0;
+
+// Wheels of a motion with speed v(t) and yaw rate w(t), sampled at 100 Hz (exact increments
+// from the midpoint rule, which is exact for these polynomials to first order in dt).
+Log log_of(double duration_s, double (*speed)(double), double (*yaw_rate)(double)) {
+  Log log;
+  log.vehicle.track_width_m = kTrack;
+  log.vehicle.circumference_rl_m = kCircumference;
+  log.vehicle.circumference_rr_m = kCircumference;
+  const double dt = 0.01;
+  for (int k = 0; k * dt <= duration_s + 1e-9; ++k) {
+    const double t = k * dt;
+    log.wheels.t_s.push_back(t);
+    if (k == 0) {
+      log.wheels.rev_rl.push_back(0.0);
+      log.wheels.rev_rr.push_back(0.0);
+      continue;
+    }
+    const double mid = t - 0.5 * dt;
+    const double v = speed(mid), w = yaw_rate(mid);
+    log.wheels.rev_rl.push_back((v - 0.5 * kTrack * w) * dt / kCircumference);
+    log.wheels.rev_rr.push_back((v + 0.5 * kTrack * w) * dt / kCircumference);
+  }
+  return log;
+}
+
+TEST(DrivingState, CircleAtConstantSpeedHasOnlyLateralAcceleration) {
+  const Log log = log_of(
+      10.0, [](double) { return 12.0; }, [](double) { return 0.25; });
+  const auto states = driving_states(log, log.vehicle.nominal_params());
+  ASSERT_EQ(states.size(), log.wheels.size());
+  for (std::size_t k = 100; k < states.size() - 100; k += 37) {
+    EXPECT_NEAR(states[k].speed_mps, 12.0, 1e-9);
+    EXPECT_NEAR(states[k].lateral_mps2, 3.0, 1e-9);  // v w, to the left
+    EXPECT_NEAR(states[k].longitudinal_mps2, 0.0, 1e-9);
+  }
+}
+
+TEST(DrivingState, StraightAccelerationIsMeasuredFromTheWheels) {
+  const Log log = log_of(
+      10.0, [](double t) { return 2.0 + 1.5 * t; }, [](double) { return 0.0; });
+  const auto states = driving_states(log, log.vehicle.nominal_params());
+  for (std::size_t k = 100; k < states.size() - 100; k += 37) {
+    EXPECT_NEAR(states[k].speed_mps, 2.0 + 1.5 * log.wheels.t_s[k], 1e-6);
+    EXPECT_NEAR(states[k].longitudinal_mps2, 1.5, 1e-6);
+    EXPECT_NEAR(states[k].lateral_mps2, 0.0, 1e-12);
+  }
+}
+
+void add_gyro(Log& log, double yaw_rate_radps) {
+  log.imu = ImuStream{};
+  for (std::size_t k = 0; k < log.wheels.size(); ++k) {
+    log.imu->t_s.push_back(log.wheels.t_s[k]);
+    log.imu->ax_mps2.push_back(0.0);
+    log.imu->ay_mps2.push_back(0.0);
+    log.imu->wz_radps.push_back(yaw_rate_radps);
+  }
+}
+
+TEST(DrivingState, PrefersTheGyroTurnToTheWheels) {
+  // Wheels that report no turn while the gyro turns at 0.1 rad/s: the lateral acceleration is
+  // the gyro's (the wheels' own turn is what the tyre model corrects).
+  Log log = log_of(
+      10.0, [](double) { return 10.0; }, [](double) { return 0.0; });
+  add_gyro(log, 0.1);
+  const auto states = driving_states(log, log.vehicle.nominal_params());
+  EXPECT_NEAR(states[500].lateral_mps2, 1.0, 1e-9);
+}
+
+TEST(DrivingState, PlainTyreModelLeavesTheWheelsAlone) {
+  const Log log = log_of(
+      5.0, [](double t) { return 3.0 + t; }, [](double) { return 0.2; });
+  const WheelStream same = with_tyre_model(log, log.vehicle.nominal_params(), TyreModel{});
+  EXPECT_EQ(same.rev_rl, log.wheels.rev_rl);
+  EXPECT_EQ(same.rev_rr, log.wheels.rev_rr);
+}
+
+TEST(DrivingState, LateralCoefficientMakesTheOuterWheelRollShorter) {
+  // A left turn: the right wheel is outer, loaded, and rolls a shorter circumference, so it
+  // needs more revolutions than the plain model says for the same ground distance: with the
+  // model applied, each of its revolutions counts for less ground. (The gyro fixes a_y: without
+  // it, the turn would be the corrected wheels' own.)
+  Log log = log_of(
+      5.0, [](double) { return 10.0; }, [](double) { return 0.3; });
+  add_gyro(log, 0.3);
+  TyreModel model;
+  model.k_lateral_s2pm = 1e-3;
+  const WheelStream scaled = with_tyre_model(log, log.vehicle.nominal_params(), model);
+  // (To second order: the corrected wheels' mean speed differs by 3e-3 of their difference.)
+  EXPECT_NEAR(scaled.rev_rl[250] / log.wheels.rev_rl[250], 1.0 + 3e-3, 1e-6);
+  EXPECT_NEAR(scaled.rev_rr[250] / log.wheels.rev_rr[250], 1.0 - 3e-3, 1e-6);
+}
+
+}  // namespace
+}  // namespace odocal

@@ -1,0 +1,96 @@
+// The extended tyre model through the batch, against known truth: an ideal drive whose wheels are
+// re-counted as if each rolled a circumference that follows the driving state with known
+// coefficients (the model class exactly). The plain model is biased and does not explain the
+// log; the extended one recovers circumferences and coefficients inside 3 sigma, auto picks it,
+// and auto keeps the plain model on the ideal lap.
+
+#include <gtest/gtest.h>
+
+#include "odocal/estimation/batch_calibration.hpp"
+#include "odocal/estimation/driving_state.hpp"
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/io/simulation_writer.hpp"
+#include "odocal/sim/simulator.hpp"
+
+namespace odocal {
+namespace {
+
+constexpr TyreModel kTruth{-3e-6, 4e-4, 8e-3, 4e-3, -2e-2};
+
+// 1 m GNSS: beside five coefficients the circumference at rest is an extrapolation (docs/
+// tyre-model.md), about 1 mm at 1 sigma with the scenario's 3 m.
+sim::SimulatedDrive ideal_drive() {
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;
+  scenario.gnss.sigma_m = 1.0;
+  return sim::simulate(scenario);  // 3 laps: a circumference to a millimetre beside 5 coefficients
+}
+
+Log ideal_lap() { return simulated_log(ideal_drive()); }
+
+// A wheel that rolls c f per revolution needs 1/f times the ideal revolutions.
+Log with_condition_dependent_tyres(const Log& ideal) {
+  Log log = ideal;
+  const auto states = driving_states(ideal, ideal.vehicle.nominal_params());
+  for (std::size_t k = 0; k < log.wheels.size(); ++k) {
+    log.wheels.rev_rl[k] /= tyre_factor(kTruth, states[k], RearWheel::kLeft);
+    log.wheels.rev_rr[k] /= tyre_factor(kTruth, states[k], RearWheel::kRight);
+  }
+  return log;
+}
+
+const EstimatedParameter& parameter(const BatchSummary& s, const std::string& name) {
+  for (const EstimatedParameter& p : s.parameters)
+    if (p.name == name) return p;
+  throw std::runtime_error("no parameter " + name);
+}
+
+TEST(TyreModelBatch, RecoversKnownCoefficientsWhereThePlainModelIsBiased) {
+  const sim::SimulatedDrive drive = ideal_drive();
+  const Log log = with_condition_dependent_tyres(simulated_log(drive));
+  const double truth_m = drive.true_params.circumference_rl_m;
+  ASSERT_DOUBLE_EQ(drive.true_params.circumference_rr_m, truth_m);
+
+  const BatchSummary plain = calibrate_batch(log);
+  EXPECT_FALSE(plain.model_adequacy.explains) << plain.model_adequacy.verdict;
+  EXPECT_NE(plain.model_adequacy.verdict.find("tyre_model: extended"), std::string::npos);
+
+  BatchOptions extended_options;
+  extended_options.tyre_model = TyreModelChoice::kExtended;
+  const BatchSummary extended = calibrate_batch(log, extended_options);
+  ASSERT_TRUE(extended.usable()) << extended.message;
+  for (const auto& [name, truth] :
+       {std::pair{"circumference_rl_m", truth_m}, std::pair{"circumference_rr_m", truth_m},
+        std::pair{"tyre_speed_s2pm2", kTruth.k_speed_s2pm2},
+        std::pair{"tyre_lateral_s2pm", kTruth.k_lateral_s2pm},
+        std::pair{"tyre_drive_s2pm", kTruth.k_drive_s2pm},
+        std::pair{"tyre_brake_s2pm", kTruth.k_brake_s2pm},
+        std::pair{"tyre_turn_s2prad2", kTruth.k_turn_s2prad2}}) {
+    const EstimatedParameter& p = parameter(extended, name);
+    EXPECT_TRUE(p.estimated) << name;
+    EXPECT_LT(std::abs(p.value - truth), 3.0 * p.sigma) << name << " " << p.value;
+  }
+  const double plain_error = std::abs(plain.estimate.circumference_rl_m - truth_m);
+  const double extended_error = std::abs(extended.estimate.circumference_rl_m - truth_m);
+  EXPECT_GT(plain_error, 3.0 * plain.sigma_rl_m());
+  EXPECT_LT(extended_error, plain_error);
+  EXPECT_LT(extended.after.mean_position_m, plain.after.mean_position_m);
+
+  BatchOptions auto_options;
+  auto_options.tyre_model = TyreModelChoice::kAuto;
+  const BatchSummary chosen = calibrate_batch(log, auto_options);
+  EXPECT_TRUE(chosen.tyre_selection.compared);
+  EXPECT_FALSE(chosen.tyre_model.plain()) << chosen.full_report();
+}
+
+TEST(TyreModelBatch, AutoKeepsThePlainModelWhereTheLogNeedsNoMore) {
+  BatchOptions auto_options;
+  auto_options.tyre_model = TyreModelChoice::kAuto;
+  const BatchSummary chosen = calibrate_batch(ideal_lap(), auto_options);
+  EXPECT_TRUE(chosen.tyre_selection.compared);
+  EXPECT_TRUE(chosen.tyre_model.plain()) << chosen.full_report();
+  EXPECT_GT(chosen.tyre_selection.extended_bic, chosen.tyre_selection.plain_bic);
+}
+
+}  // namespace
+}  // namespace odocal
