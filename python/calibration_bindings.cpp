@@ -62,6 +62,20 @@ void bind_calibration(py::module_& m) {
       .def_property_readonly(
           "track_width_m",
           [](const CalibrationResult& r) { return r.core().estimate.track_width_m; })
+      .def_property_readonly(
+          "tyre_model",
+          [](const CalibrationResult& r) {
+            const TyreModel& t = r.core().tyre_model;
+            py::dict out;
+            out["k_speed_s2pm2"] = t.k_speed_s2pm2;
+            out["k_lateral_s2pm"] = t.k_lateral_s2pm;
+            out["k_drive_s2pm"] = t.k_drive_s2pm;
+            out["k_brake_s2pm"] = t.k_brake_s2pm;
+            out["k_turn_s2prad2"] = t.k_turn_s2prad2;
+            return out;
+          },
+          "the condition-dependent circumference's coefficients (all zero: plain model; "
+          "docs/tyre-model.md)")
       .def_property_readonly("sigma_rl_m",
                              [](const CalibrationResult& r) { return r.core().sigma_rl_m(); })
       .def_property_readonly("sigma_rr_m",

@@ -13,6 +13,7 @@
 #include "odocal/error.hpp"
 #include "odocal/estimation/dead_reckoning.hpp"
 #include "odocal/estimation/drift_validation.hpp"
+#include "odocal/estimation/driving_state.hpp"
 #include "odocal/estimation/log_diagnosis.hpp"
 #include "odocal/estimation/log_preparation.hpp"
 #include "odocal/io/log_doctor.hpp"
@@ -60,6 +61,17 @@ OdometryParams params_of(const Log& log, const py::object& params) {
   }
   const auto t = params.cast<std::tuple<double, double, double>>();
   return {std::get<0>(t), std::get<1>(t), std::get<2>(t)};
+}
+
+// The tyre model that goes with `params`: a calibration's own, vehicle.yaml's for the nominal
+// parameters (None), plain for explicit numbers.
+TyreModel tyre_of(const Log& log, const py::object& params) {
+  if (params.is_none()) return log.vehicle.tyre_model.value_or(TyreModel{});
+  if (!py::hasattr(params, "tyre_model")) return {};
+  const auto k = params.attr("tyre_model").cast<py::dict>();
+  return {k["k_speed_s2pm2"].cast<double>(), k["k_lateral_s2pm"].cast<double>(),
+          k["k_drive_s2pm"].cast<double>(), k["k_brake_s2pm"].cast<double>(),
+          k["k_turn_s2prad2"].cast<double>()};
 }
 
 }  // namespace
@@ -125,9 +137,11 @@ PYBIND11_MODULE(odocal, m) {
         drift.window_s = window_s;
         drift.step_s = step_s;
         drift.min_window_distance_m = min_distance_m;
+        const OdometryParams nominal = log.vehicle.nominal_params();
         const DriftValidation v =
-            validate_drift(log.wheels, compute_reference(log, options.reference),
-                           log.vehicle.nominal_params(), calibrated, drift);
+            validate_drift(with_tyre_model(log, nominal, tyre_of(log, py::none())),
+                           with_tyre_model(log, calibrated, tyre_of(input, params)),
+                           compute_reference(log, options.reference), nominal, calibrated, drift);
         py::dict out;
         out["nominal"] = statistics(v.nominal_statistics);
         out["calibrated"] = statistics(v.calibrated_statistics);
@@ -151,8 +165,9 @@ PYBIND11_MODULE(odocal, m) {
   m.def(
       "dead_reckon",
       [](const Log& log, py::object params, std::tuple<double, double, double> start) {
+        const OdometryParams at = params_of(log, params);
         const PoseStream poses =
-            dead_reckon(log.wheels, params_of(log, params),
+            dead_reckon(with_tyre_model(log, at, tyre_of(log, params)), at,
                         Pose2(std::get<0>(start), std::get<1>(start), std::get<2>(start)));
         py::array_t<double> t(poses.size()), x(poses.size()), y(poses.size()), yaw(poses.size());
         for (std::size_t k = 0; k < poses.size(); ++k) {
@@ -170,5 +185,6 @@ PYBIND11_MODULE(odocal, m) {
       },
       py::arg("log"), py::arg("params") = py::none(),
       py::arg("start") = std::make_tuple(0.0, 0.0, 0.0),
-      "Dead-reckon the wheels from `start` (x, y, yaw) with `params` (default: nominal)");
+      "Dead-reckon the wheels from `start` (x, y, yaw) with `params` (default: nominal), with its "
+      "tyre model (a calibration's, or vehicle.yaml's for the nominal)");
 }

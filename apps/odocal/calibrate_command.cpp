@@ -92,9 +92,11 @@ void run_calibrate(const CalibrateArgs& args) {
     write_output_file(args.json_file, summary_to_json(summary, config).dump(2) + "\n");
   if (!result.usable()) throw NotUsableResult(result.message);
   if (!args.vehicle_out.empty())
-    write_calibrated_vehicle(log.vehicle, result.estimate, args.vehicle_out);
-  if (!args.ros2_out.empty())
-    write_ros2_diff_drive_parameters(log.vehicle, result.estimate, args.ros2_out);
+    write_calibrated_vehicle(log.vehicle, result.estimate, args.vehicle_out, result.tyre_model);
+  if (!args.ros2_out.empty()) {
+    write_ros2_diff_drive_parameters(log.vehicle, result.estimate, args.ros2_out,
+                                     result.tyre_model);
+  }
 }
 
 }  // namespace

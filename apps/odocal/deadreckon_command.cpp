@@ -9,6 +9,7 @@
 #include "number_checks.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/dead_reckoning.hpp"
+#include "odocal/estimation/driving_state.hpp"
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/log_preparation.hpp"
 #include "odocal/estimation/motion_coverage.hpp"
@@ -26,6 +27,7 @@ struct DeadreckonArgs {
   std::optional<double> circumference_rl_m;
   std::optional<double> circumference_rr_m;
   std::optional<double> track_width_m;
+  bool plain = false;  // ignore vehicle.yaml's tyre_model
   std::string start = "auto";
   std::string out_csv;
   std::string out_tum;
@@ -72,8 +74,10 @@ void run_deadreckon(const DeadreckonArgs& args) {
   if (args.track_width_m) params.track_width_m = *args.track_width_m;
 
   const Pose2 start = choose_start(log, params, args.start);
+  const TyreModel tyre = args.plain ? TyreModel{} : log.vehicle.tyre_model.value_or(TyreModel{});
+  const WheelStream wheels = with_tyre_model(log, params, tyre);
   const PoseStream trajectory = dead_reckon(
-      log.wheels, params, start,
+      wheels, params, start,
       [&](double t_s, const Pose2& carried) { return restart_pose(log, t_s, carried); });
   const ReferencePath reference =
       log.truth ? reference_from_poses(*log.truth, "truth.csv")
@@ -88,8 +92,9 @@ void run_deadreckon(const DeadreckonArgs& args) {
              log.wheels.size(), duration_s, distance_m);
   if (const std::string done = prepared_by.describe(); !done.empty())
     fmt::print("prepared     {}\n", done);
-  fmt::print("parameters   c_RL {:.6f} m, c_RR {:.6f} m, t_R {:.4f} m\n", params.circumference_rl_m,
-             params.circumference_rr_m, params.track_width_m);
+  fmt::print("parameters   c_RL {:.6f} m, c_RR {:.6f} m, t_R {:.4f} m{}\n",
+             params.circumference_rl_m, params.circumference_rr_m, params.track_width_m,
+             tyre.plain() ? "" : ", with vehicle.yaml's tyre_model");
   fmt::print("start pose   x {:.3f} m, y {:.3f} m, heading {:.2f} deg (from {})\n", start.x(),
              start.y(), deg_from_rad(start.z()),
              args.start == "auto" ? (log.truth ? "truth" : "gnss") : args.start);
@@ -130,6 +135,9 @@ void add_deadreckon_command(CLI::App& app) {
       ->add_option("--track-width", args->track_width_m,
                    "Rear track width in m (default: vehicle.yaml)")
       ->check(finite_in(kTrackWidthM));
+  command->add_flag(
+      "--plain", args->plain,
+      "Constant circumferences: ignore vehicle.yaml's tyre_model (docs/tyre-model.md)");
   command
       ->add_option("--start", args->start,
                    "Start pose: truth, gnss, or auto (truth when truth.csv exists)")

@@ -9,6 +9,7 @@
 #include "number_checks.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/drift_validation.hpp"
+#include "odocal/estimation/driving_state.hpp"
 #include "odocal/estimation/log_preparation.hpp"
 #include "odocal/io/calibration_export.hpp"
 #include "odocal/io/calibration_io.hpp"
@@ -38,6 +39,7 @@ nlohmann::json statistics_json(const DriftStatistics& s) {
 
 void run_validate(const ValidateArgs& args) {
   const OdometryParams calibrated = read_calibrated_parameters(args.params_file);
+  const TyreModel calibrated_tyre = read_calibrated_tyre_model(args.params_file);
   LogReadOptions read_options;
   read_options.read_truth = false;
   const Log input = args.window.apply(read_log(args.log_dir, read_options));
@@ -50,8 +52,17 @@ void run_validate(const ValidateArgs& args) {
   if (const std::string done = prepared_by.describe(); !done.empty())
     fmt::print("log          {}\n", done);
   const ReferenceTrajectory reference = compute_reference(log, options.reference);
-  const DriftValidation v =
-      validate_drift(log.wheels, reference, log.vehicle.nominal_params(), calibrated, args.options);
+  // Each parameter set with its own tyre model: vehicle.yaml's for the nominal one (if any), the
+  // result's for the calibrated one.
+  const OdometryParams nominal = log.vehicle.nominal_params();
+  const WheelStream nominal_wheels =
+      with_tyre_model(log, nominal, log.vehicle.tyre_model.value_or(TyreModel{}));
+  const WheelStream calibrated_wheels = with_tyre_model(log, calibrated, calibrated_tyre);
+  if (!calibrated_tyre.plain())
+    fmt::print(
+        "tyre model   the result's condition-dependent circumference (docs/tyre-model.md)\n");
+  const DriftValidation v = validate_drift(nominal_wheels, calibrated_wheels, reference, nominal,
+                                           calibrated, args.options);
   fmt::print("{} windows of {:.0f} s{}, dead-reckoned from the {} reference at their start:\n",
              v.nominal_statistics.windows, args.options.window_s,
              args.options.step_s > 0.0 ? fmt::format(" starting every {:g} s", args.options.step_s)

@@ -118,9 +118,24 @@ class BatchProblem {
   // back at zero.
   void set_tyre_model(bool extended) {
     tyre_extended_ = extended;
+    tyre_held_sigma_.fill(0.0);
     if (!extended) std::fill(params_.begin() + kTyreOffset, params_.end(), 0.0);
   }
   bool tyre_extended() const { return tyre_extended_; }
+  // Holds coefficient j at zero from the next solve on: the log cannot identify it (its sigma
+  // when it was free is kept for the report).
+  void hold_tyre_coefficient(int j, double sigma) {
+    tyre_held_sigma_[static_cast<std::size_t>(j)] = sigma;
+    params_[static_cast<std::size_t>(kTyreOffset + j)] = 0.0;
+  }
+  bool tyre_held(int j) const { return tyre_held_sigma_[static_cast<std::size_t>(j)] > 0.0; }
+  double tyre_held_sigma(int j) const { return tyre_held_sigma_[static_cast<std::size_t>(j)]; }
+  int free_tyre_coefficients() const {
+    if (!tyre_extended_) return 0;
+    int free = 0;
+    for (int j = 0; j < TyreModel::kCoefficients; ++j) free += tyre_held(j) ? 0 : 1;
+    return free;
+  }
   TyreModel tyre_model() const {
     return TyreModel::from(Eigen::Map<const TyreModel::Vector>(params_.data() + kTyreOffset));
   }
@@ -129,8 +144,7 @@ class BatchProblem {
   // as -log-likelihood, and the unknowns that the model choice adds.
   double information_criterion(const ceres::Solver::Summary& solver) const {
     const double residuals = static_cast<double>(problem_->NumResiduals());
-    const int extra = tyre_extended_ ? TyreModel::kCoefficients : 0;
-    return 2.0 * solver.final_cost + extra * std::log(residuals);
+    return 2.0 * solver.final_cost + free_tyre_coefficients() * std::log(residuals);
   }
 
   // The GNSS noise model from here on: every fix's white sigma scaled by `white_scale`, and a
@@ -504,8 +518,8 @@ class BatchProblem {
     hold(&gyro_bias_, batch_.estimate_gyro_bias);
     std::vector<int> held;
     if (!batch_.estimate_track_width) held.push_back(2);
-    for (int j = 0; j < TyreModel::kCoefficients && !tyre_extended_; ++j)
-      held.push_back(kTyreOffset + j);
+    for (int j = 0; j < TyreModel::kCoefficients; ++j)
+      if (!tyre_extended_ || tyre_held(j)) held.push_back(kTyreOffset + j);
     if (!held.empty())
       problem_->SetManifold(params_.data(), new ceres::SubsetManifold(batch::kParams, held));
   }
@@ -522,6 +536,7 @@ class BatchProblem {
   std::vector<DrivingState> states_;  // per wheel sample; empty with tyre_model none
   TyreModel::Vector regressor_rms_ = TyreModel::Vector::Zero();
   bool tyre_extended_ = false;
+  std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};  // > 0: held at zero
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
   struct GnssBlock {
@@ -594,8 +609,10 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                               "tyre_brake_s2pm", "tyre_turn_s2prad2"};
   for (int j = 0; j < TyreModel::kCoefficients; ++j) {
     const int p_index = kTyreOffset + j;
-    summary.parameters.push_back({tyre_names[j], p[p_index], sigma(u.params(p_index, p_index)),
-                                  batch.tyre_extended(), true, ""});
+    const double sigma_j =
+        batch.tyre_held(j) ? batch.tyre_held_sigma(j) : sigma(u.params(p_index, p_index));
+    summary.parameters.push_back(
+        {tyre_names[j], p[p_index], sigma_j, batch.tyre_extended(), true, ""});
     const double rms = batch.regressor_rms()(j);
     thresholds.push_back(rms > 0.0 ? b.max_sigma_tyre_effect / rms : 0.0);
     block_used.push_back(rms > 0.0);
@@ -612,6 +629,8 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
         std::isfinite(parameter.sigma) && parameter.sigma <= thresholds[i] && block_used[i];
     if (!parameter.identified) {
       parameter.verdict = unidentified_reason(parameter.name, coverage, block_used[i]);
+      const bool held_tyre = i >= 8 && batch.tyre_held(static_cast<int>(i) - 8);
+      if (held_tyre) parameter.verdict = "held at zero: " + parameter.verdict;
       problems.push_back(parameter.name + ": " + parameter.verdict);
     }
   }
@@ -764,6 +783,35 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
   }
 }
 
+// The extended model with what this log can identify: a coefficient whose sigma exceeds its
+// threshold is held at zero and the rest solved again (a drive at one speed cannot tell k_speed
+// from the circumference; left free, it would carry the circumference's sigma away with it).
+ceres::Solver::Summary solve_extended(BatchProblem& batch, const BatchOptions& options,
+                                      BatchSummary& summary) {
+  batch.set_tyre_model(true);
+  ceres::Solver::Summary solver = solve_relinearised(batch, options, summary);
+  for (int round = 0; round < TyreModel::kCoefficients && solver.IsSolutionUsable(); ++round) {
+    const auto uncertainty = batch.uncertainty();
+    bool held = false;
+    for (int j = 0; j < TyreModel::kCoefficients; ++j) {
+      if (batch.tyre_held(j)) continue;
+      const double variance =
+          uncertainty ? uncertainty->params(kTyreOffset + j, kTyreOffset + j) : -1.0;
+      const double sigma = variance >= 0.0 ? std::sqrt(variance) : 0.0;
+      const double rms = batch.regressor_rms()(j);
+      if (!(variance >= 0.0) || !(rms > 0.0) || sigma * rms > options.max_sigma_tyre_effect) {
+        batch.hold_tyre_coefficient(j, std::isfinite(sigma) && sigma > 0.0
+                                           ? sigma
+                                           : std::numeric_limits<double>::infinity());
+        held = true;
+      }
+    }
+    if (!held || batch.free_tyre_coefficients() == 0) break;
+    solver = solve_relinearised(batch, options, summary);
+  }
+  return solver;
+}
+
 // tyre_model auto: the extended model replaces the plain one where the information criterion
 // says that the log supports its coefficients.
 void choose_tyre_model(BatchProblem& batch, const BatchOptions& options, double max_change,
@@ -772,8 +820,7 @@ void choose_tyre_model(BatchProblem& batch, const BatchOptions& options, double 
   if (!solver.IsSolutionUsable()) return;
   TyreModelSelection& selection = summary.tyre_selection;
   selection.plain_bic = batch.information_criterion(solver);
-  batch.set_tyre_model(true);
-  ceres::Solver::Summary extended = solve_relinearised(batch, options, summary);
+  ceres::Solver::Summary extended = solve_extended(batch, options, summary);
   selection.extended_bic = extended.IsSolutionUsable() ? batch.information_criterion(extended)
                                                        : std::numeric_limits<double>::infinity();
   selection.compared = true;
@@ -787,7 +834,8 @@ void choose_tyre_model(BatchProblem& batch, const BatchOptions& options, double 
                         std::abs(p[0] / summary.nominal.circumference_rl_m - 1.0) <= max_change &&
                         std::abs(p[1] / summary.nominal.circumference_rr_m - 1.0) <= max_change;
   selection.physical = physical;
-  if (physical && selection.extended_bic < selection.plain_bic) {
+  if (physical && batch.free_tyre_coefficients() > 0 &&
+      selection.extended_bic < selection.plain_bic) {
     solver = extended;
     return;
   }
@@ -803,8 +851,9 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   BatchSummary summary;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
   BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
-  batch.set_tyre_model(options.tyre_model == TyreModelChoice::kExtended);
-  ceres::Solver::Summary solver = solve_relinearised(batch, options, summary);
+  ceres::Solver::Summary solver = options.tyre_model == TyreModelChoice::kExtended
+                                      ? solve_extended(batch, options, summary)
+                                      : solve_relinearised(batch, options, summary);
   if (options.tyre_model == TyreModelChoice::kAuto)
     choose_tyre_model(batch, options, common.max_relative_change, summary, solver);
   adapt_gnss_noise(batch, options, common, summary, solver);

@@ -116,7 +116,13 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
         summary.distance_m, options.min_distance_m));
   }
   decide_difference_identifiability(options, summary);
-  summary.before = evaluator_.evaluate(summary.nominal);
+  // The nominal vehicle as vehicle.yaml states it, with its tyre model where it has one.
+  const TyreModel nominal_tyre = log.vehicle.tyre_model.value_or(TyreModel{});
+  summary.before =
+      nominal_tyre.plain()
+          ? evaluator_.evaluate(summary.nominal)
+          : evaluator_.evaluate(summary.nominal,
+                                with_tyre_model(this->log(), summary.nominal, nominal_tyre));
 }
 
 void CalibrationRun::finish(CalibrationSummary& summary) {

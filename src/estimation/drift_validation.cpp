@@ -68,6 +68,15 @@ std::string DriftValidationOptions::validate() const {
 DriftValidation validate_drift(const WheelStream& wheels, const ReferenceTrajectory& reference,
                                const OdometryParams& nominal, const OdometryParams& calibrated,
                                const DriftValidationOptions& options) {
+  return validate_drift(wheels, wheels, reference, nominal, calibrated, options);
+}
+
+DriftValidation validate_drift(const WheelStream& wheels, const WheelStream& calibrated_wheels,
+                               const ReferenceTrajectory& reference, const OdometryParams& nominal,
+                               const OdometryParams& calibrated,
+                               const DriftValidationOptions& options) {
+  if (calibrated_wheels.size() != wheels.size())
+    throw Error("validate_drift: both wheel streams must hold the same samples");
   if (const std::string problem = options.validate(); !problem.empty())
     throw Error("invalid validation options: " + problem);
   DriftValidation result;
@@ -93,7 +102,8 @@ DriftValidation validate_drift(const WheelStream& wheels, const ReferenceTraject
     const WindowDrift with_nominal = window_drift(wheels, reference, first, last, nominal);
     if (with_nominal.distance_m >= options.min_window_distance_m) {
       result.nominal.push_back(with_nominal);
-      result.calibrated.push_back(window_drift(wheels, reference, first, last, calibrated));
+      result.calibrated.push_back(
+          window_drift(calibrated_wheels, reference, first, last, calibrated));
     }
     first = next_start(first, last);
   }

@@ -16,8 +16,9 @@
 namespace odocal {
 
 void write_calibrated_vehicle(const VehicleConfig& nominal, const OdometryParams& calibrated,
-                              const std::filesystem::path& path) {
+                              const std::filesystem::path& path, const TyreModel& tyre) {
   VehicleConfig vehicle = nominal;
+  vehicle.tyre_model = tyre.plain() ? std::nullopt : std::optional<TyreModel>(tyre);
   vehicle.circumference_rl_m = calibrated.circumference_rl_m;
   vehicle.circumference_rr_m = calibrated.circumference_rr_m;
   vehicle.track_width_m = calibrated.track_width_m;
@@ -26,7 +27,7 @@ void write_calibrated_vehicle(const VehicleConfig& nominal, const OdometryParams
 
 void write_ros2_diff_drive_parameters(const VehicleConfig& nominal,
                                       const OdometryParams& calibrated,
-                                      const std::filesystem::path& path) {
+                                      const std::filesystem::path& path, const TyreModel& tyre) {
   const double radius_m =
       (nominal.circumference_rl_m + nominal.circumference_rr_m) / (4.0 * std::numbers::pi);
   const double nominal_circumference = 2.0 * std::numbers::pi * radius_m;
@@ -34,6 +35,7 @@ void write_ros2_diff_drive_parameters(const VehicleConfig& nominal,
     out.print(
         "# ROS 2 diff_drive_controller parameters from odocal's calibration: the nominal geometry\n"
         "# and the multipliers that give the calibrated rear wheels and track.\n"
+        "{}"
         "diff_drive_controller:\n"
         "  ros__parameters:\n"
         "    wheel_separation: {:.6f}\n"
@@ -41,13 +43,21 @@ void write_ros2_diff_drive_parameters(const VehicleConfig& nominal,
         "    wheel_separation_multiplier: {:.8f}\n"
         "    left_wheel_radius_multiplier: {:.8f}\n"
         "    right_wheel_radius_multiplier: {:.8f}\n",
+        tyre.plain() ? ""
+                     : "# The calibration's tyre model (a circumference that follows speed, "
+                       "acceleration and\n# turns: vehicle.yaml tyre_model) cannot be carried by "
+                       "diff_drive_controller,\n# whose radii are constant: these are the "
+                       "circumferences at rest.\n",
         nominal.track_width_m, radius_m, calibrated.track_width_m / nominal.track_width_m,
         calibrated.circumference_rl_m / nominal_circumference,
         calibrated.circumference_rr_m / nominal_circumference);
   });
 }
 
-OdometryParams read_calibrated_parameters(const std::filesystem::path& json_path) {
+namespace {
+
+// The result JSON, checked to be an object of a usable calibration.
+nlohmann::json calibration_json(const std::filesystem::path& json_path) {
   const std::string text = read_input_file(json_path);
   nlohmann::json json;
   try {
@@ -61,6 +71,13 @@ OdometryParams read_calibrated_parameters(const std::filesystem::path& json_path
     throw InputError({json_path.string(), 0, "usable"},
                      "this calibration is not usable: " + json.value("message", std::string()));
   }
+  return json;
+}
+
+}  // namespace
+
+OdometryParams read_calibrated_parameters(const std::filesystem::path& json_path) {
+  const nlohmann::json json = calibration_json(json_path);
   const auto value = [&](const char* key, PhysicalRange range) {
     if (!json.contains(key) || !json[key].is_number() || !range.contains(json[key].get<double>())) {
       throw InputError({json_path.string(), 0, key},
@@ -70,6 +87,38 @@ OdometryParams read_calibrated_parameters(const std::filesystem::path& json_path
   };
   return {value("circumference_rl_m", kCircumferenceM),
           value("circumference_rr_m", kCircumferenceM), value("track_width_m", kTrackWidthM)};
+}
+
+TyreModel read_calibrated_tyre_model(const std::filesystem::path& json_path) {
+  const nlohmann::json json = calibration_json(json_path);
+  TyreModel model;
+  if (!json.contains("parameters") || !json["parameters"].is_array()) return model;
+  struct Field {
+    const char* name;
+    double TyreModel::*member;
+    PhysicalRange range;
+  };
+  const Field fields[] = {
+      {"tyre_speed_s2pm2", &TyreModel::k_speed_s2pm2, kTyreSpeedCoefficient},
+      {"tyre_lateral_s2pm", &TyreModel::k_lateral_s2pm, kTyreLateralCoefficient},
+      {"tyre_drive_s2pm", &TyreModel::k_drive_s2pm, kTyreSlipCoefficient},
+      {"tyre_brake_s2pm", &TyreModel::k_brake_s2pm, kTyreSlipCoefficient},
+      {"tyre_turn_s2prad2", &TyreModel::k_turn_s2prad2, kTyreTurnCoefficient}};
+  for (const nlohmann::json& p : json["parameters"]) {
+    if (!p.is_object() || !p.contains("name") || !p["name"].is_string()) continue;
+    if (!p.value("estimated", false)) continue;
+    for (const Field& field : fields) {
+      if (p["name"] != field.name) continue;
+      if (!p.contains("value") || !p["value"].is_number() ||
+          !field.range.contains(p["value"].get<double>())) {
+        throw InputError(
+            {json_path.string(), 0, std::string("parameters.") + field.name},
+            fmt::format("expected a number from {} to {}", field.range.min, field.range.max));
+      }
+      model.*(field.member) = p["value"].get<double>();
+    }
+  }
+  return model;
 }
 
 }  // namespace odocal

@@ -62,6 +62,19 @@ VehicleConfig parse_vehicle_config(YamlMap& map) {
   optional("wheelbase_m", vehicle.wheelbase_m, kWheelbaseM);
   optional("circumference_fl_m", vehicle.circumference_fl_m, kCircumferenceM);
   optional("circumference_fr_m", vehicle.circumference_fr_m, kCircumferenceM);
+  if (auto tyre = map.map("tyre_model")) {
+    TyreModel model;
+    const auto read = [&](const char* key, double& value, PhysicalRange range) {
+      tyre->read(key, value, range.min, range.max);
+    };
+    read("k_speed_s2pm2", model.k_speed_s2pm2, kTyreSpeedCoefficient);
+    read("k_lateral_s2pm", model.k_lateral_s2pm, kTyreLateralCoefficient);
+    read("k_drive_s2pm", model.k_drive_s2pm, kTyreSlipCoefficient);
+    read("k_brake_s2pm", model.k_brake_s2pm, kTyreSlipCoefficient);
+    read("k_turn_s2prad2", model.k_turn_s2prad2, kTyreTurnCoefficient);
+    tyre->reject_unknown_keys();
+    vehicle.tyre_model = model;
+  }
   map.reject_unknown_keys();
   return vehicle;
 }
@@ -92,6 +105,16 @@ void write_vehicle_config(const VehicleConfig& vehicle, const std::filesystem::p
   }
   if (vehicle.circumference_fr_m) {
     out << YAML::Key << "circumference_fr_m" << YAML::Value << *vehicle.circumference_fr_m;
+  }
+  if (vehicle.tyre_model) {
+    const TyreModel& m = *vehicle.tyre_model;
+    out << YAML::Key << "tyre_model" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "k_speed_s2pm2" << YAML::Value << m.k_speed_s2pm2;
+    out << YAML::Key << "k_lateral_s2pm" << YAML::Value << m.k_lateral_s2pm;
+    out << YAML::Key << "k_drive_s2pm" << YAML::Value << m.k_drive_s2pm;
+    out << YAML::Key << "k_brake_s2pm" << YAML::Value << m.k_brake_s2pm;
+    out << YAML::Key << "k_turn_s2prad2" << YAML::Value << m.k_turn_s2prad2;
+    out << YAML::EndMap;
   }
   out << YAML::EndMap;
   write_output_file(path, std::string(out.c_str()) + "\n");

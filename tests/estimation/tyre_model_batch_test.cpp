@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "odocal/estimation/batch_calibration.hpp"
+#include "odocal/estimation/drift_validation.hpp"
 #include "odocal/estimation/driving_state.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
@@ -75,6 +76,15 @@ TEST(TyreModelBatch, RecoversKnownCoefficientsWhereThePlainModelIsBiased) {
   EXPECT_GT(plain_error, 3.0 * plain.sigma_rl_m());
   EXPECT_LT(extended_error, plain_error);
   EXPECT_LT(extended.after.mean_position_m, plain.after.mean_position_m);
+
+  // Held out: 60 s windows dead-reckoned with each calibration, the extended one through its
+  // tyre model.
+  const ReferenceTrajectory reference = compute_reference(log, CalibrationOptions{}.reference);
+  const DriftValidation drift =
+      validate_drift(log.wheels, with_tyre_model(log, extended.estimate, extended.tyre_model),
+                     reference, plain.estimate, extended.estimate);
+  EXPECT_LT(drift.calibrated_statistics.median_drift_percent,
+            0.5 * drift.nominal_statistics.median_drift_percent);
 
   BatchOptions auto_options;
   auto_options.tyre_model = TyreModelChoice::kAuto;

@@ -52,6 +52,46 @@ TEST(CalibrationExport, UpdatedVehicleYamlKeepsEveryOtherKey) {
   EXPECT_EQ(*back.ticks_per_rev, 96);
 }
 
+TEST(CalibrationExport, TyreModelGoesToVehicleYamlAndIsSaidMissingInRos2) {
+  testing::TempLogDir dir;
+  const VehicleConfig nominal = nominal_vehicle();
+  const OdometryParams calibrated{1.9546, 1.9578, 1.6};
+  const TyreModel tyre{-3e-6, 5e-5, 0.0114, 0.0067, -0.04};
+  write_calibrated_vehicle(nominal, calibrated, dir.file("vehicle-new.yaml"), tyre);
+  const VehicleConfig back = read_vehicle_config(dir.file("vehicle-new.yaml"));
+  ASSERT_TRUE(back.tyre_model.has_value());
+  EXPECT_EQ(back.tyre_model->coefficients(), tyre.coefficients());
+  // A plain calibration drops an earlier model: its circumferences mean something else.
+  write_calibrated_vehicle(back, calibrated, dir.file("vehicle-plain.yaml"));
+  EXPECT_FALSE(read_vehicle_config(dir.file("vehicle-plain.yaml")).tyre_model.has_value());
+  write_ros2_diff_drive_parameters(nominal, calibrated, dir.file("ros2.yaml"), tyre);
+  const std::string text = testing::read_text_file(dir.file("ros2.yaml"));
+  EXPECT_NE(text.find("cannot be carried by diff_drive_controller"), std::string::npos) << text;
+  write_ros2_diff_drive_parameters(nominal, calibrated, dir.file("ros2-plain.yaml"));
+  EXPECT_EQ(testing::read_text_file(dir.file("ros2-plain.yaml")).find("cannot be carried"),
+            std::string::npos);
+}
+
+TEST(CalibrationExport, ResultJsonTyreModelIsItsEstimatedCoefficients) {
+  testing::TempLogDir dir;
+  std::ofstream(dir.file("result.json")) << R"({"parameters": [
+      {"name": "tyre_drive_s2pm", "value": 0.011, "estimated": true},
+      {"name": "tyre_turn_s2prad2", "value": -0.04, "estimated": true},
+      {"name": "tyre_speed_s2pm2", "value": 5.0, "estimated": false}]})";
+  const TyreModel model = read_calibrated_tyre_model(dir.file("result.json"));
+  EXPECT_EQ(model.k_drive_s2pm, 0.011);
+  EXPECT_EQ(model.k_turn_s2prad2, -0.04);
+  EXPECT_EQ(model.k_speed_s2pm2, 0.0);  // not estimated: held at zero
+  std::ofstream(dir.file("absurd.json"))
+      << R"({"parameters": [{"name": "tyre_brake_s2pm", "value": 7, "estimated": true}]})";
+  try {
+    read_calibrated_tyre_model(dir.file("absurd.json"));
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().field, "parameters.tyre_brake_s2pm");
+  }
+}
+
 TEST(CalibrationExport, ResultJsonErrorsNameTheField) {
   testing::TempLogDir dir;
   std::ofstream(dir.file("result.json"))

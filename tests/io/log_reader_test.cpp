@@ -348,6 +348,7 @@ TEST(VehicleConfigIo, WriteThenReadRoundTrips) {
   vehicle.counter_bits = 16;
   vehicle.wheelbase_m = 2.7;
   vehicle.vehicle_id = "van-07.b";
+  vehicle.tyre_model = TyreModel{-3e-6, 5e-5, 0.0114, 0.0067, -0.04};
   write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
   const VehicleConfig read = read_vehicle_config(dir.file("vehicle.yaml"));
   EXPECT_EQ(read.vehicle_id, "van-07.b");
@@ -357,6 +358,16 @@ TEST(VehicleConfigIo, WriteThenReadRoundTrips) {
   EXPECT_EQ(read.counter_bits, 16);
   EXPECT_EQ(read.wheelbase_m, 2.7);
   EXPECT_FALSE(read.circumference_fl_m.has_value());
+  ASSERT_TRUE(read.tyre_model.has_value());
+  EXPECT_EQ(read.tyre_model->coefficients(), vehicle.tyre_model->coefficients());
+}
+
+TEST(LogReaderRejects, TyreCoefficientBeyondAnyTyre) {
+  const TempLogDir dir;
+  dir.write("vehicle.yaml",
+            "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\n"
+            "tyre_model:\n  k_drive_s2pm: 0.01\n  k_lateral_s2pm: 3\n");
+  expect_input_error(dir, {"vehicle.yaml", 6, "tyre_model.k_lateral_s2pm", "-0.01"});
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "odocal/model/odometry_model.hpp"
+#include "odocal/model/tyre_model.hpp"
 #include "odocal/options/enum_names.hpp"
 
 namespace odocal {
@@ -27,6 +28,9 @@ struct VehicleConfig {
   std::optional<double> circumference_fl_m;
   std::optional<double> circumference_fr_m;
   std::optional<std::string> vehicle_id;  // which vehicle of a fleet (letters, digits, . _ -)
+  // A calibrated condition-dependent circumference (docs/tyre-model.md); dead reckoning applies
+  // it. Absent: the plain model.
+  std::optional<TyreModel> tyre_model;
 
   OdometryParams nominal_params() const {
     return {circumference_rl_m, circumference_rr_m, track_width_m};

@@ -49,4 +49,12 @@ DriftValidation validate_drift(const WheelStream& wheels, const ReferenceTraject
                                const OdometryParams& nominal, const OdometryParams& calibrated,
                                const DriftValidationOptions& options = {});
 
+// The same where each parameter set dead-reckons its own increments of the same samples (a tyre
+// model applied: driving_state.hpp's with_tyre_model).
+DriftValidation validate_drift(const WheelStream& nominal_wheels,
+                               const WheelStream& calibrated_wheels,
+                               const ReferenceTrajectory& reference, const OdometryParams& nominal,
+                               const OdometryParams& calibrated,
+                               const DriftValidationOptions& options = {});
+
 }  // namespace odocal
