@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 #include "batch_observability.hpp"
 #include "batch_residuals.hpp"
@@ -85,7 +86,7 @@ class BatchProblem {
       poses_.push_back({pose.x(), pose.y(), pose.z()});
     }
     params_ = {nominal.circumference_rl_m, nominal.circumference_rr_m, nominal.track_width_m};
-    if (batch_.tyre_model != TyreModelChoice::kNone) {
+    if (batch_.tyre_model != TyreModelChoice::kNone || gentle_limits()) {
       // The driving state from the log at the nominal parameters: a per mille off in speed
       // moves a coefficient by as much, far inside its sigma.
       states_ = driving_states(log, nominal);
@@ -96,6 +97,7 @@ class BatchProblem {
       const double n = static_cast<double>(states_.size() - reference.first_wheel_index);
       regressor_rms_ = (sum / std::max(n, 1.0)).cwiseSqrt();
     }
+    mark_gentle_segments();
     gm_sigma_m_ = batch_.gnss_gauss_markov_sigma_m;
     const double gnss_step_s = median_step_s(log.gnss.t_s);
     if (gnss_step_s > 0.0)
@@ -354,6 +356,7 @@ class BatchProblem {
     at.motion.J_delta_first_increment =
         (1.0 - w) * seg.J_delta_first_increment[s] + w * seg.J_delta_first_increment[s + 1];
     at.motion.params_lin = params_lin_;
+    if (rough_segment_[static_cast<std::size_t>(segment)] != 0) at.motion.J_delta_params.setZero();
     at.velocity = (seg.delta[s + 1].head<2>() - seg.delta[s].head<2>()) / dt;
     return at;
   }
@@ -361,10 +364,45 @@ class BatchProblem {
   // A segment that is a wheel gap: no odometry links its keyframes (GNSS and the gyro do).
   bool gap_segment(std::size_t i) const { return log_.wheels.breaks_at(keyframes_[i + 1]); }
 
+  bool gentle_limits() const {
+    return batch_.gentle_max_speed_mps > 0.0 || batch_.gentle_max_longitudinal_mps2 > 0.0 ||
+           batch_.gentle_max_lateral_mps2 > 0.0;
+  }
+  // An interval whose driving exceeds a gentle limit: no odometry residual, and the fixes inside
+  // it use the wheels only to interpolate from the keyframe (no parameter derivative).
+  void mark_gentle_segments() {
+    rough_segment_.assign(keyframes_.size(), 0);
+    if (!gentle_limits()) return;
+    const auto over = [](double value, double limit) {
+      return limit > 0.0 && std::abs(value) > limit;
+    };
+    for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
+      for (std::size_t k = keyframes_[i] + 1; k <= keyframes_[i + 1]; ++k) {
+        const DrivingState& s = states_[k];
+        if (over(s.speed_mps, batch_.gentle_max_speed_mps) ||
+            over(s.longitudinal_mps2, batch_.gentle_max_longitudinal_mps2) ||
+            over(s.lateral_mps2, batch_.gentle_max_lateral_mps2)) {
+          rough_segment_[i] = 1;
+          break;
+        }
+      }
+    }
+  }
+
+ public:
+  // Keyframe intervals with odometry in the fit (not a gap, inside the gentle limits), of all.
+  std::pair<std::size_t, std::size_t> gentle_intervals() const {
+    std::size_t used = 0;
+    for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i)
+      used += (!gap_segment(i) && rough_segment_[i] == 0) ? 1 : 0;
+    return {used, keyframes_.size() - 1};
+  }
+
+ private:
   void add_odometry() {
     odometry_blocks_.clear();
     for (std::size_t i = 0; i < segments_.size(); ++i) {
-      if (gap_segment(i)) continue;
+      if (gap_segment(i) || rough_segment_[i] != 0) continue;
       const PreintegratedSegment& seg = segments_[i];
       // A tiny floor keeps a standing-still segment's information finite.
       const Eigen::Matrix3d covariance =
@@ -533,7 +571,8 @@ class BatchProblem {
   WheelNoise noise_;
   double quantisation_sigma_rev_ = 0.0;
   batch::ParamsVector params_lin_ = batch::ParamsVector::Zero();
-  std::vector<DrivingState> states_;  // per wheel sample; empty with tyre_model none
+  std::vector<DrivingState> states_;  // per wheel sample; empty without tyre model and limits
+  std::vector<std::uint8_t> rough_segment_;  // per interval: outside the gentle limits
   TyreModel::Vector regressor_rms_ = TyreModel::Vector::Zero();
   bool tyre_extended_ = false;
   std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};  // > 0: held at zero
@@ -661,6 +700,9 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
         "(docs/tyre-model.md)";
   }
   summary.solver_report = solver.BriefReport();
+  summary.gentle_limits = b.gentle_max_speed_mps > 0.0 || b.gentle_max_longitudinal_mps2 > 0.0 ||
+                          b.gentle_max_lateral_mps2 > 0.0;
+  std::tie(summary.odometry_intervals_used, summary.odometry_intervals) = batch.gentle_intervals();
   summary.keyframes = batch.keyframes();
   summary.gnss_fixes = batch.gnss_residuals();
 
@@ -898,6 +940,13 @@ std::string BatchSummary::full_report() const {
   } else if (g.residual_sigma_m > 0.0) {
     text += fmt::format("{:<13}residuals {:.3g} m RMS, as configured ({:.3g} m)\n", "gnss noise",
                         g.residual_sigma_m, g.configured_sigma_m);
+  }
+  if (gentle_limits) {
+    text += fmt::format(
+        "{:<13}{} of {} keyframe intervals inside the limits feed the odometry ({:.0f} %)\n",
+        "gentle", odometry_intervals_used, odometry_intervals,
+        100.0 * static_cast<double>(odometry_intervals_used) /
+            static_cast<double>(std::max<std::size_t>(odometry_intervals, 1)));
   }
   if (tyre_selection.compared) {
     const bool extended = !tyre_model.plain();

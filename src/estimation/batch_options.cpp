@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 27> kFields{{
+  static const std::array<OptionField<O>, 30> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -38,6 +38,15 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"estimate_lever_arm", "", 0, 0, "also estimate the GNSS antenna's lever arm",
        &O::estimate_lever_arm},
       {"estimate_latency", "", 0, 0, "also estimate the GNSS latency", &O::estimate_latency},
+      {"gentle_max_speed_mps", "m/s", 0.0, 1e3,
+       "fit the odometry only where the speed stays below this (0: no limit)",
+       &O::gentle_max_speed_mps},
+      {"gentle_max_longitudinal_mps2", "m/s^2", 0.0, 1e3,
+       "... and the longitudinal acceleration below this in magnitude (0: no limit)",
+       &O::gentle_max_longitudinal_mps2},
+      {"gentle_max_lateral_mps2", "m/s^2", 0.0, 1e3,
+       "... and the lateral acceleration below this in magnitude (0: no limit)",
+       &O::gentle_max_lateral_mps2},
       {"tyre_model", "", 0, 0,
        "rolling circumference: plain (none), following speed, lateral and longitudinal "
        "acceleration (extended), or chosen by BIC (auto)",

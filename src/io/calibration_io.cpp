@@ -143,6 +143,10 @@ void add_details(json& out, const BatchSummary& s) {
                              {"extended_physical", s.tyre_selection.physical},
                              {"chosen", s.tyre_model.plain() ? "none" : "extended"}};
   }
+  if (s.gentle_limits) {
+    out["gentle_segments"] = {{"odometry_intervals_used", s.odometry_intervals_used},
+                              {"odometry_intervals", s.odometry_intervals}};
+  }
   out["solver_report"] = s.solver_report;
   out["keyframes"] = s.keyframes;
   out["gnss_fixes"] = s.gnss_fixes;

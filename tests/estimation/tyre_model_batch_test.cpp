@@ -102,5 +102,30 @@ TEST(TyreModelBatch, AutoKeepsThePlainModelWhereTheLogNeedsNoMore) {
   EXPECT_GT(chosen.tyre_selection.extended_bic, chosen.tyre_selection.plain_bic);
 }
 
+TEST(TyreModelBatch, GentleSegmentsFitOnlyTheOdometryInsideTheLimits) {
+  // Ideal drive with worn tyres: cutting the rough intervals costs information (a wider sigma)
+  // but must not bias the estimate.
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.ideal = true;
+  scenario.gnss.sigma_m = 0.5;
+  scenario.vehicle.wear_rl_mm = 1.5;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log log = simulated_log(drive);
+  const BatchSummary all = calibrate_batch(log);
+  BatchOptions gentle;
+  gentle.gentle_max_longitudinal_mps2 = 1.0;
+  gentle.gentle_max_lateral_mps2 = 2.0;
+  const BatchSummary part = calibrate_batch(log, gentle);
+  EXPECT_TRUE(part.gentle_limits);
+  EXPECT_FALSE(all.gentle_limits);
+  EXPECT_EQ(all.odometry_intervals_used, all.odometry_intervals);
+  EXPECT_LT(part.odometry_intervals_used, part.odometry_intervals);
+  EXPECT_GT(part.odometry_intervals_used, 0u);
+  EXPECT_GT(part.sigma_rl_m(), all.sigma_rl_m());
+  EXPECT_LT(std::abs(part.estimate.circumference_rl_m - drive.true_params.circumference_rl_m),
+            3.0 * part.sigma_rl_m());
+  EXPECT_NE(part.full_report().find("inside the limits feed the odometry"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace odocal

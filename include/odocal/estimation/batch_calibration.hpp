@@ -71,6 +71,11 @@ struct BatchSummary : CalibrationSummary {
   // driving state).
   ModelAdequacy model_adequacy;
   TyreModelSelection tyre_selection;
+  // Gentle segments (BatchOptions::gentle_max_*): keyframe intervals whose odometry is in the fit,
+  // of all; equal without limits (gaps aside).
+  bool gentle_limits{};
+  std::size_t odometry_intervals_used{};
+  std::size_t odometry_intervals{};
 
   std::string full_report() const;
 };

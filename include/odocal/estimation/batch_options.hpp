@@ -58,6 +58,12 @@ struct BatchOptions {
   bool estimate_heading_bias = false;
   bool estimate_lever_arm = false;
   bool estimate_latency = false;
+  // Gentle segments: only keyframe intervals whose every wheel sample stays below these limits
+  // feed the odometry residuals (0: no limit); for logs whose tyre coefficients cannot be
+  // identified (docs/tyre-model.md). GNSS and the gyro still place the poses everywhere.
+  double gentle_max_speed_mps = 0.0;
+  double gentle_max_longitudinal_mps2 = 0.0;
+  double gentle_max_lateral_mps2 = 0.0;
   // none by default until auto is validated on fleets and robots (docs/tyre-model.md).
   TyreModelChoice tyre_model = TyreModelChoice::kNone;
   int max_solver_iterations = 100;
