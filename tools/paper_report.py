@@ -323,8 +323,9 @@ def reading(report):
             f"different wrong values. In the parking garage (Table 1, ≤ 4 m/s) the same effects "
             f"cost metres, not kilometres. The paper's CarMaker runs did not show this, so "
             f"its tyre model's radius must depend far less on load than ours (0.4 mm/kN). A "
-            f"calibration for fast driving needs a load (lateral acceleration) term in the "
-            f"model, or must use only slow, gentle segments.")
+            f"calibration for fast driving needs a circumference that follows the driving "
+            f"state: the batch's `tyre_model: extended` (docs/tyre-model.md, with a 10-seed "
+            f"benchmark of rear- and front-wheel drive from bench/tyre_model_bench.py).")
     report.write()
 
 
