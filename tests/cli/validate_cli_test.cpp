@@ -66,5 +66,35 @@ TEST(ValidateCli, CalibrationOnOneDriveCutsDriftOnAnother) {
   EXPECT_NE(bad.err.find("ros2.yaml"), std::string::npos) << bad.err;
 }
 
+TEST(ValidateCli, TyreModelTravelsFromCalibrateToVehicleYamlDeadreckonAndValidate) {
+  // A realistic (slipping, load-sensitive) lap of a rear-driven car: the extended tyre model's
+  // coefficients go into vehicle.yaml, deadreckon applies them, the ROS 2 file says it cannot.
+  testing::TempLogDir dir;
+  const std::string log = dir.file("circuit");
+  ASSERT_EQ(run_cli("simulate --scenario circuit --laps 1 --out " + log).status, 0);
+  dir.write("extended.yaml", "batch: {tyre_model: extended, max_sigma_circumference_m: 0.01}\n");
+  const auto calibrate =
+      run_cli("calibrate " + log + " --method batch --config " + dir.file("extended.yaml") +
+              " --json " + dir.file("result.json") + " --vehicle-out " + dir.file("vehicle.yaml") +
+              " --ros2-out " + dir.file("ros2.yaml"));
+  ASSERT_EQ(calibrate.status, 0) << calibrate.out << calibrate.err;
+  const std::string vehicle = read_text_file(dir.file("vehicle.yaml"));
+  EXPECT_NE(vehicle.find("tyre_model:\n  k_speed_s2pm2: "), std::string::npos) << vehicle;
+  EXPECT_NE(read_text_file(dir.file("ros2.yaml")).find("cannot be carried"), std::string::npos);
+
+  dir.write("circuit/vehicle.yaml", vehicle);
+  const auto with_model = run_cli("deadreckon " + log);
+  ASSERT_EQ(with_model.status, 0) << with_model.err;
+  EXPECT_NE(with_model.out.find("with vehicle.yaml's tyre_model"), std::string::npos);
+  const auto plain = run_cli("deadreckon " + log + " --plain");
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  EXPECT_EQ(plain.out.find("tyre_model"), std::string::npos);
+  EXPECT_NE(plain.out, with_model.out);
+
+  const auto validate = run_cli("validate " + log + " --params " + dir.file("result.json"));
+  ASSERT_EQ(validate.status, 0) << validate.err;
+  EXPECT_NE(validate.out.find("tyre model   the result's"), std::string::npos) << validate.out;
+}
+
 }  // namespace
 }  // namespace odocal
