@@ -848,8 +848,9 @@ ceres::Solver::Summary solve_extended(BatchProblem& batch, const BatchOptions& o
         held = true;
       }
     }
-    if (!held || batch.free_tyre_coefficients() == 0) break;
-    solver = solve_relinearised(batch, options, summary);
+    if (!held) break;
+    solver = solve_relinearised(batch, options, summary);  // without what was just held
+    if (batch.free_tyre_coefficients() == 0) break;
   }
   return solver;
 }
