@@ -36,7 +36,8 @@ std::string likely_cause(const ResidualDependence& d) {
   if (d.quantity == "lateral acceleration")
     return "the rolling radius changes with load (load transfer in turns)";
   if (d.quantity == "longitudinal acceleration")
-    return "the driven or braked wheels slip (drive and brake slip)";
+    return "the driven or braked wheels slip (drive and brake slip), or the wheel speeds lag the "
+           "other sensors (a latency makes an along-track error of -latency x a_x)";
   if (d.quantity == "curvature")
     return "the track width is off, or the rolling radius changes in turns (estimate_track_width "
            "tells which)";
