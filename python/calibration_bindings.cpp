@@ -96,6 +96,7 @@ void bind_calibration(py::module_& m) {
           [](const CalibrationResult& r) { return std::string(enum_name(r.core().termination)); })
       .def_property_readonly("usable", [](const CalibrationResult& r) { return r.core().usable(); })
       .def_property_readonly("message", [](const CalibrationResult& r) { return r.core().message; })
+      .def_property_readonly("note", [](const CalibrationResult& r) { return r.core().note; })
       .def("brief_report",
            [](const CalibrationResult& r) {
              return std::visit([](const auto& s) { return s.brief_report(); }, r.summary);

@@ -52,6 +52,7 @@ std::string report_ending(const CalibrationSummary& s) {
   text += "dead reckoning of the whole log against the reference:\n";
   text += errors_line("  before", s.before);
   text += errors_line("  after", s.after);
+  if (s.usable() && !s.note.empty()) text += fmt::format("{:<13}{}\n", "note", s.note);
   text += s.usable() ? fmt::format("{:<13}usable ({})\n", "outcome", enum_name(s.termination))
                      : fmt::format("{:<13}NOT USABLE ({}): {}\n", "outcome",
                                    enum_name(s.termination), s.message);

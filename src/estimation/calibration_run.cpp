@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "input_mistake_hint.hpp"
 #include "odocal/error.hpp"
@@ -47,6 +49,31 @@ double dead_reckoning_score(const DeadReckoningSummary& s) {
   return s.mean_position_m + 10.0 * s.mean_heading_rad;
 }
 
+// The squared Mahalanobis distance of the nominal circumferences from the estimate under its
+// covariance; infinite when the estimate changed more than the circumferences (track width, tyre
+// model) or moved along a direction its covariance says it cannot (a rank-deficient covariance:
+// the ratio kept at nominal).
+double nominal_distance_squared(const CalibrationSummary& s) {
+  if (s.estimate.track_width_m != s.nominal.track_width_m || !s.tyre_model.plain())
+    return std::numeric_limits<double>::infinity();
+  const Eigen::Vector2d difference(s.nominal.circumference_rl_m - s.estimate.circumference_rl_m,
+                                   s.nominal.circumference_rr_m - s.estimate.circumference_rr_m);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(s.covariance);
+  const double largest = eigen.eigenvalues().maxCoeff();
+  if (!(largest > 0.0)) return std::numeric_limits<double>::infinity();
+  double distance = 0.0;
+  for (int i = 0; i < 2; ++i) {
+    const double along = eigen.eigenvectors().col(i).dot(difference);
+    const double variance = eigen.eigenvalues()(i);
+    if (variance > 1e-12 * largest) {
+      distance += along * along / variance;
+    } else if (std::abs(along) > 1e-9) {  // a nanometre: further than the estimate can move
+      return std::numeric_limits<double>::infinity();
+    }
+  }
+  return distance;
+}
+
 }  // namespace
 
 void check_plausibility(const Log& log, const CalibrationOptions& options,
@@ -78,16 +105,27 @@ void check_plausibility(const Log& log, const CalibrationOptions& options,
   const double before = dead_reckoning_score(summary.before);
   const double after = dead_reckoning_score(summary.after);
   constexpr double kNoiseFloorM = 0.5;
-  if (after > before * (1.0 + options.max_dead_reckoning_increase) + kNoiseFloorM) {
-    summary.termination = Termination::kImplausible;
-    summary.message = fmt::format(
-        "the estimate dead-reckons the log worse than the nominal parameters (mean position error "
-        "{:.2f} m -> {:.2f} m, mean heading error {:.2f} -> {:.2f} deg): the model does not fit "
-        "this log; look for gaps, a clock offset between wheels and GNSS, or wrong signs",
-        summary.before.mean_position_m, summary.after.mean_position_m,
-        deg_from_rad(summary.before.mean_heading_rad),
-        deg_from_rad(summary.after.mean_heading_rad));
+  if (after <= before * (1.0 + options.max_dead_reckoning_increase) + kNoiseFloorM) return;
+  // Worse dead reckoning is no sign of a mistake when the nominal circumferences are inside the
+  // estimate's 3-sigma region: the log cannot tell them apart, and over a long drive a fraction
+  // of a millimetre is metres.
+  constexpr double kChi2TwoDof3Sigma = 11.83;
+  const double distance2 = nominal_distance_squared(summary);
+  if (distance2 <= kChi2TwoDof3Sigma) {
+    summary.note = fmt::format(
+        "the nominal circumferences are inside this estimate's 3-sigma region (Mahalanobis "
+        "distance {:.1f}), and they dead-reckon the log better (mean position error {:.2f} m "
+        "against {:.2f} m): the log cannot tell them apart; keep the nominal ones",
+        std::sqrt(distance2), summary.before.mean_position_m, summary.after.mean_position_m);
+    return;
   }
+  summary.termination = Termination::kImplausible;
+  summary.message = fmt::format(
+      "the estimate dead-reckons the log worse than the nominal parameters (mean position error "
+      "{:.2f} m -> {:.2f} m, mean heading error {:.2f} -> {:.2f} deg): the model does not fit "
+      "this log; look for gaps, a clock offset between wheels and GNSS, or wrong signs",
+      summary.before.mean_position_m, summary.after.mean_position_m,
+      deg_from_rad(summary.before.mean_heading_rad), deg_from_rad(summary.after.mean_heading_rad));
 }
 
 void require_valid(const char* kind, const std::string& problem) {

@@ -48,6 +48,7 @@ json core_json(const CalibrationSummary& s, const CalibrationConfig& config) {
           {"termination", enum_name(s.termination)},
           {"usable", s.usable()},
           {"message", s.message},
+          {"note", s.note},
           {"circumference_rl_m", number_or_null(s.estimate.circumference_rl_m)},
           {"circumference_rr_m", number_or_null(s.estimate.circumference_rr_m)},
           {"track_width_m", number_or_null(s.estimate.track_width_m)},

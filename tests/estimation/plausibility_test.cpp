@@ -26,6 +26,8 @@ CalibrationSummary converged_summary(double c_rl, double c_rr) {
   return s;
 }
 
+double square(double v) { return v * v; }
+
 Log ticks_log(double ticks_per_rev) {
   Log log;
   log.wheels.unit_rear = WheelUnit::kTicks;
@@ -78,6 +80,43 @@ TEST(Plausibility, DeadReckoningWorseThanNominalIsImplausible) {
   EXPECT_TRUE(close.usable()) << close.message;
 }
 
+TEST(Plausibility, WorseDeadReckoningWithTheNominalInsideThreeSigmaIsUsableWithANote) {
+  CalibrationSummary s = converged_summary(2.0002, 2.0001);
+  s.covariance = square(0.0001) * Eigen::Matrix2d::Identity();  // nominal at 2.2 sigma
+  s.after = {15.0, 30.0, 0.02, 0.04};
+  check_plausibility(Log{}, {}, s);
+  EXPECT_TRUE(s.usable()) << s.message;
+  EXPECT_NE(s.note.find("inside this estimate's 3-sigma region (Mahalanobis distance 2.2)"),
+            std::string::npos)
+      << s.note;
+  EXPECT_NE(s.note.find("keep the nominal ones"), std::string::npos) << s.note;
+
+  CalibrationSummary outside = s;
+  outside.termination = Termination::kConverged;
+  outside.note.clear();
+  outside.estimate = {2.0004, 2.0001, 1.6};  // 4.1 sigma
+  check_plausibility(Log{}, {}, outside);
+  EXPECT_EQ(outside.termination, Termination::kImplausible);
+  EXPECT_TRUE(outside.note.empty());
+}
+
+TEST(Plausibility, ACommonScaleOnlyEstimateIsJudgedAlongItsOneDirection) {
+  // Only the common scale was estimated: the covariance has rank one along the nominal ratio.
+  const Eigen::Vector2d along = Eigen::Vector2d(1.0, 1.0).normalized();
+  CalibrationSummary scale = converged_summary(2.0001, 2.0001);
+  scale.covariance = square(0.0001) * along * along.transpose();
+  scale.after = {15.0, 30.0, 0.02, 0.04};
+  check_plausibility(Log{}, {}, scale);
+  EXPECT_TRUE(scale.usable()) << scale.message;
+  EXPECT_FALSE(scale.note.empty());
+  // A difference the covariance says cannot occur is no sampling error.
+  CalibrationSummary across = scale;
+  across.note.clear();
+  across.estimate = {2.0001, 1.9999, 1.6};
+  check_plausibility(Log{}, {}, across);
+  EXPECT_EQ(across.termination, Termination::kImplausible);
+}
+
 TEST(Plausibility, HintsForKnownFactors) {
   EXPECT_NE(likely_input_mistake(2.0 * M_PI, Log{}).find("radians read as revolutions"),
             std::string::npos);
@@ -109,6 +148,21 @@ TEST(Plausibility, ReversedEncodersGiveNoResult) {
   EXPECT_EQ(iterative.termination, Termination::kImplausible) << iterative.message;
   const AugmentedSummary augmented = calibrate_augmented(drive.log);
   EXPECT_FALSE(augmented.usable()) << augmented.brief_report();
+}
+
+// The simulator's unworn car over 3 laps (13.6 km): every estimate is a fraction of a millimetre
+// off the nominal, within its sigma, which is metres of dead reckoning: no refusal.
+TEST(Plausibility, AnUnwornCarIsNoInputMistake) {
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  ASSERT_EQ(scenario.vehicle.wear_rl_mm, 0.0);
+  ASSERT_EQ(scenario.vehicle.wear_rr_mm, 0.0);
+  const Log log = simulated_log(drive);
+  const IterativeSummary iterative = calibrate_iterative(log);
+  EXPECT_TRUE(iterative.usable()) << iterative.message;
+  const BatchSummary batch = calibrate_batch(log);
+  EXPECT_TRUE(batch.usable()) << batch.message;
 }
 
 TEST(Plausibility, ATicksPerRevOffByTwoIsNamed) {

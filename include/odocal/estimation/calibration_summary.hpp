@@ -61,6 +61,7 @@ struct CalibrationSummary {
   CalibrationMethod method{};
   Termination termination = Termination::kConverged;
   std::string message;  // why it stopped, or why the result is not usable
+  std::string note;     // a caution that goes with a usable result; empty when there is none
   OdometryParams nominal;
   OdometryParams estimate;  // the nominal parameters where no estimate was reached
   // The condition-dependent part of the estimate (batch with tyre_model); plain otherwise.
