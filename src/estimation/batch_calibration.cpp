@@ -12,6 +12,7 @@
 #include <optional>
 #include <tuple>
 
+#include "batch_folded_residuals.hpp"
 #include "batch_observability.hpp"
 #include "batch_residuals.hpp"
 #include "calibration_report.hpp"
@@ -76,11 +77,6 @@ class BatchProblem {
       throw InsufficientDataError(
           "too short for the batch calibration: fewer than 3 keyframes under GNSS");
     }
-    segment_of_sample_.assign(log.wheels.size(), -1);
-    for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
-      for (std::size_t k = keyframes_[i]; k < keyframes_[i + 1]; ++k)
-        segment_of_sample_[k] = static_cast<int>(i);
-    }
     for (const std::size_t k : keyframes_) {
       const Pose2& pose = reference.poses.pose[k - reference.first_wheel_index];
       poses_.push_back({pose.x(), pose.y(), pose.z()});
@@ -112,6 +108,8 @@ class BatchProblem {
     noise_ = {batch_.slip_sigma_m_per_sqrt_m, quantisation_sigma_rev_,
               batch_.lateral_sigma_m_per_sqrt_m};
     count_error_.assign(keyframes_.size(), Block2{0.0, 0.0});
+    gnss_weights_.assign(log.gnss.size(), 1.0f);
+    loss_.reset(gnss_loss());
   }
 
   bool gauss_markov() const { return gm_sigma_m_ > 0.0; }
@@ -145,8 +143,22 @@ class BatchProblem {
   // The Bayesian information criterion of the last solve: its cost (robust where the loss is)
   // as -log-likelihood, and the unknowns that the model choice adds.
   double information_criterion(const ceres::Solver::Summary& solver) const {
-    const double residuals = static_cast<double>(problem_->NumResiduals());
-    return 2.0 * solver.final_cost + free_tyre_coefficients() * std::log(residuals);
+    // The folded blocks' cost is the re-weighted one: the fixes' own (robust) cost replaces it,
+    // and their rows count as the measurements they are.
+    double folded_cost = 0.0, fixes_cost = 0.0;
+    for (const ceres::ResidualBlockId block : gnss_fold_blocks_) {
+      double cost = 0.0;
+      problem_->EvaluateResidualBlock(block, false, &cost, nullptr, nullptr);
+      folded_cost += cost;
+    }
+    for_each_fix([&](std::size_t, std::size_t, const Eigen::Vector2d& whitened) {
+      fixes_cost += 0.5 * robust(whitened.squaredNorm())[0];
+    });
+    const double residuals = static_cast<double>(problem_->NumResiduals()) -
+                             static_cast<double>(folded_rows_) +
+                             static_cast<double>(measurement_rows_);
+    return 2.0 * (solver.final_cost - folded_cost + fixes_cost) +
+           free_tyre_coefficients() * std::log(residuals);
   }
 
   // The GNSS noise model from here on: every fix's white sigma scaled by `white_scale`, and a
@@ -171,15 +183,12 @@ class BatchProblem {
   // a modelled Gauss-Markov error counts as part of it.
   std::vector<GnssResidualSample> gnss_errors() const {
     std::vector<GnssResidualSample> errors;
-    errors.reserve(gnss_blocks_.size());
-    for (const auto& [block, fix, segment, sigma] : gnss_blocks_) {
-      double residual[2];
-      double cost = 0.0;
-      problem_->EvaluateResidualBlock(block, false, &cost, residual, nullptr);
-      Eigen::Vector2d error = -sigma * Eigen::Vector2d(residual[0], residual[1]);
+    errors.reserve(gnss_residuals_);
+    for_each_fix([&](std::size_t fix, std::size_t segment, const Eigen::Vector2d& whitened) {
+      Eigen::Vector2d error = -white_gnss_sigma(fix) * whitened;
       if (gauss_markov()) error += Eigen::Vector2d(gnss_bias_[segment][0], gnss_bias_[segment][1]);
       errors.push_back({log_.gnss.t_s[fix], error});
-    }
+    });
     return errors;
   }
 
@@ -220,6 +229,8 @@ class BatchProblem {
   // slip noise for a first, coarse solve: started from the layer-1 reference, a nearly rigid
   // odometry chain would take the solver many small steps.
   void preintegrate_all(double slip_floor = 0.0) {
+    folded_fixes_ = 0;
+    folded_headings_ = 0;
     const OdometryParams at{params_[0], params_[1], params_[2]};
     if (tyre_extended_ && !tyre_model().plain()) {
       // The driving state from the wheels as the current model counts them: a slipping wheel
@@ -231,15 +242,31 @@ class BatchProblem {
     const WheelNoise noise{std::max(noise_.slip_sigma_m_per_sqrt_m, slip_floor),
                            noise_.quantisation_sigma_rev,
                            std::max(noise_.lateral_sigma_m_per_sqrt_m, slip_floor)};
-    segments_.clear();
-    for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i)
-      segments_.push_back(preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise,
-                                       tyre_extended_ ? &tyre : nullptr));
+    problem_.reset();  // its blocks point to the folds replaced here
     params_lin_ = Eigen::Map<const batch::ParamsVector>(params_.data());
+    ends_.clear();
+    gnss_folds_.assign(keyframes_.size() - 1, {});
+    heading_folds_.assign(keyframes_.size() - 1, {});
+    max_weight_change_ = 0.0f;
+    std::size_t next_fix = 0, next_heading = 0;
+    for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
+      const PreintegratedSegment segment =
+          preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise,
+                       tyre_extended_ ? &tyre : nullptr);
+      const std::size_t last = segment.delta.size() - 1;
+      ends_.push_back({segment.delta[last], params_jacobian(segment, last),
+                       segment.J_delta_first_increment[last], segment.J_end_last_increment,
+                       segment.covariance});
+      if (gap_segment(i)) continue;
+      fold_gnss(i, segment, next_fix);
+      if (batch_.use_heading && log_.heading) fold_heading(i, segment, next_heading);
+    }
   }
 
   ceres::Solver::Summary solve() {
     problem_ = std::make_unique<ceres::Problem>();
+    folded_rows_ = 0;
+    measurement_rows_ = 0;
     add_odometry();
     add_count_priors();
     add_gnss();
@@ -324,6 +351,9 @@ class BatchProblem {
   double gyro_bias() const { return gyro_bias_; }
   double heading_bias() const { return heading_bias_; }
   double latency() const { return latency_; }
+  // How far the robust loss's weights moved in the last fold: where they still move, the
+  // re-weighting has not settled.
+  double max_weight_change() const { return max_weight_change_; }
   std::size_t keyframes() const { return keyframes_.size(); }
   double duration_s() const {
     return log_.wheels.t_s[keyframes_.back()] - log_.wheels.t_s[keyframes_.front()];
@@ -331,34 +361,107 @@ class BatchProblem {
   std::size_t gnss_residuals() const { return gnss_residuals_; }
 
  private:
-  // The pre-integrated motion from keyframe `segment` to time t_s, with the reference point's
-  // velocity there (keyframe frame); nothing outside the keyframe span.
+  // The pre-integrated motion of segment i from its keyframe to time t_s (inside the segment),
+  // with the reference point's velocity there (keyframe frame).
   struct MotionAt {
-    std::size_t segment;
     batch::RelativeMotion motion;
     Eigen::Vector2d velocity;
   };
-  std::optional<MotionAt> motion_at(double t_s) const {
+  MotionAt motion_at(std::size_t i, const PreintegratedSegment& seg, double t_s) const {
     const auto& t = log_.wheels.t_s;
-    if (t_s < t[keyframes_.front()] || t_s >= t[keyframes_.back()]) return std::nullopt;
-    const std::size_t k =
-        static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), t_s) - t.begin()) - 1;
-    const int segment = segment_of_sample_[k];
-    if (segment < 0 || gap_segment(static_cast<std::size_t>(segment))) return std::nullopt;
-    const PreintegratedSegment& seg = segments_[static_cast<std::size_t>(segment)];
+    const auto first = t.begin() + static_cast<long>(seg.first_sample);
+    const auto last = t.begin() + static_cast<long>(seg.last_sample);
+    const std::size_t k = static_cast<std::size_t>(std::upper_bound(first, last, t_s) - t.begin()) - 1;
     const std::size_t s = k - seg.first_sample;
     const double dt = t[k + 1] - t[k];
     const double w = (t_s - t[k]) / dt;
-    MotionAt at{static_cast<std::size_t>(segment), {}, {}};
+    MotionAt at;
     at.motion.delta = (1.0 - w) * seg.delta[s] + w * seg.delta[s + 1];
     at.motion.J_delta_params =
         (1.0 - w) * params_jacobian(seg, s) + w * params_jacobian(seg, s + 1);
     at.motion.J_delta_first_increment =
         (1.0 - w) * seg.J_delta_first_increment[s] + w * seg.J_delta_first_increment[s + 1];
     at.motion.params_lin = params_lin_;
-    if (rough_segment_[static_cast<std::size_t>(segment)] != 0) at.motion.J_delta_params.setZero();
+    if (rough_segment_[i] != 0) at.motion.J_delta_params.setZero();
     at.velocity = (seg.delta[s + 1].head<2>() - seg.delta[s].head<2>()) / dt;
     return at;
+  }
+
+  // Calls visit(fix, motion) for every GNSS fix inside segment i, from `next` on (fixes before
+  // the segment are skipped; `next` ends past the segment).
+  template <typename Visit>
+  void visit_fixes(std::size_t i, const PreintegratedSegment& seg, const std::vector<double>& t_s,
+                   std::size_t& next, Visit&& visit) const {
+    const double begin = log_.wheels.t_s[keyframes_[i]], end = log_.wheels.t_s[keyframes_[i + 1]];
+    while (next < t_s.size() && t_s[next] < begin) ++next;
+    for (; next < t_s.size() && t_s[next] < end; ++next) visit(next, motion_at(i, seg, t_s[next]));
+  }
+
+  // Fix j's whitened residual at the current unknowns (robust loss not applied).
+  Eigen::Vector2d whitened_fix(std::size_t j, std::size_t i, const MotionAt& at) const {
+    const batch::GnssResidual residual{at.motion, at.velocity,
+                                       Eigen::Vector2d(log_.gnss.x_m[j], log_.gnss.y_m[j]),
+                                       white_gnss_sigma(j)};
+    const double* bias = gauss_markov() ? gnss_bias_[i].data() : zero_bias_.data();
+    Eigen::Vector2d whitened;
+    residual(poses_[i].data(), params_.data(), lever_.data(), &latency_, bias,
+             count_error_[i].data(), whitened.data());
+    return whitened;
+  }
+
+  // rho(s), rho'(s) of the GNSS loss at a squared whitened residual s.
+  std::array<double, 3> robust(double s) const {
+    std::array<double, 3> rho{s, 1.0, 0.0};
+    if (loss_) loss_->Evaluate(s, rho.data());
+    return rho;
+  }
+
+  // The fixes of segment i folded into one residual, each weighted by the robust loss at the
+  // current unknowns.
+  void fold_gnss(std::size_t i, const PreintegratedSegment& seg, std::size_t& next) {
+    batch::RowFold<batch::kFoldedGnssColumns> fold;
+    const Eigen::Vector2d origin(poses_[i][0], poses_[i][1]);
+    visit_fixes(i, seg, log_.gnss.t_s, next, [&](std::size_t j, const MotionAt& at) {
+      const float weight = static_cast<float>(robust(whitened_fix(j, i, at).squaredNorm())[1]);
+      max_weight_change_ = std::max(max_weight_change_, std::abs(weight - gnss_weights_[j]));
+      gnss_weights_[j] = weight;
+      ++folded_fixes_;
+      batch::FoldedGnssResidual::add_fix(
+          fold, at.motion, at.velocity,
+          Eigen::Vector2d(log_.gnss.x_m[j], log_.gnss.y_m[j]) - origin, white_gnss_sigma(j),
+          weight);
+    });
+    if (!fold.empty()) gnss_folds_[i] = {origin, fold.factor(), params_lin_};
+  }
+
+  void fold_heading(std::size_t i, const PreintegratedSegment& seg, std::size_t& next) {
+    batch::RowFold<batch::kFoldedHeadingColumns> fold;
+    const HeadingStream& heading = *log_.heading;
+    visit_fixes(i, seg, heading.t_s, next, [&](std::size_t j, const MotionAt& at) {
+      const double predicted = poses_[i][2] + at.motion.delta(2) + heading_bias_;
+      const double measured = predicted + batch::wrapped(heading.heading_rad[j] - predicted);
+      ++folded_headings_;
+      batch::FoldedHeadingResidual::add_sample(fold, at.motion, measured,
+                                               sensors_.heading_sigma_rad);
+    });
+    if (!fold.empty()) heading_folds_[i] = {fold.factor(), params_lin_};
+  }
+
+  // Calls visit(fix, segment, whitened residual) for every fix in the problem, at the current
+  // unknowns, pre-integrating again segment by segment (memory stays per segment).
+  template <typename Visit>
+  void for_each_fix(Visit&& visit) const {
+    const OdometryParams at{params_lin_(0), params_lin_(1), params_lin_(2)};
+    const TyreConditions tyre{states_, TyreModel::from(params_lin_.tail<TyreModel::kCoefficients>())};
+    std::size_t next = 0;
+    for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
+      if (gap_segment(i)) continue;
+      const PreintegratedSegment seg = preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1],
+                                                    at, noise_, tyre_extended_ ? &tyre : nullptr);
+      visit_fixes(i, seg, log_.gnss.t_s, next, [&](std::size_t j, const MotionAt& motion) {
+        visit(j, i, whitened_fix(j, i, motion));
+      });
+    }
   }
 
   // A segment that is a wheel gap: no odometry links its keyframes (GNSS and the gyro do).
@@ -401,16 +504,15 @@ class BatchProblem {
  private:
   void add_odometry() {
     odometry_blocks_.clear();
-    for (std::size_t i = 0; i < segments_.size(); ++i) {
+    for (std::size_t i = 0; i < ends_.size(); ++i) {
       if (gap_segment(i) || rough_segment_[i] != 0) continue;
-      const PreintegratedSegment& seg = segments_[i];
+      const SegmentEnd& seg = ends_[i];
       // A tiny floor keeps a standing-still segment's information finite.
       const Eigen::Matrix3d covariance =
           seg.covariance + Eigen::Vector3d(1e-10, 1e-10, 1e-12).asDiagonal().toDenseMatrix();
       const Eigen::Matrix3d L = covariance.llt().matrixL();
       auto* residual = new batch::OdometryResidual{
-          {seg.delta.back(), params_jacobian(seg, seg.delta.size() - 1),
-           seg.J_delta_first_increment.back(), params_lin_},
+          {seg.delta, seg.J_params, seg.J_first_increment, params_lin_},
           seg.J_end_last_increment,
           L.triangularView<Eigen::Lower>().solve(Eigen::Matrix3d::Identity())};
       odometry_blocks_.push_back({nullptr, i, L});
@@ -465,40 +567,38 @@ class BatchProblem {
 
   void add_gnss() {
     gnss_residuals_ = 0;
-    gnss_blocks_.clear();
-    for (std::size_t j = 0; j < log_.gnss.size(); ++j) {
-      const auto at = motion_at(log_.gnss.t_s[j]);
-      if (!at) continue;
-      auto* residual = new batch::GnssResidual{at->motion, at->velocity,
-                                               Eigen::Vector2d(log_.gnss.x_m[j], log_.gnss.y_m[j]),
-                                               white_gnss_sigma(j)};
-      double* bias = gauss_markov() ? gnss_bias_[at->segment].data() : zero_bias_.data();
-      const ceres::ResidualBlockId block = problem_->AddResidualBlock(
-          new ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, batch::kParams, 2, 1, 2, 2>(
-              residual),
-          gnss_loss(), poses_[at->segment].data(), params_.data(), lever_.data(), &latency_, bias,
-          count_error_[at->segment].data());
-      ++gnss_residuals_;
-      gnss_blocks_.push_back({block, j, at->segment, residual->sigma_m});
+    gnss_fold_blocks_.clear();
+    for (std::size_t i = 0; i < gnss_folds_.size(); ++i) {
+      batch::FoldedGnssResidual& fold = gnss_folds_[i];
+      if (fold.factor.rows() == 0) continue;
+      double* bias = gauss_markov() ? gnss_bias_[i].data() : zero_bias_.data();
+      gnss_fold_blocks_.push_back(problem_->AddResidualBlock(
+          new ceres::AutoDiffCostFunction<batch::FoldedGnssResidual, ceres::DYNAMIC, 3,
+                                          batch::kParams, 2, 1, 2, 2>(
+              &fold, static_cast<int>(fold.factor.rows()), ceres::DO_NOT_TAKE_OWNERSHIP),
+          nullptr, poses_[i].data(), params_.data(), lever_.data(), &latency_, bias,
+          count_error_[i].data()));
+      folded_rows_ += static_cast<std::size_t>(fold.factor.rows());
     }
+    gnss_residuals_ = folded_fixes_;
+    measurement_rows_ += 2 * folded_fixes_;
     if (gnss_residuals_ == 0) {
       throw InsufficientDataError("no GNSS fix inside the wheel time span: nothing to fit");
     }
   }
 
   void add_heading() {
-    const HeadingStream& heading = *log_.heading;
-    for (std::size_t j = 0; j < heading.size(); ++j) {
-      const auto at = motion_at(heading.t_s[j]);
-      if (!at) continue;
-      auto* residual = new batch::HeadingResidual{at->motion, heading.heading_rad[j],
-                                                  sensors_.heading_sigma_rad};
+    for (std::size_t i = 0; i < heading_folds_.size(); ++i) {
+      batch::FoldedHeadingResidual& fold = heading_folds_[i];
+      if (fold.factor.rows() == 0) continue;
       problem_->AddResidualBlock(
-          new ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, batch::kParams, 1, 2>(
-              residual),
-          nullptr, poses_[at->segment].data(), params_.data(), &heading_bias_,
-          count_error_[at->segment].data());
+          new ceres::AutoDiffCostFunction<batch::FoldedHeadingResidual, ceres::DYNAMIC, 3,
+                                          batch::kParams, 1, 2>(
+              &fold, static_cast<int>(fold.factor.rows()), ceres::DO_NOT_TAKE_OWNERSHIP),
+          nullptr, poses_[i].data(), params_.data(), &heading_bias_, count_error_[i].data());
+      folded_rows_ += static_cast<std::size_t>(fold.factor.rows());
     }
+    measurement_rows_ += folded_headings_;
   }
 
   // Zero-order hold of the yaw rate over each keyframe interval the IMU covers.
@@ -566,8 +666,25 @@ class BatchProblem {
   const ReferenceOptions& sensors_;  // the sensors' noise
   const BatchOptions& batch_;
   std::vector<std::size_t> keyframes_;
-  std::vector<int> segment_of_sample_;
-  std::vector<PreintegratedSegment> segments_;
+  // What the odometry residual needs of each segment's pre-integration (the per-sample motion
+  // lives only while its fixes are folded).
+  struct SegmentEnd {
+    Eigen::Vector3d delta;
+    batch::ParamsJacobian J_params;
+    Eigen::Matrix<double, 3, 2> J_first_increment;
+    Eigen::Matrix<double, 3, 2> J_end_last_increment;
+    Eigen::Matrix3d covariance;
+  };
+  std::vector<SegmentEnd> ends_;
+  // Per keyframe interval; an empty factor: nothing measured there.
+  std::vector<batch::FoldedGnssResidual> gnss_folds_;
+  std::vector<batch::FoldedHeadingResidual> heading_folds_;
+  std::size_t folded_fixes_ = 0, folded_headings_ = 0;
+  std::vector<float> gnss_weights_;  // per fix: the robust loss's weight in the last fold
+  float max_weight_change_ = 0.0f;   // ... and its largest change there
+  std::unique_ptr<ceres::LossFunction> loss_;
+  std::size_t folded_rows_ = 0;       // rows of the folded blocks in the problem
+  std::size_t measurement_rows_ = 0;  // ... and the measurement rows they stand for
   WheelNoise noise_;
   double quantisation_sigma_rev_ = 0.0;
   batch::ParamsVector params_lin_ = batch::ParamsVector::Zero();
@@ -578,13 +695,7 @@ class BatchProblem {
   std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};  // > 0: held at zero
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
-  struct GnssBlock {
-    ceres::ResidualBlockId id;
-    std::size_t fix;
-    std::size_t segment;
-    double sigma_m;
-  };
-  std::vector<GnssBlock> gnss_blocks_;
+  std::vector<ceres::ResidualBlockId> gnss_fold_blocks_;
   struct OdometryBlock {
     ceres::ResidualBlockId id;
     std::size_t segment;
@@ -730,18 +841,23 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   }
 }
 
-// Solves until the parameters stop moving by more than relinearise_relative_change.
+// Solves until the parameters stop moving by more than relinearise_relative_change and the
+// robust loss's weights by more than kWeightTolerance (each re-linearisation re-weights).
 ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOptions& options,
                                           BatchSummary& summary) {
+  constexpr double kWeightTolerance = 0.05;
   const int before = summary.solves;
   ceres::Solver::Summary solver;
   constexpr double kCoarseNoise = 1e-3;  // m per sqrt(m), slip and lateral
+  bool moving = true;
   do {
     batch.preintegrate_all(summary.solves == 0 ? kCoarseNoise : 0.0);
+    const bool reweighted = batch.max_weight_change() > kWeightTolerance;
     solver = batch.solve();
     ++summary.solves;
-  } while (summary.solves == 1 || (batch.relative_change() > options.relinearise_relative_change &&
-                                   summary.solves - before <= options.max_relinearisations));
+    moving = reweighted || batch.relative_change() > options.relinearise_relative_change;
+  } while (summary.solves == 1 ||
+           (moving && summary.solves - before <= options.max_relinearisations));
   return solver;
 }
 

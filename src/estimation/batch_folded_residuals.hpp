@@ -1,0 +1,133 @@
+#pragma once
+// Every GNSS fix (and every heading sample) inside one keyframe interval folded into a single
+// residual block (docs/batch-calibration.md, "Memory and time"). A fix's whitened error, turned
+// into the keyframe's frame (the norm is the same: a fix's sigma is the same along x and y), is
+// linear in a short vector phi of functions of the block's unknowns:
+//
+//   e_j = P_j phi,  phi = [R(yaw)^T (xy + bias - origin), cos yaw, sin yaw, 1,
+//                          params - params_lin, count, lever, latency]
+//
+// so the interval's cost sum_j |e_j|^2 is |R phi|^2 with R the triangular factor of the stacked
+// rows P_j: the same cost with one block of at most 18 rows in place of two rows per fix. Two
+// things are held at the linearisation point: the antenna's turn within the interval (the lever
+// arm is rotated by the pre-integrated yaw at the parameters integrated with; a change of the
+// parameters turns it by microradians) and a robust loss's weight per fix (iteratively
+// re-weighted at every re-linearisation, which reaches the same estimate).
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Core>
+#include <Eigen/QR>
+#include <cmath>
+
+#include "batch_residuals.hpp"
+
+namespace odocal::batch {
+
+inline constexpr int kFoldedGnssColumns = 5 + kParams + 2 + 2 + 1;
+inline constexpr int kFoldedHeadingColumns = 2 + kParams + 2;
+
+// Stacks rows and reduces them to their triangular factor (QR), so that |R phi| = |A phi| for
+// every phi; never more rows than columns.
+template <int Columns>
+class RowFold {
+ public:
+  using Row = Eigen::Matrix<double, 1, Columns>;
+  using Factor = Eigen::Matrix<double, Eigen::Dynamic, Columns, Eigen::RowMajor>;
+
+  void add(const Row& row) { rows_.push_back(row); }
+  bool empty() const { return rows_.empty(); }
+  Factor factor() const {
+    Eigen::Matrix<double, Eigen::Dynamic, Columns> stacked(static_cast<Eigen::Index>(rows_.size()),
+                                                           Columns);
+    for (std::size_t r = 0; r < rows_.size(); ++r) stacked.row(static_cast<Eigen::Index>(r)) = rows_[r];
+    const Eigen::Index kept = std::min<Eigen::Index>(stacked.rows(), Columns);
+    const Eigen::HouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, Columns>> qr(stacked);
+    return qr.matrixQR().topRows(kept).template triangularView<Eigen::Upper>();
+  }
+
+ private:
+  std::vector<Row, Eigen::aligned_allocator<Row>> rows_;
+};
+
+// residual = factor x phi, the factor upper triangular (or trapezoidal).
+template <int Columns, typename T>
+void multiply(const typename RowFold<Columns>::Factor& factor,
+              const Eigen::Matrix<T, Columns, 1>& phi, T* residual) {
+  for (Eigen::Index r = 0; r < factor.rows(); ++r) {
+    T sum(0.0);
+    for (Eigen::Index c = r; c < Columns; ++c) sum += factor(r, c) * phi(c);
+    residual[r] = sum;
+  }
+}
+
+// The GNSS fixes of one keyframe interval. Blocks: pose, params, lever, latency, bias, count.
+struct FoldedGnssResidual {
+  Eigen::Vector2d origin;  // world position the fixes were taken relative to
+  RowFold<kFoldedGnssColumns>::Factor factor;
+  ParamsVector params_lin;
+
+  // Fix j's whitened row pair (x, y) with weight `weight` (a robust loss's, 1 without one).
+  static void add_fix(RowFold<kFoldedGnssColumns>& fold, const RelativeMotion& motion,
+                      const Eigen::Vector2d& velocity, const Eigen::Vector2d& measured_from_origin,
+                      double sigma_m, double weight) {
+    const double scale = std::sqrt(weight) / sigma_m;
+    const double z_x = measured_from_origin.x(), z_y = measured_from_origin.y();
+    const double c = std::cos(motion.delta(2)), s = std::sin(motion.delta(2));
+    Eigen::Matrix<double, 2, kFoldedGnssColumns> rows;
+    rows.setZero();
+    rows.block<2, 2>(0, 0).setIdentity();
+    rows.block<2, 2>(0, 2) << -z_x, -z_y, -z_y, z_x;
+    rows.col(4) = motion.delta.head<2>();
+    rows.block<2, kParams>(0, 5) = motion.J_delta_params.topRows<2>();
+    rows.block<2, 2>(0, 5 + kParams) = -motion.J_delta_first_increment.topRows<2>();
+    rows.block<2, 2>(0, 7 + kParams) << c, -s, s, c;
+    rows.col(9 + kParams) = -velocity;
+    fold.add(scale * rows.row(0));
+    fold.add(scale * rows.row(1));
+  }
+
+  template <typename T>
+  bool operator()(const T* pose, const T* params, const T* lever, const T* latency, const T* bias,
+                  const T* count, T* residual) const {
+    using std::cos, std::sin;
+    const T c = cos(pose[2]), s = sin(pose[2]);
+    const T x = pose[0] + bias[0] - origin.x(), y = pose[1] + bias[1] - origin.y();
+    Eigen::Matrix<T, kFoldedGnssColumns, 1> phi;
+    phi << c * x + s * y, -s * x + c * y, c, s, T(1.0), Eigen::Matrix<T, kParams, 1>::Zero(),
+        count[0], count[1], lever[0], lever[1], latency[0];
+    for (int p = 0; p < kParams; ++p) phi(5 + p) = params[p] - params_lin(p);
+    multiply<kFoldedGnssColumns>(factor, phi, residual);
+    return true;
+  }
+};
+
+// The heading samples of one keyframe interval. Blocks: pose, params, heading_bias, count.
+struct FoldedHeadingResidual {
+  RowFold<kFoldedHeadingColumns>::Factor factor;
+  ParamsVector params_lin;
+
+  // `measured_rad` is the sample unwrapped to within pi of its prediction.
+  static void add_sample(RowFold<kFoldedHeadingColumns>& fold, const RelativeMotion& motion,
+                         double measured_rad, double sigma_rad) {
+    Eigen::Matrix<double, 1, kFoldedHeadingColumns> row;
+    row << 1.0, motion.delta(2) - measured_rad, motion.J_delta_params.row(2),
+        -motion.J_delta_first_increment.row(2);
+    fold.add(row / sigma_rad);
+  }
+
+  template <typename T>
+  bool operator()(const T* pose, const T* params, const T* heading_bias, const T* count,
+                  T* residual) const {
+    Eigen::Matrix<T, kFoldedHeadingColumns, 1> phi;
+    phi(0) = pose[2] + heading_bias[0];
+    phi(1) = T(1.0);
+    for (int p = 0; p < kParams; ++p) phi(2 + p) = params[p] - params_lin(p);
+    phi(2 + kParams) = count[0];
+    phi(3 + kParams) = count[1];
+    multiply<kFoldedHeadingColumns>(factor, phi, residual);
+    return true;
+  }
+};
+
+}  // namespace odocal::batch
