@@ -12,6 +12,7 @@
 #include <optional>
 #include <tuple>
 
+#include "batch_covariance.hpp"
 #include "batch_folded_residuals.hpp"
 #include "batch_observability.hpp"
 #include "batch_residuals.hpp"
@@ -310,39 +311,20 @@ class BatchProblem {
     double gyro_bias{}, heading_bias{}, latency{};
   };
   std::optional<Uncertainty> uncertainty() {
-    // Blocks that are in the problem and free: unused or held ones have no covariance.
-    const auto estimated = [&](const double* block) {
-      return problem_->HasParameterBlock(block) && !problem_->IsParameterBlockConstant(block);
-    };
-    std::vector<std::pair<const double*, const double*>> blocks;
-    const auto add = [&](const double* block) {
-      if (estimated(block)) blocks.emplace_back(block, block);
-    };
-    add(params_.data());
-    add(lever_.data());
-    add(&gyro_bias_);
-    add(&heading_bias_);
-    add(&latency_);
-    ceres::Covariance::Options covariance_options;
-    covariance_options.algorithm_type = ceres::SPARSE_QR;
-    covariance_options.num_threads = 1;
-    ceres::Covariance covariance(covariance_options);
-    if (!covariance.Compute(blocks, problem_.get())) return std::nullopt;
+    const auto covariances =
+        batch::marginal_covariances(*problem_, {{params_.data(), batch::kParams},
+                                                {lever_.data(), 2},
+                                                {&gyro_bias_, 1},
+                                                {&heading_bias_, 1},
+                                                {&latency_, 1}});
+    if (!covariances) return std::nullopt;
+    const std::vector<Eigen::MatrixXd>& c = *covariances;
     Uncertainty u;
-    const auto get = [&](const double* block, double* out) {
-      if (estimated(block)) covariance.GetCovarianceBlock(block, block, out);
-    };
-    Eigen::Matrix<double, batch::kParams, batch::kParams, Eigen::RowMajor> params;
-    params.setZero();
-    get(params_.data(), params.data());
-    u.params = params;
-    Eigen::Matrix<double, 2, 2, Eigen::RowMajor> lever;
-    lever.setZero();
-    get(lever_.data(), lever.data());
-    u.lever = lever;
-    get(&gyro_bias_, &u.gyro_bias);
-    get(&heading_bias_, &u.heading_bias);
-    get(&latency_, &u.latency);
+    u.params = c[0];
+    u.lever = c[1];
+    u.gyro_bias = c[2](0, 0);
+    u.heading_bias = c[3](0, 0);
+    u.latency = c[4](0, 0);
     return u;
   }
 
@@ -371,7 +353,8 @@ class BatchProblem {
     const auto& t = log_.wheels.t_s;
     const auto first = t.begin() + static_cast<long>(seg.first_sample);
     const auto last = t.begin() + static_cast<long>(seg.last_sample);
-    const std::size_t k = static_cast<std::size_t>(std::upper_bound(first, last, t_s) - t.begin()) - 1;
+    const std::size_t k =
+        static_cast<std::size_t>(std::upper_bound(first, last, t_s) - t.begin()) - 1;
     const std::size_t s = k - seg.first_sample;
     const double dt = t[k + 1] - t[k];
     const double w = (t_s - t[k]) / dt;
@@ -452,7 +435,8 @@ class BatchProblem {
   template <typename Visit>
   void for_each_fix(Visit&& visit) const {
     const OdometryParams at{params_lin_(0), params_lin_(1), params_lin_(2)};
-    const TyreConditions tyre{states_, TyreModel::from(params_lin_.tail<TyreModel::kCoefficients>())};
+    const TyreConditions tyre{states_,
+                              TyreModel::from(params_lin_.tail<TyreModel::kCoefficients>())};
     std::size_t next = 0;
     for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
       if (gap_segment(i)) continue;
@@ -570,15 +554,15 @@ class BatchProblem {
     gnss_fold_blocks_.clear();
     for (std::size_t i = 0; i < gnss_folds_.size(); ++i) {
       batch::FoldedGnssResidual& fold = gnss_folds_[i];
-      if (fold.factor.rows() == 0) continue;
+      if (fold.factor.rows == 0) continue;
       double* bias = gauss_markov() ? gnss_bias_[i].data() : zero_bias_.data();
       gnss_fold_blocks_.push_back(problem_->AddResidualBlock(
           new ceres::AutoDiffCostFunction<batch::FoldedGnssResidual, ceres::DYNAMIC, 3,
                                           batch::kParams, 2, 1, 2, 2>(
-              &fold, static_cast<int>(fold.factor.rows()), ceres::DO_NOT_TAKE_OWNERSHIP),
+              &fold, static_cast<int>(fold.factor.rows), ceres::DO_NOT_TAKE_OWNERSHIP),
           nullptr, poses_[i].data(), params_.data(), lever_.data(), &latency_, bias,
           count_error_[i].data()));
-      folded_rows_ += static_cast<std::size_t>(fold.factor.rows());
+      folded_rows_ += static_cast<std::size_t>(fold.factor.rows);
     }
     gnss_residuals_ = folded_fixes_;
     measurement_rows_ += 2 * folded_fixes_;
@@ -590,13 +574,13 @@ class BatchProblem {
   void add_heading() {
     for (std::size_t i = 0; i < heading_folds_.size(); ++i) {
       batch::FoldedHeadingResidual& fold = heading_folds_[i];
-      if (fold.factor.rows() == 0) continue;
+      if (fold.factor.rows == 0) continue;
       problem_->AddResidualBlock(
           new ceres::AutoDiffCostFunction<batch::FoldedHeadingResidual, ceres::DYNAMIC, 3,
                                           batch::kParams, 1, 2>(
-              &fold, static_cast<int>(fold.factor.rows()), ceres::DO_NOT_TAKE_OWNERSHIP),
+              &fold, static_cast<int>(fold.factor.rows), ceres::DO_NOT_TAKE_OWNERSHIP),
           nullptr, poses_[i].data(), params_.data(), &heading_bias_, count_error_[i].data());
-      folded_rows_ += static_cast<std::size_t>(fold.factor.rows());
+      folded_rows_ += static_cast<std::size_t>(fold.factor.rows);
     }
     measurement_rows_ += folded_headings_;
   }

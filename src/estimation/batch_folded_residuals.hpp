@@ -18,7 +18,9 @@
 
 #include <Eigen/Core>
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "batch_residuals.hpp"
 
@@ -27,44 +29,55 @@ namespace odocal::batch {
 inline constexpr int kFoldedGnssColumns = 5 + kParams + 2 + 2 + 1;
 inline constexpr int kFoldedHeadingColumns = 2 + kParams + 2;
 
+// An upper triangular (or trapezoidal) factor, kept packed: row r holds its columns r.. only.
+template <int Columns>
+struct PackedFactor {
+  int rows = 0;
+  std::vector<double> values;
+
+  // residual = factor x phi
+  template <typename T>
+  void multiply(const Eigen::Matrix<T, Columns, 1>& phi, T* residual) const {
+    const double* value = values.data();
+    for (int r = 0; r < rows; ++r) {
+      T sum(0.0);
+      for (int c = r; c < Columns; ++c) sum += *value++ * phi(c);
+      residual[r] = sum;
+    }
+  }
+};
+
 // Stacks rows and reduces them to their triangular factor (QR), so that |R phi| = |A phi| for
 // every phi; never more rows than columns.
 template <int Columns>
 class RowFold {
  public:
   using Row = Eigen::Matrix<double, 1, Columns>;
-  using Factor = Eigen::Matrix<double, Eigen::Dynamic, Columns, Eigen::RowMajor>;
 
   void add(const Row& row) { rows_.push_back(row); }
   bool empty() const { return rows_.empty(); }
-  Factor factor() const {
+  PackedFactor<Columns> factor() const {
     Eigen::Matrix<double, Eigen::Dynamic, Columns> stacked(static_cast<Eigen::Index>(rows_.size()),
                                                            Columns);
-    for (std::size_t r = 0; r < rows_.size(); ++r) stacked.row(static_cast<Eigen::Index>(r)) = rows_[r];
-    const Eigen::Index kept = std::min<Eigen::Index>(stacked.rows(), Columns);
+    for (std::size_t r = 0; r < rows_.size(); ++r)
+      stacked.row(static_cast<Eigen::Index>(r)) = rows_[r];
     const Eigen::HouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, Columns>> qr(stacked);
-    return qr.matrixQR().topRows(kept).template triangularView<Eigen::Upper>();
+    PackedFactor<Columns> packed;
+    packed.rows = static_cast<int>(std::min<Eigen::Index>(stacked.rows(), Columns));
+    for (int r = 0; r < packed.rows; ++r)
+      for (int c = r; c < Columns; ++c) packed.values.push_back(qr.matrixQR()(r, c));
+    packed.values.shrink_to_fit();
+    return packed;
   }
 
  private:
   std::vector<Row, Eigen::aligned_allocator<Row>> rows_;
 };
 
-// residual = factor x phi, the factor upper triangular (or trapezoidal).
-template <int Columns, typename T>
-void multiply(const typename RowFold<Columns>::Factor& factor,
-              const Eigen::Matrix<T, Columns, 1>& phi, T* residual) {
-  for (Eigen::Index r = 0; r < factor.rows(); ++r) {
-    T sum(0.0);
-    for (Eigen::Index c = r; c < Columns; ++c) sum += factor(r, c) * phi(c);
-    residual[r] = sum;
-  }
-}
-
 // The GNSS fixes of one keyframe interval. Blocks: pose, params, lever, latency, bias, count.
 struct FoldedGnssResidual {
   Eigen::Vector2d origin;  // world position the fixes were taken relative to
-  RowFold<kFoldedGnssColumns>::Factor factor;
+  PackedFactor<kFoldedGnssColumns> factor;
   ParamsVector params_lin;
 
   // Fix j's whitened row pair (x, y) with weight `weight` (a robust loss's, 1 without one).
@@ -97,14 +110,14 @@ struct FoldedGnssResidual {
     phi << c * x + s * y, -s * x + c * y, c, s, T(1.0), Eigen::Matrix<T, kParams, 1>::Zero(),
         count[0], count[1], lever[0], lever[1], latency[0];
     for (int p = 0; p < kParams; ++p) phi(5 + p) = params[p] - params_lin(p);
-    multiply<kFoldedGnssColumns>(factor, phi, residual);
+    factor.multiply(phi, residual);
     return true;
   }
 };
 
 // The heading samples of one keyframe interval. Blocks: pose, params, heading_bias, count.
 struct FoldedHeadingResidual {
-  RowFold<kFoldedHeadingColumns>::Factor factor;
+  PackedFactor<kFoldedHeadingColumns> factor;
   ParamsVector params_lin;
 
   // `measured_rad` is the sample unwrapped to within pi of its prediction.
@@ -125,7 +138,7 @@ struct FoldedHeadingResidual {
     for (int p = 0; p < kParams; ++p) phi(2 + p) = params[p] - params_lin(p);
     phi(2 + kParams) = count[0];
     phi(3 + kParams) = count[1];
-    multiply<kFoldedHeadingColumns>(factor, phi, residual);
+    factor.multiply(phi, residual);
     return true;
   }
 };

@@ -192,7 +192,9 @@ std::pair<double, double> initial_yaw(const Log& log, std::size_t first_fix,
 
 }  // namespace
 
-ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& options) {
+ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& options,
+                                      ReferenceCovariance covariance) {
+  const bool keep_covariance = covariance == ReferenceCovariance::kKeep;
   const double wheel_begin = log.wheels.t_s.front();
   const auto first_fix_it = std::lower_bound(log.gnss.t_s.begin(), log.gnss.t_s.end(), wheel_begin);
   if (first_fix_it == log.gnss.t_s.end() || *first_fix_it > log.wheels.t_s.back()) {
@@ -216,7 +218,7 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
   ReferenceTrajectory reference;
   reference.poses.t_s.reserve(log.wheels.size());
   reference.poses.pose.reserve(log.wheels.size());
-  reference.covariance.reserve(log.wheels.size());
+  if (keep_covariance) reference.covariance.reserve(log.wheels.size());
   reference.heading_source = log.heading ? "heading.csv" : "GNSS course";
   const bool smooth = options.mode == ReferenceMode::kSmoother;
   // Per node of the timeline: filtered and predicted state/covariance and the transition into it.
@@ -264,10 +266,13 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
         if (smooth) wheel_node.push_back(filtered_x.size());
         reference.poses.t_s.push_back(event.t_s);
         reference.poses.pose.emplace_back(ekf.state()(0), ekf.state()(1), ekf.state()(4));
-        reference.covariance.push_back((Eigen::Matrix3d() << ekf.covariance().block<2, 2>(0, 0),
-                                        ekf.covariance().block<2, 1>(0, 4),
-                                        ekf.covariance().block<1, 2>(4, 0), ekf.covariance()(4, 4))
-                                           .finished());
+        if (keep_covariance) {
+          reference.covariance.push_back((Eigen::Matrix3d() << ekf.covariance().block<2, 2>(0, 0),
+                                          ekf.covariance().block<2, 1>(0, 4),
+                                          ekf.covariance().block<1, 2>(4, 0),
+                                          ekf.covariance()(4, 4))
+                                             .finished());
+        }
         break;
     }
     if (smooth) {
@@ -296,8 +301,10 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
     const auto& x = smoothed_x[wheel_node[i]];
     const auto& P = smoothed_P[wheel_node[i]];
     reference.poses.pose[i] = Pose2(x(0), x(1), x(4));
-    reference.covariance[i] << P.block<2, 2>(0, 0), P.block<2, 1>(0, 4), P.block<1, 2>(4, 0),
-        P(4, 4);
+    if (keep_covariance) {
+      reference.covariance[i] << P.block<2, 2>(0, 0), P.block<2, 1>(0, 4), P.block<1, 2>(4, 0),
+          P(4, 4);
+    }
   }
   return reference;
 }

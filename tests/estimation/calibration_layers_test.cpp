@@ -131,9 +131,9 @@ Log circuit_log() {
 TEST(ReferenceFilter, FusesToWellBelowTheGnssNoiseAndIsConsistent) {
   const Log log = circuit_log();
   ReferenceOptions options;
-  const ReferenceTrajectory filter = compute_reference(log, options);
+  const ReferenceTrajectory filter = compute_reference(log, options, ReferenceCovariance::kKeep);
   options.mode = ReferenceMode::kSmoother;
-  const ReferenceTrajectory smoother = compute_reference(log, options);
+  const ReferenceTrajectory smoother = compute_reference(log, options, ReferenceCovariance::kKeep);
   const ReferencePath truth = reference_from_poses(*log.truth, "truth");
   const TrajectoryErrors filter_errors = trajectory_errors(filter.poses, truth);
   const TrajectoryErrors smoother_errors = trajectory_errors(smoother.poses, truth);
@@ -151,6 +151,7 @@ TEST(ReferenceFilter, WorksWithoutImuAndHeadingFromTheGnssCourse) {
   log.heading.reset();
   const ReferenceTrajectory reference = compute_reference(log);
   EXPECT_EQ(reference.heading_source, "GNSS course");
+  EXPECT_TRUE(reference.covariance.empty());  // not asked for
   const TrajectoryErrors errors =
       trajectory_errors(reference.poses, reference_from_poses(*log.truth, "truth"));
   EXPECT_LT(errors.mean_position_m, 2.0);

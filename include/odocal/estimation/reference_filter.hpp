@@ -58,8 +58,10 @@ struct ReferenceOptions {
 // The reference on the wheel time base: pose[i] belongs to wheels.t_s[first_wheel_index + i].
 struct ReferenceTrajectory {
   std::size_t first_wheel_index{};
-  PoseStream poses;                         // yaw continuous (unwrapped)
-  std::vector<Eigen::Matrix3d> covariance;  // of [x, y, yaw]
+  PoseStream poses;  // yaw continuous (unwrapped)
+  // Of [x, y, yaw] per pose; empty unless asked for (ReferenceCovariance::kKeep): no estimator
+  // needs it, and it is 72 bytes per wheel sample.
+  std::vector<Eigen::Matrix3d> covariance;
   std::size_t gnss_used{};
   std::size_t gnss_rejected{};
   std::string heading_source;  // "heading.csv" or "GNSS course"
@@ -67,6 +69,8 @@ struct ReferenceTrajectory {
 
 // Throws InsufficientDataError when the log cannot give a reference (no GNSS fix inside the wheel
 // span, or no way to find the heading).
-ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& options = {});
+enum class ReferenceCovariance { kDrop, kKeep };
+ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& options = {},
+                                      ReferenceCovariance covariance = ReferenceCovariance::kDrop);
 
 }  // namespace odocal

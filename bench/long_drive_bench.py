@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""Long-drive benchmark (issue 21; figures in docs/batch-calibration.md, "Memory and time"):
+time and peak memory of `odocal calibrate` (batch and iterative) against the log's length. Logs:
+the ideal circuit at 50 Hz over 1, 3, 10, 30 and 100 laps, and the urban scenario with every
+sensor at 100 Hz for 10 hours. Each command runs under /usr/bin/time; `deadreckon` on the same
+log (read it, integrate it once) is the baseline that the loaded log costs. Run from the
+repository after `make build` (the 10-hour log takes a few minutes to simulate and ~600 MB):
+
+    ODOCAL_CLI=build/apps/odocal/odocal /usr/bin/python3 bench/long_drive_bench.py \\
+        --work /tmp/long-drive [--laps 1 3 10 30 100] [--urban-hours 10]
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+
+CLI = os.environ.get("ODOCAL_CLI", "build/apps/odocal/odocal")
+SOURCE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def measured(*args):
+    """Seconds and peak resident MB of one odocal command (its exit status must be 0)."""
+    result = subprocess.run(["/usr/bin/time", "-f", "%e %M", CLI, *args],
+                            capture_output=True, text=True)
+    if result.returncode != 0:
+        raise SystemExit(f"odocal {' '.join(args)} failed:\n{result.stderr}")
+    seconds, kilobytes = result.stderr.strip().splitlines()[-1].split()
+    return float(seconds), float(kilobytes) / 1024.0
+
+
+def simulate(log, *args):
+    if not os.path.exists(os.path.join(log, "truth.yaml")):
+        subprocess.run([CLI, "simulate", "--out", log, *args], check=True,
+                       stdout=subprocess.DEVNULL)
+
+
+def wheel_samples(log):
+    with open(os.path.join(log, "wheels.csv")) as f:
+        return sum(1 for _ in f) - 1
+
+
+def urban_scenario(work, hours):
+    """The built-in urban drive with every sensor at 100 Hz, repeated to `hours`."""
+    base = os.path.join(work, "urban-1")
+    simulate(base, "--scenario", "urban", "--laps", "1")
+    text = open(os.path.join(base, "scenario.yaml")).read()  # every setting, written out
+    text, count = re.subn(r"rate_hz: 50\b", "rate_hz: 100", text)
+    assert count >= 4, "scenario.yaml no longer states every sensor's rate"
+    path = os.path.join(work, "urban-100hz.yaml")
+    open(path, "w").write(text)
+    truth = open(os.path.join(base, "truth.yaml")).read()
+    lap_s = float(re.search(r"duration_s: ([0-9.]+)", truth)[1])
+    return path, max(1, round(hours * 3600.0 / lap_s))
+
+
+def row(name, log):
+    samples = wheel_samples(log)
+    base_s, base_mb = measured("deadreckon", log)
+    figures = {"log": name, "wheel_samples": samples, "deadreckon_s": base_s,
+               "deadreckon_mb": base_mb}
+    for method in ("batch", "iterative"):
+        seconds, mb = measured("calibrate", log, "--method", method, "--json",
+                               os.path.join(log, f"{method}.json"))
+        figures[f"{method}_s"] = seconds
+        figures[f"{method}_mb"] = mb
+        figures[f"{method}_bytes_per_sample"] = (mb - base_mb) * 1024.0 * 1024.0 / samples
+        result = json.load(open(os.path.join(log, f"{method}.json")))
+        figures[f"{method}_sigma_rl_mm"] = 1e3 * result["sigma_circumference_rl_m"]
+    print(f"| {name} | {samples} | {figures['batch_s']:.2f} s, {figures['batch_mb']:.0f} MB | "
+          f"{figures['iterative_s']:.2f} s, {figures['iterative_mb']:.0f} MB | "
+          f"{base_s:.2f} s, {base_mb:.0f} MB | {figures['batch_bytes_per_sample']:.0f} |",
+          flush=True)
+    return figures
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--work", required=True)
+    parser.add_argument("--laps", type=int, nargs="*", default=[1, 3, 10, 30, 100])
+    parser.add_argument("--urban-hours", type=float, default=10.0)
+    parser.add_argument("--json")
+    args = parser.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    print("| log | wheel samples | batch | iterative | deadreckon (the loaded log) | batch "
+          "beyond deadreckon, bytes per sample |")
+    print("|---|---|---|---|---|---|")
+    rows = []
+    for laps in args.laps:
+        log = os.path.join(args.work, f"circuit-{laps}")
+        simulate(log, "--ideal", "--laps", str(laps))
+        rows.append(row(f"circuit, ideal, 50 Hz, {laps} laps", log))
+    if args.urban_hours > 0:
+        scenario, laps = urban_scenario(args.work, args.urban_hours)
+        log = os.path.join(args.work, f"urban-100hz-{laps}")
+        simulate(log, "--scenario", scenario, "--laps", str(laps))
+        rows.append(row(f"urban, 100 Hz, {args.urban_hours:g} h ({laps} laps)", log))
+    if args.json:
+        json.dump(rows, open(args.json, "w"), indent=1)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,214 @@
+// The batch's memory-bounded pieces against independent truth: a folded block of fixes has the
+// cost of the fixes it stands for (docs/batch-calibration.md, "Memory and time"), and the
+// marginal covariances from the information matrix equal Ceres' own Covariance.
+
+#include <ceres/ceres.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "estimation/batch_covariance.hpp"
+#include "estimation/batch_folded_residuals.hpp"
+
+namespace odocal {
+namespace {
+
+using batch::kParams;
+
+struct RandomMotion {
+  std::mt19937 rng{7};
+  std::normal_distribution<double> normal{0.0, 1.0};
+
+  double draw(double sigma) { return sigma * normal(rng); }
+  batch::RelativeMotion motion(const batch::ParamsVector& params_lin) {
+    batch::RelativeMotion m;
+    m.delta = Eigen::Vector3d(draw(10.0), draw(3.0), draw(0.5));
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < kParams; ++c) m.J_delta_params(r, c) = draw(5.0);
+      for (int c = 0; c < 2; ++c) m.J_delta_first_increment(r, c) = draw(1.0);
+    }
+    m.params_lin = params_lin;
+    return m;
+  }
+};
+
+struct Unknowns {
+  std::array<double, 3> pose{105.0, -42.0, 2.3};
+  std::array<double, kParams> params{};
+  std::array<double, 2> lever{0.8, -0.3};
+  double latency = 0.04;
+  std::array<double, 2> bias{0.5, -1.1};
+  std::array<double, 2> count{0.002, -0.001};
+  double heading_bias = 0.01;
+};
+
+batch::ParamsVector lin_params() {
+  batch::ParamsVector p = batch::ParamsVector::Zero();
+  p.head<3>() << 1.96, 1.97, 1.6;
+  return p;
+}
+
+TEST(FoldedGnss, HasTheCostOfTheFixesItFolds) {
+  RandomMotion random;
+  const batch::ParamsVector p_lin = lin_params();
+  Unknowns u;
+  Eigen::Map<batch::ParamsVector>(u.params.data()) = p_lin;
+  const Eigen::Vector2d origin(100.0, -40.0);
+  batch::RowFold<batch::kFoldedGnssColumns> fold;
+  std::vector<batch::GnssResidual> fixes;
+  for (int j = 0; j < 7; ++j) {
+    const batch::RelativeMotion motion = random.motion(p_lin);
+    const Eigen::Vector2d velocity(random.draw(10.0), random.draw(1.0));
+    const Eigen::Vector2d measured = origin + Eigen::Vector2d(random.draw(20.0), random.draw(20.0));
+    const double sigma = 1.0 + 0.5 * j;
+    fixes.push_back({motion, velocity, measured, sigma});
+    batch::FoldedGnssResidual::add_fix(fold, motion, velocity, measured - origin, sigma, 1.0);
+  }
+  const batch::FoldedGnssResidual folded{origin, fold.factor(), p_lin};
+  ASSERT_EQ(folded.factor.rows, 14);  // 7 fixes: fewer rows than the 18 columns
+  const auto costs = [&](const Unknowns& at) {
+    double per_fix = 0.0;
+    for (const batch::GnssResidual& fix : fixes) {
+      Eigen::Vector2d r;
+      fix(at.pose.data(), at.params.data(), at.lever.data(), &at.latency, at.bias.data(),
+          at.count.data(), r.data());
+      per_fix += r.squaredNorm();
+    }
+    Eigen::VectorXd r(folded.factor.rows);
+    folded(at.pose.data(), at.params.data(), at.lever.data(), &at.latency, at.bias.data(),
+           at.count.data(), r.data());
+    return std::pair{per_fix, r.squaredNorm()};
+  };
+  // At the parameters integrated with and zero count errors, exact (the lever arm turns with
+  // the integrated yaw)...
+  u.count = {0.0, 0.0};
+  const auto [per_fix, folded_cost] = costs(u);
+  EXPECT_NEAR(folded_cost, per_fix, 1e-9 * per_fix);
+  // ... and anywhere without a lever arm.
+  u.lever = {0.0, 0.0};
+  u.count = {0.002, -0.001};
+  u.params[0] += 0.01;
+  u.params[4] += 1e-3;
+  u.pose[2] -= 1.0;
+  const auto [per_fix_moved, folded_moved] = costs(u);
+  EXPECT_NEAR(folded_moved, per_fix_moved, 1e-9 * per_fix_moved);
+}
+
+TEST(FoldedGnss, AWeightScalesAFixsCost) {
+  RandomMotion random;
+  const batch::ParamsVector p_lin = lin_params();
+  const batch::RelativeMotion motion = random.motion(p_lin);
+  const Eigen::Vector2d velocity(3.0, 0.0), measured(4.0, -2.0);
+  batch::RowFold<batch::kFoldedGnssColumns> whole, quarter;
+  batch::FoldedGnssResidual::add_fix(whole, motion, velocity, measured, 2.0, 1.0);
+  batch::FoldedGnssResidual::add_fix(quarter, motion, velocity, measured, 2.0, 0.25);
+  const batch::FoldedGnssResidual a{Eigen::Vector2d::Zero(), whole.factor(), p_lin};
+  const batch::FoldedGnssResidual b{Eigen::Vector2d::Zero(), quarter.factor(), p_lin};
+  Unknowns u;
+  Eigen::Map<batch::ParamsVector>(u.params.data()) = p_lin;
+  Eigen::Vector2d ra, rb;
+  a(u.pose.data(), u.params.data(), u.lever.data(), &u.latency, u.bias.data(), u.count.data(),
+    ra.data());
+  b(u.pose.data(), u.params.data(), u.lever.data(), &u.latency, u.bias.data(), u.count.data(),
+    rb.data());
+  EXPECT_NEAR(rb.squaredNorm(), 0.25 * ra.squaredNorm(), 1e-12 * ra.squaredNorm());
+}
+
+TEST(FoldedHeading, HasTheCostOfTheSamplesItFolds) {
+  RandomMotion random;
+  const batch::ParamsVector p_lin = lin_params();
+  Unknowns u;
+  Eigen::Map<batch::ParamsVector>(u.params.data()) = p_lin;
+  u.params[1] += 0.003;
+  batch::RowFold<batch::kFoldedHeadingColumns> fold;
+  std::vector<batch::HeadingResidual> samples;
+  for (int j = 0; j < 30; ++j) {
+    const batch::RelativeMotion motion = random.motion(p_lin);
+    // The sample as logged (wrapped), and unwrapped to near its prediction for the fold.
+    const double predicted = u.pose[2] + motion.delta(2) + u.heading_bias;
+    const double unwrapped = predicted + random.draw(0.05);
+    const double logged = std::atan2(std::sin(unwrapped), std::cos(unwrapped));
+    samples.push_back({motion, logged, 0.02});
+    batch::FoldedHeadingResidual::add_sample(fold, motion, unwrapped, 0.02);
+  }
+  const batch::FoldedHeadingResidual folded{fold.factor(), p_lin};
+  ASSERT_EQ(folded.factor.rows, batch::kFoldedHeadingColumns);
+  double per_sample = 0.0;
+  for (const batch::HeadingResidual& sample : samples) {
+    double r = 0.0;
+    sample(u.pose.data(), u.params.data(), &u.heading_bias, u.count.data(), &r);
+    per_sample += r * r;
+  }
+  Eigen::VectorXd r(folded.factor.rows);
+  folded(u.pose.data(), u.params.data(), &u.heading_bias, u.count.data(), r.data());
+  EXPECT_NEAR(r.squaredNorm(), per_sample, 1e-8 * per_sample);
+}
+
+// r = A [a; b; c; x] - y: a small linear problem with every kind of block.
+struct LinearResidual {
+  Eigen::Matrix<double, 3, 8> A;
+  Eigen::Vector3d y;
+  template <typename T>
+  bool operator()(const T* a, const T* b, const T* c, const T* x, T* r) const {
+    Eigen::Matrix<T, 8, 1> v;
+    v << a[0], a[1], b[0], b[1], b[2], c[0], x[0], x[1];
+    Eigen::Map<Eigen::Matrix<T, 3, 1>> out(r);
+    out = A.cast<T>() * v - y.cast<T>();
+    return true;
+  }
+};
+
+struct SmallProblem {
+  std::array<double, 2> a{0.1, 0.2};
+  std::array<double, 3> b{1.0, 2.0, 3.0};
+  double c = 0.5;
+  std::vector<std::array<double, 2>> x = std::vector<std::array<double, 2>>(12);
+  ceres::Problem problem;
+
+  explicit SmallProblem(bool singular) {
+    std::mt19937 rng(3);
+    std::normal_distribution<double> normal;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      auto* residual = new LinearResidual;
+      for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 8; ++k) residual->A(r, k) = normal(rng);
+      // Singular: a[0] and a[1] enter only as their sum.
+      if (singular) residual->A.col(1) = residual->A.col(0);
+      residual->y = Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<LinearResidual, 3, 2, 3, 1, 2>(residual), nullptr,
+          a.data(), b.data(), &c, x[i].data());
+    }
+    problem.SetParameterBlockConstant(&c);
+    problem.SetManifold(b.data(), new ceres::SubsetManifold(3, {1}));
+  }
+};
+
+TEST(MarginalCovariances, EqualCeresCovarianceWithManifoldsAndConstants) {
+  SmallProblem small(false);
+  const auto ours = batch::marginal_covariances(
+      small.problem, {{small.a.data(), 2}, {small.b.data(), 3}, {&small.c, 1}});
+  ASSERT_TRUE(ours.has_value());
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::SPARSE_QR;
+  ceres::Covariance covariance(options);
+  ASSERT_TRUE(covariance.Compute(
+      {{small.a.data(), small.a.data()}, {small.b.data(), small.b.data()}}, &small.problem));
+  Eigen::Matrix<double, 2, 2, Eigen::RowMajor> a;
+  Eigen::Matrix<double, 3, 3, Eigen::RowMajor> b;
+  covariance.GetCovarianceBlock(small.a.data(), small.a.data(), a.data());
+  covariance.GetCovarianceBlock(small.b.data(), small.b.data(), b.data());
+  EXPECT_LT((Eigen::MatrixXd(a) - (*ours)[0]).norm(), 1e-9 * a.norm());
+  EXPECT_LT((Eigen::MatrixXd(b) - (*ours)[1]).norm(), 1e-9 * b.norm());
+  EXPECT_EQ((*ours)[1](1, 1), 0.0);  // held by the manifold
+  EXPECT_EQ((*ours)[2](0, 0), 0.0);  // constant
+}
+
+TEST(MarginalCovariances, NoneWhenTheInformationIsSingular) {
+  SmallProblem small(true);
+  EXPECT_FALSE(batch::marginal_covariances(small.problem, {{small.a.data(), 2}}).has_value());
+}
+
+}  // namespace
+}  // namespace odocal
