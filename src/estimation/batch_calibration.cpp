@@ -182,15 +182,16 @@ class BatchProblem {
 
   // Every fix in the problem: measured minus fitted position (metres), robust loss not applied;
   // a modelled Gauss-Markov error counts as part of it.
-  std::vector<GnssResidualSample> gnss_errors() const {
-    std::vector<GnssResidualSample> errors;
-    errors.reserve(gnss_residuals_);
-    for_each_fix([&](std::size_t fix, std::size_t segment, const Eigen::Vector2d& whitened) {
-      Eigen::Vector2d error = -white_gnss_sigma(fix) * whitened;
-      if (gauss_markov()) error += Eigen::Vector2d(gnss_bias_[segment][0], gnss_bias_[segment][1]);
-      errors.push_back({log_.gnss.t_s[fix], error});
-    });
-    return errors;
+  // (Computed again at each call, segment by segment: a long log's errors are not held.)
+  GnssResidualSource gnss_errors() const {
+    return [this](const GnssResidualSink& sink) {
+      for_each_fix([&](std::size_t fix, std::size_t segment, const Eigen::Vector2d& whitened) {
+        Eigen::Vector2d error = -white_gnss_sigma(fix) * whitened;
+        if (gauss_markov())
+          error += Eigen::Vector2d(gnss_bias_[segment][0], gnss_bias_[segment][1]);
+        sink(log_.gnss.t_s[fix], error);
+      });
+    };
   }
 
   // Every odometry interval in the problem: fitted poses, and their relative motion minus the
@@ -278,6 +279,7 @@ class BatchProblem {
 
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
     solver.max_num_iterations = batch_.max_solver_iterations;
     solver.num_threads = 1;
     solver.logging_type = ceres::SILENT;

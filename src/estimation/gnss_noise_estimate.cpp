@@ -7,10 +7,11 @@
 namespace odocal {
 namespace {
 
-// 1.4826 x the median absolute value: sigma of a normal sample, robust to outliers.
-double robust_sigma(std::vector<double> values) {
+// 1.4826 x the median absolute value: sigma of a normal sample, robust to outliers. Reorders
+// `values`; single precision is plenty for a median and halves a long log's copy.
+double robust_sigma(std::vector<float>& values) {
   if (values.empty()) return 0.0;
-  for (double& v : values) v = std::abs(v);
+  for (float& v : values) v = std::abs(v);
   const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
   std::nth_element(values.begin(), middle, values.end());
   return 1.4826 * *middle;
@@ -20,34 +21,46 @@ double robust_sigma(std::vector<double> values) {
 
 GnssNoiseEstimate estimate_gnss_noise(const std::vector<GnssResidualSample>& residuals,
                                       double bin_s) {
+  return estimate_gnss_noise(
+      [&](const GnssResidualSink& sink) {
+        for (const GnssResidualSample& r : residuals) sink(r.t_s, r.error_m);
+      },
+      bin_s);
+}
+
+GnssNoiseEstimate estimate_gnss_noise(const GnssResidualSource& residuals, double bin_s) {
   GnssNoiseEstimate estimate;
-  if (residuals.size() < 10) return estimate;
-  std::vector<double> components;
-  for (const GnssResidualSample& r : residuals) {
-    components.push_back(r.error_m.x());
-    components.push_back(r.error_m.y());
-  }
+  // First pass: the span, and the components for the outlier limit.
+  std::vector<float> components;
+  double t0 = 0.0, t_end = 0.0;
+  residuals([&](double t_s, const Eigen::Vector2d& error) {
+    if (components.empty()) t0 = t_s;
+    t_end = t_s;
+    components.push_back(static_cast<float>(error.x()));
+    components.push_back(static_cast<float>(error.y()));
+  });
+  if (components.size() < 20) return estimate;
   const double limit = 5.0 * robust_sigma(components);
+  components = {};
 
   // Total variance, and the means over time bins (the white part averages out within a bin).
-  const double t0 = residuals.front().t_s;
-  const auto bins = static_cast<std::size_t>((residuals.back().t_s - t0) / bin_s) + 1;
+  const auto bins = static_cast<std::size_t>((t_end - t0) / bin_s) + 1;
   std::vector<Eigen::Vector2d> bin_sum(bins, Eigen::Vector2d::Zero());
   std::vector<double> bin_squares(bins, 0.0);
   std::vector<int> bin_count(bins, 0);
   double square_sum = 0.0;
-  for (const GnssResidualSample& r : residuals) {
-    if (!(r.error_m.cwiseAbs().maxCoeff() <= limit)) {
+  residuals([&](double t_s, const Eigen::Vector2d& error) {
+    if (!(error.cwiseAbs().maxCoeff() <= limit)) {
       ++estimate.outliers;
-      continue;
+      return;
     }
     ++estimate.fixes;
-    square_sum += r.error_m.squaredNorm();
-    const auto b = static_cast<std::size_t>((r.t_s - t0) / bin_s);
-    bin_sum[b] += r.error_m;
-    bin_squares[b] += r.error_m.squaredNorm();
+    square_sum += error.squaredNorm();
+    const auto b = std::min(static_cast<std::size_t>((t_s - t0) / bin_s), bins - 1);
+    bin_sum[b] += error;
+    bin_squares[b] += error.squaredNorm();
     ++bin_count[b];
-  }
+  });
   if (estimate.fixes < 10) return estimate;
   const double variance = square_sum / (2.0 * static_cast<double>(estimate.fixes));
   estimate.total_sigma_m = std::sqrt(variance);
@@ -93,7 +106,7 @@ GnssNoiseEstimate estimate_gnss_noise(const std::vector<GnssResidualSample>& res
     sy += y;
     sky += k * y;
   }
-  const double log_span_s = residuals.back().t_s - t0;
+  const double log_span_s = t_end - t0;
   double tau_s, sigma2;
   if (n >= 2 && n * skk - sk * sk > 0.0) {
     const double slope = (n * sky - sk * sy) / (n * skk - sk * sk);

@@ -5,13 +5,15 @@
 // covers the error when the configuration is wrong (docs/batch-calibration.md).
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 namespace odocal {
 
 struct GnssResidualSample {
   double t_s{};
-  Eigen::Vector2d error_m = Eigen::Vector2d::Zero();  // fix minus fitted position
+  // Fix minus fitted position. Unaligned: 24 bytes a fix instead of 32 (one per fix of a log).
+  Eigen::Matrix<double, 2, 1, Eigen::DontAlign> error_m = Eigen::Vector2d::Zero();
 };
 
 struct GnssNoiseEstimate {
@@ -23,8 +25,14 @@ struct GnssNoiseEstimate {
   std::size_t outliers{};  // beyond 5 robust sigmas, left out
 };
 
+// Calls its argument once per residual, in time order (it is called twice: a long log's
+// residuals need not be held).
+using GnssResidualSink = std::function<void(double t_s, const Eigen::Vector2d& error_m)>;
+using GnssResidualSource = std::function<void(const GnssResidualSink&)>;
+
 // `bin_s`: the correlation is measured between means over bins of this length (1 s: the white
 // part averages out within a bin and is independent between bins).
+GnssNoiseEstimate estimate_gnss_noise(const GnssResidualSource& residuals, double bin_s = 1.0);
 GnssNoiseEstimate estimate_gnss_noise(const std::vector<GnssResidualSample>& residuals,
                                       double bin_s = 1.0);
 
