@@ -250,6 +250,8 @@ class BatchProblem {
     gnss_folds_.assign(keyframes_.size() - 1, {});
     heading_folds_.assign(keyframes_.size() - 1, {});
     max_weight_change_ = 0.0f;
+    gnss_columns_ = gnss_columns();
+    heading_columns_ = heading_columns();
     std::size_t next_fix = 0, next_heading = 0;
     for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
       const PreintegratedSegment segment =
@@ -416,7 +418,7 @@ class BatchProblem {
           Eigen::Vector2d(log_.gnss.x_m[j], log_.gnss.y_m[j]) - origin, white_gnss_sigma(j),
           weight);
     });
-    if (!fold.empty()) gnss_folds_[i] = {origin, fold.factor(), params_lin_};
+    if (!fold.empty()) gnss_folds_[i] = {origin, fold.factor(gnss_columns_), params_lin_};
   }
 
   void fold_heading(std::size_t i, const PreintegratedSegment& seg, std::size_t& next) {
@@ -429,7 +431,7 @@ class BatchProblem {
       batch::FoldedHeadingResidual::add_sample(fold, at.motion, measured,
                                                sensors_.heading_sigma_rad);
     });
-    if (!fold.empty()) heading_folds_[i] = {fold.factor(), params_lin_};
+    if (!fold.empty()) heading_folds_[i] = {fold.factor(heading_columns_), params_lin_};
   }
 
   // Calls visit(fix, segment, whitened residual) for every fix in the problem, at the current
@@ -452,6 +454,48 @@ class BatchProblem {
 
   // A segment that is a wheel gap: no odometry links its keyframes (GNSS and the gyro do).
   bool gap_segment(std::size_t i) const { return log_.wheels.breaks_at(keyframes_[i + 1]); }
+
+  // Whether parameter p is estimated in this solve (the rest are held where they are).
+  bool param_free(int p) const {
+    if (p < 2) return true;
+    if (p == 2) return batch_.estimate_track_width;
+    return tyre_extended_ && !tyre_held(p - kTyreOffset);
+  }
+
+  // The entries of a GNSS fold's phi (batch_folded_residuals.hpp) that this solve can move.
+  batch::ColumnSelection<batch::kFoldedGnssColumns> gnss_columns() const {
+    batch::ColumnSelection<batch::kFoldedGnssColumns> selection;
+    selection.constant_column = 4;
+    for (int c = 0; c < 5; ++c) selection.kept.push_back(static_cast<std::uint8_t>(c));
+    for (int p = 0; p < batch::kParams; ++p)
+      if (param_free(p)) selection.kept.push_back(static_cast<std::uint8_t>(5 + p));
+    constexpr int kCount = 5 + batch::kParams, kLever = kCount + 2, kLatency = kLever + 2;
+    const auto keep_or_hold = [&](int column, bool free, double value) {
+      if (free) {
+        selection.kept.push_back(static_cast<std::uint8_t>(column));
+      } else {
+        selection.held_values(column) = value;
+      }
+    };
+    for (int w = 0; w < 2; ++w) keep_or_hold(kCount + w, quantisation_sigma_rev_ > 0.0, 0.0);
+    for (int a = 0; a < 2; ++a)
+      keep_or_hold(kLever + a, batch_.estimate_lever_arm, lever_[static_cast<std::size_t>(a)]);
+    keep_or_hold(kLatency, batch_.estimate_latency, latency_);
+    return selection;
+  }
+
+  batch::ColumnSelection<batch::kFoldedHeadingColumns> heading_columns() const {
+    batch::ColumnSelection<batch::kFoldedHeadingColumns> selection;
+    selection.constant_column = 1;
+    selection.kept = {0, 1};
+    for (int p = 0; p < batch::kParams; ++p)
+      if (param_free(p)) selection.kept.push_back(static_cast<std::uint8_t>(2 + p));
+    if (quantisation_sigma_rev_ > 0.0) {
+      selection.kept.push_back(static_cast<std::uint8_t>(2 + batch::kParams));
+      selection.kept.push_back(static_cast<std::uint8_t>(3 + batch::kParams));
+    }
+    return selection;
+  }
 
   bool gentle_limits() const {
     return batch_.gentle_max_speed_mps > 0.0 || batch_.gentle_max_longitudinal_mps2 > 0.0 ||
@@ -641,9 +685,8 @@ class BatchProblem {
     hold(&heading_bias_, batch_.estimate_heading_bias);
     hold(&gyro_bias_, batch_.estimate_gyro_bias);
     std::vector<int> held;
-    if (!batch_.estimate_track_width) held.push_back(2);
-    for (int j = 0; j < TyreModel::kCoefficients; ++j)
-      if (!tyre_extended_ || tyre_held(j)) held.push_back(kTyreOffset + j);
+    for (int p = 0; p < batch::kParams; ++p)
+      if (!param_free(p)) held.push_back(p);
     if (!held.empty())
       problem_->SetManifold(params_.data(), new ceres::SubsetManifold(batch::kParams, held));
   }
@@ -665,6 +708,8 @@ class BatchProblem {
   // Per keyframe interval; an empty factor: nothing measured there.
   std::vector<batch::FoldedGnssResidual> gnss_folds_;
   std::vector<batch::FoldedHeadingResidual> heading_folds_;
+  batch::ColumnSelection<batch::kFoldedGnssColumns> gnss_columns_;  // of the folds being built
+  batch::ColumnSelection<batch::kFoldedHeadingColumns> heading_columns_;
   std::size_t folded_fixes_ = 0, folded_headings_ = 0;
   std::vector<float> gnss_weights_;  // per fix: the robust loss's weight in the last fold
   float max_weight_change_ = 0.0f;   // ... and its largest change there

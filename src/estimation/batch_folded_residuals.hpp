@@ -20,6 +20,7 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "batch_residuals.hpp"
@@ -29,21 +30,39 @@ namespace odocal::batch {
 inline constexpr int kFoldedGnssColumns = 5 + kParams + 2 + 2 + 1;
 inline constexpr int kFoldedHeadingColumns = 2 + kParams + 2;
 
-// An upper triangular (or trapezoidal) factor, kept packed: row r holds its columns r.. only.
-template <int Columns>
+// An upper triangular (or trapezoidal) factor over the entries `kept` of phi, packed: row r
+// holds its columns r.. only.
 struct PackedFactor {
   int rows = 0;
+  std::vector<std::uint8_t> kept;
   std::vector<double> values;
 
-  // residual = factor x phi
-  template <typename T>
-  void multiply(const Eigen::Matrix<T, Columns, 1>& phi, T* residual) const {
+  // residual = factor x phi(kept)
+  template <typename T, int N>
+  void multiply(const Eigen::Matrix<T, N, 1>& phi, T* residual) const {
+    const int columns = static_cast<int>(kept.size());
     const double* value = values.data();
     for (int r = 0; r < rows; ++r) {
       T sum(0.0);
-      for (int c = r; c < Columns; ++c) sum += *value++ * phi(c);
+      for (int c = r; c < columns; ++c) sum += *value++ * phi(kept[static_cast<std::size_t>(c)]);
       residual[r] = sum;
     }
+  }
+};
+
+// Which entries of phi the solver can move. The others are held (a held parameter's change is
+// zero, a constant lever arm or latency keeps its value): their part of each row goes into the
+// constant column, so that the factor needs fewer columns, and so fewer rows.
+template <int Columns>
+struct ColumnSelection {
+  std::vector<std::uint8_t> kept;  // ascending, with the constant column
+  int constant_column{};
+  Eigen::Matrix<double, Columns, 1> held_values = Eigen::Matrix<double, Columns, 1>::Zero();
+
+  static ColumnSelection all() {
+    ColumnSelection selection;
+    for (int c = 0; c < Columns; ++c) selection.kept.push_back(static_cast<std::uint8_t>(c));
+    return selection;
   }
 };
 
@@ -56,16 +75,26 @@ class RowFold {
 
   void add(const Row& row) { rows_.push_back(row); }
   bool empty() const { return rows_.empty(); }
-  PackedFactor<Columns> factor() const {
-    Eigen::Matrix<double, Eigen::Dynamic, Columns> stacked(static_cast<Eigen::Index>(rows_.size()),
-                                                           Columns);
-    for (std::size_t r = 0; r < rows_.size(); ++r)
-      stacked.row(static_cast<Eigen::Index>(r)) = rows_[r];
-    const Eigen::HouseholderQR<Eigen::Matrix<double, Eigen::Dynamic, Columns>> qr(stacked);
-    PackedFactor<Columns> packed;
-    packed.rows = static_cast<int>(std::min<Eigen::Index>(stacked.rows(), Columns));
+  PackedFactor factor(
+      const ColumnSelection<Columns>& selection = ColumnSelection<Columns>::all()) const {
+    const auto columns = static_cast<Eigen::Index>(selection.kept.size());
+    Eigen::MatrixXd stacked(static_cast<Eigen::Index>(rows_.size()), columns);
+    for (std::size_t r = 0; r < rows_.size(); ++r) {
+      const Row& row = rows_[r];
+      double held = 0.0;
+      for (int c = 0; c < Columns; ++c) held += row(c) * selection.held_values(c);
+      for (Eigen::Index k = 0; k < columns; ++k) {
+        const int c = selection.kept[static_cast<std::size_t>(k)];
+        stacked(static_cast<Eigen::Index>(r), k) =
+            row(c) + (c == selection.constant_column ? held : 0.0);
+      }
+    }
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(stacked);
+    PackedFactor packed;
+    packed.kept = selection.kept;
+    packed.rows = static_cast<int>(std::min(stacked.rows(), columns));
     for (int r = 0; r < packed.rows; ++r)
-      for (int c = r; c < Columns; ++c) packed.values.push_back(qr.matrixQR()(r, c));
+      for (Eigen::Index c = r; c < columns; ++c) packed.values.push_back(qr.matrixQR()(r, c));
     packed.values.shrink_to_fit();
     return packed;
   }
@@ -77,7 +106,7 @@ class RowFold {
 // The GNSS fixes of one keyframe interval. Blocks: pose, params, lever, latency, bias, count.
 struct FoldedGnssResidual {
   Eigen::Vector2d origin;  // world position the fixes were taken relative to
-  PackedFactor<kFoldedGnssColumns> factor;
+  PackedFactor factor;
   ParamsVector params_lin;
 
   // Fix j's whitened row pair (x, y) with weight `weight` (a robust loss's, 1 without one).
@@ -117,7 +146,7 @@ struct FoldedGnssResidual {
 
 // The heading samples of one keyframe interval. Blocks: pose, params, heading_bias, count.
 struct FoldedHeadingResidual {
-  PackedFactor<kFoldedHeadingColumns> factor;
+  PackedFactor factor;
   ParamsVector params_lin;
 
   // `measured_rad` is the sample unwrapped to within pi of its prediction.

@@ -95,6 +95,39 @@ TEST(FoldedGnss, HasTheCostOfTheFixesItFolds) {
   EXPECT_NEAR(folded_moved, per_fix_moved, 1e-9 * per_fix_moved);
 }
 
+TEST(FoldedGnss, HeldEntriesGoIntoTheConstantColumn) {
+  RandomMotion random;
+  const batch::ParamsVector p_lin = lin_params();
+  batch::RowFold<batch::kFoldedGnssColumns> fold;
+  for (int j = 0; j < 9; ++j) {
+    batch::FoldedGnssResidual::add_fix(
+        fold, random.motion(p_lin), Eigen::Vector2d(random.draw(10.0), random.draw(1.0)),
+        Eigen::Vector2d(random.draw(20.0), random.draw(20.0)), 2.0, 1.0);
+  }
+  Unknowns u;
+  Eigen::Map<batch::ParamsVector>(u.params.data()) = p_lin;
+  // Free: c_RL, c_RR, count errors; held: the rest, the lever arm and latency at their values.
+  batch::ColumnSelection<batch::kFoldedGnssColumns> selection;
+  selection.constant_column = 4;
+  selection.kept = {0, 1, 2, 3, 4, 5, 6, 5 + kParams, 6 + kParams};
+  selection.held_values(7 + kParams) = u.lever[0];
+  selection.held_values(8 + kParams) = u.lever[1];
+  selection.held_values(9 + kParams) = u.latency;
+  const batch::FoldedGnssResidual full{Eigen::Vector2d::Zero(), fold.factor(), p_lin};
+  const batch::FoldedGnssResidual reduced{Eigen::Vector2d::Zero(), fold.factor(selection), p_lin};
+  EXPECT_EQ(reduced.factor.rows, 9);  // from 18
+  u.params[0] += 0.004;
+  u.params[1] -= 0.002;
+  u.pose = {3.0, -4.0, 0.7};
+  const auto cost = [&](const batch::FoldedGnssResidual& folded) {
+    Eigen::VectorXd r(folded.factor.rows);
+    folded(u.pose.data(), u.params.data(), u.lever.data(), &u.latency, u.bias.data(),
+           u.count.data(), r.data());
+    return r.squaredNorm();
+  };
+  EXPECT_NEAR(cost(reduced), cost(full), 1e-9 * cost(full));
+}
+
 TEST(FoldedGnss, AWeightScalesAFixsCost) {
   RandomMotion random;
   const batch::ParamsVector p_lin = lin_params();
