@@ -49,6 +49,8 @@ def test_every_method_finds_the_wear(worn, method):
     assert result.covariance.shape == (2, 2)
     as_json = result.to_dict()
     assert as_json["usable"] is True and as_json["method"] == method
+    # Worn tyres: the estimate dead-reckons better than the nominal, no caution goes with it.
+    assert result.note == "" and as_json["note"] == ""
 
 
 def test_options_are_the_config_files_keys(worn):
