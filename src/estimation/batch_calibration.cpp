@@ -306,8 +306,8 @@ class BatchProblem {
     return change;
   }
 
-  // 1-sigma covariance blocks of the global unknowns; empty when Ceres cannot compute them
-  // (rank-deficient problem).
+  // 1-sigma covariance blocks of the global unknowns; none when the information is singular
+  // (some unknowns cannot be told apart: batch_covariance.hpp).
   struct Uncertainty {
     Eigen::Matrix<double, batch::kParams, batch::kParams> params =
         Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
@@ -374,8 +374,9 @@ class BatchProblem {
     return at;
   }
 
-  // Calls visit(fix, motion) for every GNSS fix inside segment i, from `next` on (fixes before
-  // the segment are skipped; `next` ends past the segment).
+  // Calls visit(k, motion) for every sample k of a stream's times `t_s` (GNSS fixes, heading
+  // samples) inside segment i, from `next` on (samples before the segment are skipped; `next`
+  // ends past it).
   template <typename Visit>
   void visit_fixes(std::size_t i, const PreintegratedSegment& seg, const std::vector<double>& t_s,
                    std::size_t& next, Visit&& visit) const {
