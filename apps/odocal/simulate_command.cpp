@@ -28,6 +28,7 @@ struct SimulateArgs {
   std::optional<std::uint64_t> trajectory_seed;
   std::optional<double> gnss_sigma_m;
   std::optional<std::string> gnss_output;
+  std::optional<std::string> gnss_altitude;
   std::optional<std::string> wheel_output;
 };
 
@@ -48,6 +49,12 @@ void run_simulate(const SimulateArgs& args) {
   if (args.trajectory_seed) scenario.seeds.trajectory = *args.trajectory_seed;
   if (args.gnss_sigma_m) scenario.gnss.sigma_m = *args.gnss_sigma_m;
   if (args.gnss_output) scenario.gnss.output_latlon = *args.gnss_output == "latlon";
+  if (args.gnss_altitude) {
+    using Altitude = sim::GnssSimConfig::Altitude;
+    scenario.gnss.altitude = *args.gnss_altitude == "always"  ? Altitude::kAlways
+                             : *args.gnss_altitude == "never" ? Altitude::kNever
+                                                              : Altitude::kAuto;
+  }
   if (args.wheel_output) scenario.wheels.output = *parse_enum<WheelUnit>(*args.wheel_output);
 
   sim::SimulatedDrive drive = sim::simulate(scenario);
@@ -100,6 +107,10 @@ void add_simulate_command(CLI::App& app) {
       ->check(finite_in(0.0, 1e3));
   command->add_option("--gnss-output", args->gnss_output, "GNSS as local x,y or lat,lon")
       ->check(CLI::IsMember({"local", "latlon"}));
+  command
+      ->add_option("--gnss-altitude", args->gnss_altitude,
+                   "GNSS alt column: auto (on hills only), always or never")
+      ->check(CLI::IsMember({"auto", "always", "never"}));
   command->add_option("--wheel-output", args->wheel_output, "Wheel columns' unit")
       ->check(CLI::IsMember(enum_name_list<WheelUnit>()));
   command->callback([args] { run_simulate(*args); });

@@ -56,8 +56,11 @@ WindowSum window_sum(const std::vector<double>& t_s, const std::vector<double>& 
   const auto first = std::lower_bound(t_s.begin(), t_s.end(), from_s);
   const auto last = std::upper_bound(first, t_s.end(), to_s);
   WindowSum window;
-  for (auto it = first; it != last; ++it)
-    window.sum += values[static_cast<std::size_t>(it - t_s.begin())];
+  for (auto it = first; it != last; ++it) {
+    const double value = values[static_cast<std::size_t>(it - t_s.begin())];
+    window.sum += value;
+    window.sum_squares += value * value;
+  }
   window.count = static_cast<std::size_t>(last - first);
   return window;
 }

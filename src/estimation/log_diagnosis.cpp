@@ -166,7 +166,25 @@ class Doctor {
           "a logger started late or stopped early, or its clock is offset",
           "calibration uses the shared span only; check the time columns if it should be longer");
     }
+    check_optional_span("imu.csv", log_.imu ? &log_.imu->t_s : nullptr);
+    check_optional_span("heading.csv", log_.heading ? &log_.heading->t_s : nullptr);
     return true;
+  }
+
+  // An IMU or heading stream that covers much less of the wheels' span than the wheels do: the
+  // reference has no gyro or heading for the rest.
+  void check_optional_span(const char* file, const std::vector<double>* t_s) {
+    if (t_s == nullptr || t_s->empty()) return;
+    const double wheels_from = log_.wheels.t_s.front(), wheels_to = log_.wheels.t_s.back();
+    const double covered = std::min(wheels_to, t_s->back()) - std::max(wheels_from, t_s->front());
+    const double wheels_s = wheels_to - wheels_from;
+    if (covered < 0.9 * wheels_s - 2.0) {
+      add("time.span", FindingSeverity::kWarning, "the streams cover different spans",
+          fmt::format("{} covers {:.1f} s of the wheels' {:.1f} s ({:.3f} to {:.3f} s)", file,
+                      std::max(0.0, covered), wheels_s, t_s->front(), t_s->back()),
+          "a logger started late or stopped early, or its clock is offset",
+          fmt::format("the reference has no {} for the rest; check its time column", file));
+    }
   }
 
   // Each wheel's speed against the GNSS speed: sign, unit and circumference.
@@ -473,17 +491,25 @@ class Doctor {
     const auto standing = find_standstills(log_, log_.vehicle.nominal_params(), {});
     if (standing.empty()) return;
     if (log_.imu) {
-      double sum = 0.0;
+      double sum = 0.0, sum_squares = 0.0;
       std::size_t n = 0;
       for (const Standstill& still : standing) {
         const WindowSum window =
             window_sum(log_.imu->t_s, log_.imu->wz_radps, still.start_s, still.end_s);
         sum += window.sum;
+        sum_squares += window.sum_squares;
         n += window.count;
       }
-      if (n > 10 && std::abs(sum / n) > rad_from_deg(0.2)) {
+      // A bias, not the gyro's noise over a few standing seconds: 4 standard errors.
+      const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
+      const double spread =
+          n > 1 ? std::sqrt(std::max(0.0, (sum_squares - sum * mean) / static_cast<double>(n - 1)))
+                : 0.0;
+      const double standard_error = n > 0 ? spread / std::sqrt(static_cast<double>(n)) : 0.0;
+      if (n > 10 && std::abs(mean) > std::max(rad_from_deg(0.2), 4.0 * standard_error)) {
         add("imu.gyro_bias", FindingSeverity::kNote, "the gyro has a zero-rate bias",
-            fmt::format("{:+.3f} deg/s at standstill ({} samples)", deg_from_rad(sum / n), n),
+            fmt::format("{:+.3f} deg/s at standstill ({} samples, standard error {:.3f} deg/s)",
+                        deg_from_rad(mean), n, deg_from_rad(standard_error)),
             "an uncalibrated gyro", "none needed: the reference filter estimates it");
       }
     }

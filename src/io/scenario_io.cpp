@@ -92,6 +92,18 @@ WheelUnit parse_wheel_unit(YamlMap& map, const std::string& key, WheelUnit fallb
   throw InputError(map.location(key), "expected one of ticks, rad, radps, mps");
 }
 
+const char* altitude_name(sim::GnssSimConfig::Altitude altitude) {
+  switch (altitude) {
+    case sim::GnssSimConfig::Altitude::kAlways:
+      return "always";
+    case sim::GnssSimConfig::Altitude::kNever:
+      return "never";
+    case sim::GnssSimConfig::Altitude::kAuto:
+      break;
+  }
+  return "auto";
+}
+
 void parse_sensors(YamlMap sensors, sim::Scenario& s) {
   if (auto gnss = sensors.map("gnss")) {
     gnss->read("rate_hz", s.gnss.rate_hz, 0.01, 1000.0);
@@ -118,6 +130,12 @@ void parse_sensors(YamlMap sensors, sim::Scenario& s) {
     if (output != "local" && output != "latlon")
       throw InputError(gnss->location("output"), "expected local or latlon");
     s.gnss.output_latlon = output == "latlon";
+    std::string altitude = altitude_name(s.gnss.altitude);
+    gnss->read("altitude", altitude);
+    if (altitude == "auto") s.gnss.altitude = sim::GnssSimConfig::Altitude::kAuto;
+    else if (altitude == "always") s.gnss.altitude = sim::GnssSimConfig::Altitude::kAlways;
+    else if (altitude == "never") s.gnss.altitude = sim::GnssSimConfig::Altitude::kNever;
+    else throw InputError(gnss->location("altitude"), "expected auto, always or never");
     if (auto origin = gnss->map("origin")) {
       origin->read("lat_deg", s.gnss.origin.latitude_deg, -90.0, 90.0);
       origin->read("lon_deg", s.gnss.origin.longitude_deg, -180.0, 180.0);
@@ -385,6 +403,7 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   }
   out << YAML::EndSeq;
   key("output", s.gnss.output_latlon ? "latlon" : "local");
+  key("altitude", altitude_name(s.gnss.altitude));
   out << YAML::Key << "origin" << YAML::Value << YAML::Flow << YAML::BeginMap;
   key("lat_deg", s.gnss.origin.latitude_deg);
   key("lon_deg", s.gnss.origin.longitude_deg);

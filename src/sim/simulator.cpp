@@ -266,7 +266,11 @@ SimulatedDrive simulate(const Scenario& scenario) {
     truth = std::make_unique<GradedMotion>(std::move(truth), scenario.route.terrain, lap_length_m);
   }
   simulate_wheels(scenario, *truth, wheel_rng, out);
-  simulate_gnss(scenario.gnss, scenario.route.terrain.max_grade > 0.0, *truth, gnss_rng, out);
+  const bool hills = scenario.route.terrain.max_grade > 0.0;
+  using Altitude = GnssSimConfig::Altitude;
+  const bool altitude = scenario.gnss.altitude == Altitude::kAlways ||
+                        (scenario.gnss.altitude == Altitude::kAuto && hills);
+  simulate_gnss(scenario.gnss, altitude, *truth, gnss_rng, out);
   if (out.gnss_t_s.size() < 2) {
     throw InputError({"scenario", 0, "sensors.gnss.outages"},
                      "the outages leave fewer than 2 GNSS fixes in the whole drive");

@@ -215,6 +215,7 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
           0.0};
   auto motion = std::make_unique<RecordedMotion>(h);
   double progress_m = 0.0;
+  const std::vector<double> cusps_m = path.direction_changes_m();
   Controls controls{0.0, 0.0, 0.0};
 
   for (std::size_t k = 0; k <= steps; ++k) {
@@ -240,6 +241,16 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
         progress_m = std::clamp(progress_m, lowest_m,
                                 std::max(lowest_m, std::min(ahead_limit_m, previous_m + 2.0)));
       }
+      // Standing, a driver holds the brake where the car came to rest, a few centimetres short
+      // of the stop: nothing chases the rest, which at the gains' time constant (3 s) would make
+      // the car creep through the whole stop (angular-rate wheel sensors read that as a bias).
+      // Leaving a cusp from there, progress starts on the new segment.
+      const bool standing = reference.speed_mps == 0.0 && reference.acc_mps2 == 0.0;
+      for (const double cusp_m : cusps_m) {
+        constexpr double kShortOfStopM = 0.3;
+        if (progress_m < cusp_m && reference.s_m > cusp_m && cusp_m - progress_m < kShortOfStopM)
+          progress_m = std::nextafter(cusp_m, path.length_m());
+      }
       const PathPoint p = path.at(progress_m);
       const double lateral = (rear.head<2>() - p.pose.head<2>())
                                  .dot(Eigen::Vector2d(-std::sin(p.pose.z()), std::cos(p.pose.z())));
@@ -247,10 +258,11 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
       const double u = -k_lateral * lateral - k_heading * direction * heading;
       controls.steer_rad = std::clamp(std::atan(wheelbase_m * (p.curvature_1pm + u)),
                                       -config.max_steer_rad, config.max_steer_rad);
+      const double behind_m = standing ? 0.0 : reference.s_m - progress_m;
       const double acc =
           std::clamp(direction * reference.acc_mps2 +
                          config.speed_gain_1ps * (direction * reference.speed_mps - s.vx) +
-                         config.position_gain_1ps2 * direction * (reference.s_m - progress_m),
+                         config.position_gain_1ps2 * direction * behind_m,
                      -config.friction * kGravity, config.friction * kGravity);
       controls.force_n = config.mass_kg * acc + vehicle.resistance_n(s.vx);
       controls.ax_estimate_mps2 = acc;

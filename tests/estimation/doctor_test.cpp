@@ -45,18 +45,18 @@ class DoctorMatrix : public ::testing::Test {
  protected:
   static fs::path simulated(const TempLogDir& dir, const std::string& flags) {
     const fs::path log = dir.path() / "log";
-    const auto run =
-        run_cli(fmt::format("simulate --laps 1 --seed 3 {} --out {}", flags, log.string()));
+    const auto run = run_cli(fmt::format("simulate --laps 1 --seed 3 {} {} --out {}",
+                                         testing::kCleanLogFlags, flags, log.string()));
     EXPECT_EQ(run.status, 0) << run.err;
     return log;
   }
 };
 
-TEST_F(DoctorMatrix, CleanSimulatedLogsHaveNoBlockingFinding) {
+TEST_F(DoctorMatrix, CleanSimulatedLogsHaveNoFindingAtAll) {
   for (const char* flags : {"", "--ideal", "--wheel-output radps", "--gnss-output latlon"}) {
     const TempLogDir dir;
     const Diagnosis diagnosis = doctor_log(simulated(dir, flags));
-    EXPECT_FALSE(diagnosis.blocking()) << flags << ": " << checks(diagnosis, true);
+    EXPECT_TRUE(diagnosis.findings.empty()) << flags << ": " << checks(diagnosis, false);
   }
 }
 
@@ -65,9 +65,10 @@ TEST_F(DoctorMatrix, EveryInjectedFaultIsFoundByItsCheck) {
     const TempLogDir dir;
     const fs::path log = simulated(dir, fault.simulate);
     fault.inject(log);
-    const Diagnosis diagnosis = doctor_log(log);
-    EXPECT_TRUE(diagnosis.blocking()) << fault.name;
-    EXPECT_NE(checks(diagnosis, true).find(fault.expected_check), std::string::npos)
+    const Diagnosis diagnosis = testing::doctor_directory(log);
+    EXPECT_EQ(diagnosis.blocking(), fault.expected_severity == FindingSeverity::kBlocking)
+        << fault.name << ": found " << checks(diagnosis, false);
+    EXPECT_TRUE(testing::found(diagnosis, fault))
         << fault.name << ": found " << checks(diagnosis, false);
   }
 }
@@ -139,6 +140,20 @@ TEST(DoctorRealLog, Comma2k19IsCleanAndItsFaultsAreFound) {
     inject();
     EXPECT_NE(checks(doctor_log(log), true).find(expected), std::string::npos)
         << expected << ": found " << checks(doctor_log(log), false);
+  }
+  // The matrix's faults that any drive can show (standstill biases need a stop, which this
+  // minute of driving has not; a time scale is the case below).
+  for (const Fault& fault : testing::faults()) {
+    const std::string name = fault.name;
+    if (name != "not-a-number cells" && name != "denormal cells" && name != "wheel gap 2 s" &&
+        name != "GNSS outage 20 s" && name != "IMU stops half way" && name != "no GNSS altitude")
+      continue;
+    fs::remove_all(log);
+    fs::copy(clean, log);
+    fault.inject(log);
+    const Diagnosis diagnosis = testing::doctor_directory(log);
+    EXPECT_TRUE(testing::found(diagnosis, fault))
+        << fault.name << ": found " << checks(diagnosis, false);
   }
   // GNSS time x10 on epoch-scale stamps leaves no shared span at all: the reader says so (exit 2).
   fs::remove_all(log);

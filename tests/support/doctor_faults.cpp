@@ -3,11 +3,14 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
 #include <sstream>
 
+#include "odocal/error.hpp"
+#include "odocal/io/log_doctor.hpp"
 #include "run_cli.hpp"
 
 namespace odocal::testing {
@@ -56,7 +59,59 @@ void scale_vehicle_value(const fs::path& log, const std::string& key, double fac
 
 double wrap16(double ticks) { return std::fmod(std::fmod(ticks, 65536.0) + 65536.0, 65536.0); }
 
+// The first and last time of a CSV file's t column.
+std::pair<double, double> time_span(const fs::path& file) {
+  double first = NAN, last = NAN;
+  edit_csv(file, [&](Row& r) {
+    if (std::isnan(first)) first = r["t"];
+    last = r["t"];
+  });
+  return {first, last};
+}
+
+// Leaves out the rows of `file` whose time lies in [from, to), given as shares of its span.
+void drop_rows(const fs::path& file, double from_share, double to_share) {
+  const auto [first, last] = time_span(file);
+  const double from = first + from_share * (last - first), to = first + to_share * (last - first);
+  std::istringstream in(read_text_file(file.string()));
+  std::string line, out;
+  std::getline(in, line);
+  out = line + "\n";
+  while (std::getline(in, line)) {
+    const double t = std::stod(line.substr(0, line.find(',')));
+    if (t < from || t >= to) out += line + "\n";
+  }
+  std::ofstream(file) << out;
+}
+
+// Sets `column` of `count` rows from the middle of `file` on to `value`.
+void overwrite_cells(const fs::path& file, const std::string& column, double value, int count) {
+  const auto [first, last] = time_span(file);
+  const double middle = 0.5 * (first + last);
+  int written = 0;
+  edit_csv(file, [&](Row& r) {
+    if (r["t"] >= middle && written < count) {
+      r[column] = value;
+      ++written;
+    }
+  });
+}
+
 }  // namespace
+
+Diagnosis doctor_directory(const fs::path& log) {
+  try {
+    return doctor_log(log);
+  } catch (const InputError&) {
+    return {scan_stream_values(log), 0.0};
+  }
+}
+
+bool found(const Diagnosis& diagnosis, const Fault& fault) {
+  return std::any_of(diagnosis.findings.begin(), diagnosis.findings.end(), [&](const Finding& f) {
+    return f.check == fault.expected_check && f.severity == fault.expected_severity;
+  });
+}
 
 std::vector<Fault> faults() {
   const auto shift = [](const char* file, double by) {
@@ -181,6 +236,56 @@ std::vector<Fault> faults() {
          edit_csv(log / "gnss.csv", [](Row& r) { std::swap(r["lat"], r["lon"]); });
        },
        "gnss.mirrored"},
+      {"GNSS time in ms read as s", "",
+       [](const fs::path& log) { edit_csv(log / "gnss.csv", [](Row& r) { r["t"] *= 1000; }); },
+       "time.scale"},
+      {"not-a-number cells", "",
+       [](const fs::path& log) { overwrite_cells(log / "imu.csv", "ax", NAN, 3); },
+       "data.not_finite"},
+      {"denormal cells", "",
+       [](const fs::path& log) { overwrite_cells(log / "imu.csv", "ay", 4.9e-322, 3); },
+       "data.denormal", FindingSeverity::kWarning},
+      {"wheel gap 2 s", "",
+       [](const fs::path& log) {
+         const auto [first, last] = time_span(log / "wheels.csv");
+         drop_rows(log / "wheels.csv", 0.4, 0.4 + 2.0 / (last - first));
+       },
+       "wheels.gaps", FindingSeverity::kWarning},
+      {"GNSS outage 20 s", "",
+       [](const fs::path& log) {
+         const auto [first, last] = time_span(log / "gnss.csv");
+         drop_rows(log / "gnss.csv", 0.4, 0.4 + 20.0 / (last - first));
+       },
+       "gnss.gaps", FindingSeverity::kNote},
+      {"IMU stops half way", "",
+       [](const fs::path& log) { drop_rows(log / "imu.csv", 0.5, 2.0); },
+       "time.span", FindingSeverity::kWarning},
+      {"gyro bias 1 deg/s", "",
+       [](const fs::path& log) {
+         edit_csv(log / "imu.csv", [](Row& r) { r["wz"] += kPi / 180; });
+       },
+       "imu.gyro_bias", FindingSeverity::kNote},
+      {"wheel rate biases", "--wheel-output radps",
+       [](const fs::path& log) {
+         edit_csv(log / "wheels.csv", [](Row& r) {
+           r["rl_radps"] -= 0.33 * kPi / 180;
+           r["rr_radps"] += 1.22 * kPi / 180;
+         });
+       },
+       "wheels.rate_bias", FindingSeverity::kNote},
+      {"no GNSS altitude", "",
+       [](const fs::path& log) {
+         std::ifstream in(log / "gnss.csv");
+         std::string header;
+         std::getline(in, header);
+         in.close();
+         std::vector<std::string> kept;
+         std::stringstream names(header);
+         for (std::string name; std::getline(names, name, ',');)
+           if (name != "alt") kept.push_back(name);
+         edit_csv(log / "gnss.csv", [](Row&) {}, kept);
+       },
+       "gnss.altitude", FindingSeverity::kNote},
   };
 }
 

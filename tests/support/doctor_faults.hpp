@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "odocal/estimation/log_diagnosis.hpp"
+
 namespace odocal::testing {
 
 using Row = std::map<std::string, double>;
@@ -22,7 +24,21 @@ struct Fault {
   const char* simulate;  // extra simulate flags
   std::function<void(const std::filesystem::path&)> inject;
   const char* expected_check;
+  // What the check says of it: most mistakes block a calibration; gaps, a stream that stops
+  // early, denormal values, standstill biases and a missing altitude are warnings or notes.
+  FindingSeverity expected_severity = FindingSeverity::kBlocking;
 };
+
+// What `odocal doctor` reports on a log directory: its findings, or, when the log does not read
+// (garbage cells), the raw files' findings it prints before the reader's error.
+Diagnosis doctor_directory(const std::filesystem::path& log);
+
+// Found: the doctor reports the fault's check with its severity.
+bool found(const Diagnosis& diagnosis, const Fault& fault);
+
+// Simulate flags of the clean logs: a receiver that reports its altitude (a log without it gets
+// the doctor's gnss.altitude note, which is one of the faults).
+inline constexpr const char* kCleanLogFlags = "--gnss-altitude always";
 
 std::vector<Fault> faults();
 

@@ -22,6 +22,7 @@ std::optional<double> interpolate_angle(const std::vector<double>& t_s,
 // The samples of a sampled scalar with time in [from_s, to_s] (bisection on sorted t_s).
 struct WindowSum {
   double sum{};
+  double sum_squares{};
   std::size_t count{};
   std::optional<double> mean() const {
     return count > 0 ? std::optional<double>(sum / static_cast<double>(count)) : std::nullopt;
