@@ -132,10 +132,14 @@ void parse_sensors(YamlMap sensors, sim::Scenario& s) {
     s.gnss.output_latlon = output == "latlon";
     std::string altitude = altitude_name(s.gnss.altitude);
     gnss->read("altitude", altitude);
-    if (altitude == "auto") s.gnss.altitude = sim::GnssSimConfig::Altitude::kAuto;
-    else if (altitude == "always") s.gnss.altitude = sim::GnssSimConfig::Altitude::kAlways;
-    else if (altitude == "never") s.gnss.altitude = sim::GnssSimConfig::Altitude::kNever;
-    else throw InputError(gnss->location("altitude"), "expected auto, always or never");
+    if (altitude == "auto")
+      s.gnss.altitude = sim::GnssSimConfig::Altitude::kAuto;
+    else if (altitude == "always")
+      s.gnss.altitude = sim::GnssSimConfig::Altitude::kAlways;
+    else if (altitude == "never")
+      s.gnss.altitude = sim::GnssSimConfig::Altitude::kNever;
+    else
+      throw InputError(gnss->location("altitude"), "expected auto, always or never");
     if (auto origin = gnss->map("origin")) {
       origin->read("lat_deg", s.gnss.origin.latitude_deg, -90.0, 90.0);
       origin->read("lon_deg", s.gnss.origin.longitude_deg, -180.0, 180.0);

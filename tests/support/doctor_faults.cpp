@@ -257,13 +257,10 @@ std::vector<Fault> faults() {
          drop_rows(log / "gnss.csv", 0.4, 0.4 + 20.0 / (last - first));
        },
        "gnss.gaps", FindingSeverity::kNote},
-      {"IMU stops half way", "",
-       [](const fs::path& log) { drop_rows(log / "imu.csv", 0.5, 2.0); },
+      {"IMU stops half way", "", [](const fs::path& log) { drop_rows(log / "imu.csv", 0.5, 2.0); },
        "time.span", FindingSeverity::kWarning},
       {"gyro bias 1 deg/s", "",
-       [](const fs::path& log) {
-         edit_csv(log / "imu.csv", [](Row& r) { r["wz"] += kPi / 180; });
-       },
+       [](const fs::path& log) { edit_csv(log / "imu.csv", [](Row& r) { r["wz"] += kPi / 180; }); },
        "imu.gyro_bias", FindingSeverity::kNote},
       {"wheel rate biases", "--wheel-output radps",
        [](const fs::path& log) {
@@ -283,7 +280,8 @@ std::vector<Fault> faults() {
          std::stringstream names(header);
          for (std::string name; std::getline(names, name, ',');)
            if (name != "alt") kept.push_back(name);
-         edit_csv(log / "gnss.csv", [](Row&) {}, kept);
+         edit_csv(
+             log / "gnss.csv", [](Row&) {}, kept);
        },
        "gnss.altitude", FindingSeverity::kNote},
   };
