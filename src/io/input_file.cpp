@@ -25,7 +25,7 @@ fs::file_status status_of(const fs::path& path) {
 
 bool input_exists(const fs::path& path) { return fs::exists(status_of(path)); }
 
-std::string read_input_file(const fs::path& path, std::uintmax_t max_bytes) {
+std::uintmax_t input_file_size(const fs::path& path) {
   const fs::file_status status = status_of(path);
   if (!fs::exists(status)) throw InputError({path.string(), 0, ""}, "cannot open: no such file");
   if (fs::is_directory(status))
@@ -35,13 +35,24 @@ std::string read_input_file(const fs::path& path, std::uintmax_t max_bytes) {
   std::error_code error;
   const std::uintmax_t bytes = fs::file_size(path, error);
   if (error) throw InputError({path.string(), 0, ""}, "cannot open: " + error.message());
+  return bytes;
+}
+
+std::ifstream open_input_stream(const fs::path& path) {
+  input_file_size(path);
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw InputError({path.string(), 0, ""}, "cannot open file");
+  return stream;
+}
+
+std::string read_input_file(const fs::path& path, std::uintmax_t max_bytes) {
+  const std::uintmax_t bytes = input_file_size(path);
   if (bytes > max_bytes) {
     throw InputError(
         {path.string(), 0, ""},
         fmt::format("{} bytes: larger than the {} bytes odocal reads", bytes, max_bytes));
   }
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw InputError({path.string(), 0, ""}, "cannot open file");
+  std::ifstream stream = open_input_stream(path);
   std::ostringstream contents;
   contents << stream.rdbuf();
   if (stream.bad()) throw InputError({path.string(), 0, ""}, "cannot read file");

@@ -4,6 +4,8 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <fstream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -43,7 +45,42 @@ struct CsvOptions {
 
 CsvTable parse_csv_table(std::string_view text, const std::string& file_label,
                          const CsvOptions& options = {});
-// Throws InputError when the file is missing or unreadable, or on any malformed content.
+// Throws InputError when the file is missing or unreadable, larger than kMaxInputFileBytes, or
+// on any malformed content.
 CsvTable read_csv_table(const std::filesystem::path& path, const CsvOptions& options = {});
+
+namespace detail {
+class CsvLineParser;
+}
+
+// Reads a CSV file a piece at a time, so that a log of any length streams through bounded
+// memory: each chunk is a table of consecutive data rows with the file's header and their own
+// line numbers, checked exactly as read_csv_table checks the whole file.
+class CsvChunkReader {
+ public:
+  // Opens the file and reads up to its header (InputError when absent, not a regular file, or
+  // without a header).
+  explicit CsvChunkReader(const std::filesystem::path& path, const CsvOptions& options = {});
+  ~CsvChunkReader();
+  CsvChunkReader(const CsvChunkReader&) = delete;
+  CsvChunkReader& operator=(const CsvChunkReader&) = delete;
+
+  const std::vector<std::string>& header() const;
+  const std::string& file() const;
+  // The next at most max_rows data rows; nothing once the file is read.
+  std::optional<CsvTable> next(std::size_t max_rows);
+
+ private:
+  static constexpr std::size_t kReadBytes = std::size_t{1} << 20;
+  static constexpr std::size_t kMaxLineBytes = std::size_t{64} << 20;
+  bool read_line();  // into line_; false at the end
+
+  std::unique_ptr<detail::CsvLineParser> parser_;
+  std::ifstream stream_;
+  std::vector<char> buffer_;
+  std::size_t position_ = 0, filled_ = 0;
+  bool at_end_ = false;
+  std::string line_;
+};
 
 }  // namespace odocal

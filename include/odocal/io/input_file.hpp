@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace odocal {
@@ -14,6 +15,13 @@ inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{1} << 30;
 
 std::string read_input_file(const std::filesystem::path& path,
                             std::uintmax_t max_bytes = kMaxInputFileBytes);
+
+// The same checks: the size of a readable regular file.
+std::uintmax_t input_file_size(const std::filesystem::path& path);
+
+// The same checks, then the file opened for reading as a stream of any length (a log streamed in
+// chunks).
+std::ifstream open_input_stream(const std::filesystem::path& path);
 
 // Whether `path` names something (following symbolic links); a loop of links or a permission
 // problem is an InputError, not "absent".
