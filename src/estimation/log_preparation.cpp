@@ -3,9 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
+#include "odocal/data/stream_columns.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/log_window.hpp"
+#include "odocal/estimation/prepared_blocks.hpp"
 
 namespace odocal {
 
@@ -31,6 +34,20 @@ std::string LogPreparation::describe() const {
     text += fmt::format("; wheel rate bias removed: RL {:+.3f} deg/s, RR {:+.3f} deg/s",
                         kDegPerRev * wheel_rate_bias->rl_rev_per_s,
                         kDegPerRev * wheel_rate_bias->rr_rev_per_s);
+    if (wheel_rate_bias_per_block.size() > 1) {
+      const auto range = [&](double WheelRateBias::*wheel) {
+        const auto [low, high] = std::minmax_element(
+            wheel_rate_bias_per_block.begin(), wheel_rate_bias_per_block.end(),
+            [&](const BlockBias& a, const BlockBias& b) { return a.bias.*wheel < b.bias.*wheel; });
+        return std::make_pair(kDegPerRev * low->bias.*wheel, kDegPerRev * high->bias.*wheel);
+      };
+      const auto rl = range(&WheelRateBias::rl_rev_per_s);
+      const auto rr = range(&WheelRateBias::rr_rev_per_s);
+      text += fmt::format(
+          " (the standing-time mean of {} blocks' own: RL {:+.3f} to {:+.3f}, RR {:+.3f} to "
+          "{:+.3f})",
+          wheel_rate_bias_per_block.size(), rl.first, rl.second, rr.first, rr.second);
+    }
   }
   if (started_at_s) text += fmt::format("; used from {:.1f} s (first motion)", *started_at_s);
   if (typical_max_grade) {
@@ -54,11 +71,7 @@ std::string LogPreparation::describe() const {
 
 std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options,
                                LogPreparation& done, bool need_gnss_span) {
-  std::optional<Log> prepared;
-  const auto edit = [&]() -> Log& {
-    if (!prepared) prepared = log;
-    return *prepared;
-  };
+  std::optional<Log> span;
   if (need_gnss_span) {
     const double wheel_from = log.wheels.t_s.front(), wheel_to = log.wheels.t_s.back();
     const double from = std::max(wheel_from, log.gnss.t_s.front());
@@ -78,43 +91,50 @@ std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options
     if (from - wheel_from > tolerance_s || wheel_to - to > tolerance_s) {
       done.common_span_s = {from, to};
       done.cut_without_gnss_s = (from - wheel_from) + (wheel_to - to);
-      prepared = crop_log(log, from, to);
+      span = crop_log(log, from, to);
     }
   }
-  const OdometryParams nominal = log.vehicle.nominal_params();
-  done.standstills = find_standstills(prepared ? *prepared : log, nominal, options.standstill);
-  const bool rate_sensor = log.wheels.unit_rear == WheelUnit::kRadiansPerSecond ||
-                           log.wheels.unit_rear == WheelUnit::kMetresPerSecond;
-  if (options.remove_wheel_rate_bias && rate_sensor && !done.standstills.empty()) {
-    done.wheel_rate_bias = wheel_rate_bias((prepared ? *prepared : log).wheels, done.standstills);
-    remove_wheel_rate_bias(edit().wheels, *done.wheel_rate_bias);
-  }
-  if (options.start_at_first_motion) {
-    const Log& current = prepared ? *prepared : log;
-    const std::optional<double> moving =
-        first_motion_s(current.wheels, nominal, options.coverage.moving_speed_mps);
-    // Only a real standing start is cut (a second or two is harmless), keeping a little of it
-    // for the filters to settle.
-    constexpr double kMinStandingS = 5.0, kLeadS = 1.0;
-    if (moving && *moving - current.wheels.t_s.front() > kMinStandingS) {
-      done.started_at_s = *moving - kLeadS;
-      prepared = crop_log(current, *done.started_at_s, current.wheels.t_s.back());
+  const Log& whole = span ? *span : log;
+  InMemoryLogSource source(whole);
+  BlockPreparation blocks(source, options, done);
+  Log prepared;
+  prepared.source = whole.source;
+  prepared.vehicle = whole.vehicle;
+  const auto append = [&](const Log& core) {
+    append_stream(prepared.wheels, core.wheels);
+    append_stream(prepared.gnss, core.gnss);
+    const auto append_optional = [](auto& to, const auto& from) {
+      if (!from) return;
+      if (!to) to.emplace();
+      append_stream(*to, *from);
+    };
+    append_optional(prepared.imu, core.imu);
+    append_optional(prepared.heading, core.heading);
+    append_optional(prepared.truth, core.truth);
+  };
+  // Blocks that preparing left as they were are copied only once a later block changes: a log
+  // that nothing changes is not copied at all.
+  std::optional<double> unchanged_from;
+  while (const std::optional<PreparedBlock> block = blocks.next()) {
+    if (!blocks.changed()) {
+      if (!unchanged_from) unchanged_from = block->core_from_s;
+      continue;
     }
-  }
-  if (options.use_gnss_altitude) {
-    const Log& current = prepared ? *prepared : log;
-    if (const auto profile = grade_from_gnss_altitude(current, nominal, options.grade_window_m)) {
-      done.typical_max_grade = profile->typical_max_grade();
-      done.length_excess = profile->length_excess();
-      done.grade_scale_variance = profile->scale_variance();
-      project_to_horizontal(edit(), *profile);
+    if (unchanged_from) {
+      Log before = slice_log(whole, *unchanged_from, std::nextafter(block->core_from_s, -INFINITY));
+      start_wheel_chain(before.wheels);
+      append(before);
+      unchanged_from.reset();
     }
+    append(core_log(*block));
   }
-  const WheelStream& wheels = prepared ? prepared->wheels : log.wheels;
-  const double max_gap_s =
-      options.max_wheel_gap_s > 0.0 ? options.max_wheel_gap_s : default_max_wheel_gap_s(wheels);
-  done.wheel_gaps = find_wheel_gaps(wheels, max_gap_s);
-  if (!done.wheel_gaps.empty()) break_chain_at_gaps(edit().wheels, done.wheel_gaps);
+  if (!blocks.changed()) return span;
+  if (prepared.wheels.size() < 2 || prepared.gnss.t_s.empty()) {
+    require_window_holds(prepared.wheels.size(), prepared.gnss.size(),
+                         done.started_at_s.value_or(whole.wheels.t_s.front()),
+                         whole.wheels.t_s.back(), whole.wheels.t_s.front(),
+                         whole.wheels.t_s.back());
+  }
   return prepared;
 }
 

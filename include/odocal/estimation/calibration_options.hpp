@@ -60,6 +60,8 @@ struct CalibrationOptions {
   // the horizontal with the grade fitted over grade_window_m of driving.
   bool use_gnss_altitude = true;
   double grade_window_m = 100.0;
+  // A long log is prepared a block of this length at a time (prepared_blocks.hpp).
+  double prepare_block_s = 600.0;
 
   static OptionTable<CalibrationOptions> fields();  // without `reference` (its own table)
   std::string validate() const;                     // empty when valid; includes `reference`

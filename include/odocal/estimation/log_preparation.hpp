@@ -22,9 +22,16 @@ struct LogPreparation {
   std::optional<std::pair<double, double>> common_span_s;
   double cut_without_gnss_s{};
   std::vector<Standstill> standstills;
-  std::optional<WheelRateBias> wheel_rate_bias;  // removed (angular-rate wheel sensors only)
-  std::optional<double> started_at_s;            // used from here on (first motion)
-  std::vector<WheelGap> wheel_gaps;              // where the odometry chain breaks
+  // Removed (angular-rate wheel sensors only): the mean over the blocks weighted by their
+  // standing time, and each block's own (prepared_blocks.hpp: a long log is prepared in blocks).
+  std::optional<WheelRateBias> wheel_rate_bias;
+  struct BlockBias {
+    double from_s{};
+    WheelRateBias bias;
+  };
+  std::vector<BlockBias> wheel_rate_bias_per_block;
+  std::optional<double> started_at_s;  // used from here on (first motion)
+  std::vector<WheelGap> wheel_gaps;    // where the odometry chain breaks
   // Hills: the grade 95 % of the road stays within, and how much longer the 3-D path was
   // (projected to the horizontal).
   std::optional<double> typical_max_grade;
@@ -38,9 +45,11 @@ struct LogPreparation {
 
 // The prepared log, or nothing when preparing changes nothing (then use `log` itself); `done`
 // records what was found and done. Uses options' standstill, remove_wheel_rate_bias,
-// start_at_first_motion, coverage.moving_speed_mps and max_wheel_gap_s. `need_gnss_span`:
-// cut the wheels to the GNSS span (calibration and validation; dead reckoning drives on where
-// GNSS is missing). Throws InsufficientDataError when wheels and GNSS share less than 2 s.
+// start_at_first_motion, coverage.moving_speed_mps, max_wheel_gap_s, use_gnss_altitude,
+// grade_window_m and prepare_block_s (prepared_blocks.hpp: one block after another).
+// `need_gnss_span`: cut the wheels to the GNSS span (calibration and validation; dead reckoning
+// drives on where GNSS is missing). Throws InsufficientDataError when wheels and GNSS share less
+// than 2 s.
 std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options,
                                LogPreparation& done, bool need_gnss_span = true);
 

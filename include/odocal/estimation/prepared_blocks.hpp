@@ -1,0 +1,79 @@
+#pragma once
+// A log prepared a block at a time (log_preparation.hpp says what preparing does), so that a
+// command walking a long log holds one block of it: from its start, blocks of
+// prepare_block_s (10 minutes) of the log's clock, each prepared on itself and a margin of
+// kBlockMarginS either side (its standstills, their wheel-rate bias, the road grade, the wheel
+// gaps). The last block takes the rest (one to two blocks long), so a log shorter than two
+// blocks is prepared whole. A block without a standstill keeps the previous block's bias: a
+// sensor's bias drifts with temperature over hours, and each block measures its own.
+
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "odocal/data/log_source.hpp"
+#include "odocal/estimation/calibration_options.hpp"
+#include "odocal/estimation/log_preparation.hpp"
+
+namespace odocal {
+
+inline constexpr double kBlockMarginS = 60.0;
+
+struct PreparedBlock {
+  Log context;  // the block with its margins, prepared
+  // Its own samples: core_from_s <= t < core_to_s; the last block's to the end (+inf).
+  double core_from_s{};
+  double core_to_s{};
+  bool first{};
+  bool last{};
+};
+
+// The rows [first, last) of a stream of the block (time base t_s) inside its own span.
+std::pair<std::size_t, std::size_t> core_rows(const PreparedBlock& block,
+                                              const std::vector<double>& t_s);
+// The block's own span as a log of its own samples (the first block's first wheel sample
+// starts the chain).
+Log core_log(const PreparedBlock& block);
+
+// The whole log in memory as a block source.
+class InMemoryLogSource final : public LogBlockSource {
+ public:
+  explicit InMemoryLogSource(const Log& log) : log_(log) {}
+  const std::string& source() const override { return log_.source; }
+  const VehicleConfig& vehicle() const override { return log_.vehicle; }
+  double first_wheel_time_s() override { return log_.wheels.t_s.front(); }
+  bool wheels_reach(double t_s) override { return log_.wheels.t_s.back() >= t_s; }
+  Log block(double from_s, double to_s) override;
+
+ private:
+  const Log& log_;
+};
+
+class BlockPreparation {
+ public:
+  // Finds where the log is used from (its first motion, options.start_at_first_motion) and
+  // records it in `done`, which collects what every block finds.
+  BlockPreparation(LogBlockSource& source, const CalibrationOptions& options, LogPreparation& done);
+
+  // The next block, prepared; nothing after the last.
+  std::optional<PreparedBlock> next();
+  // Whether preparing changed anything so far (a start cut, a bias removed, hills projected, a
+  // gap broken): if not, the prepared log is the log itself.
+  bool changed() const { return changed_; }
+
+ private:
+  double find_start();
+  void prepare(PreparedBlock& block);
+
+  LogBlockSource& source_;
+  const CalibrationOptions& options_;
+  LogPreparation& done_;
+  OdometryParams nominal_;
+  double log_start_s_{}, start_s_{};
+  std::size_t index_{};
+  bool finished_{}, changed_{};
+  std::optional<WheelRateBias> bias_;  // the last block's, for blocks without a standstill
+  double grade_distance_m_{}, grade_excess_m_{}, grade_scale_variance_m2_{};
+};
+
+}  // namespace odocal

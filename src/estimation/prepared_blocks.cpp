@@ -1,0 +1,195 @@
+#include "odocal/estimation/prepared_blocks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "odocal/data/stream_columns.hpp"
+#include "odocal/estimation/log_window.hpp"
+#include "odocal/estimation/road_grade.hpp"
+#include "odocal/estimation/standstill.hpp"
+#include "odocal/estimation/wheel_gaps.hpp"
+
+namespace odocal {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Only a real standing start is cut (a second or two is harmless), keeping a little of it for
+// the filters to settle.
+constexpr double kMinStandingStartS = 5.0, kLeadS = 1.0;
+
+bool rate_sensor(const WheelStream& wheels) {
+  return wheels.unit_rear == WheelUnit::kRadiansPerSecond ||
+         wheels.unit_rear == WheelUnit::kMetresPerSecond;
+}
+
+// Adds a standstill to the record, joining it to the last one when a block boundary split it.
+void add_standstill(std::vector<Standstill>& standing, Standstill still) {
+  if (!standing.empty() && still.start_s <= standing.back().end_s) {
+    standing.back().end_s = std::max(standing.back().end_s, still.end_s);
+    return;
+  }
+  standing.push_back(still);
+}
+
+}  // namespace
+
+std::pair<std::size_t, std::size_t> core_rows(const PreparedBlock& block,
+                                              const std::vector<double>& t_s) {
+  const auto first = std::lower_bound(t_s.begin(), t_s.end(), block.core_from_s);
+  const auto last = block.last ? t_s.end() : std::lower_bound(first, t_s.end(), block.core_to_s);
+  return {static_cast<std::size_t>(first - t_s.begin()),
+          static_cast<std::size_t>(last - t_s.begin())};
+}
+
+Log core_log(const PreparedBlock& block) {
+  const Log& context = block.context;
+  const auto rows = [&](const auto& stream) {
+    const auto [first, last] = core_rows(block, stream.t_s);
+    return stream_rows(stream, first, last);
+  };
+  const auto optional_rows = [&](const auto& stream) {
+    using Stream = std::remove_cvref_t<decltype(*stream)>;
+    if (!stream) return std::optional<Stream>{};
+    Stream out = rows(*stream);
+    return out.t_s.empty() ? std::optional<Stream>{} : std::optional<Stream>(std::move(out));
+  };
+  Log core;
+  core.source = context.source;
+  core.vehicle = context.vehicle;
+  core.wheels = rows(context.wheels);
+  core.gnss = rows(context.gnss);
+  core.imu = optional_rows(context.imu);
+  core.heading = optional_rows(context.heading);
+  core.truth = optional_rows(context.truth);
+  if (block.first) start_wheel_chain(core.wheels);
+  return core;
+}
+
+Log InMemoryLogSource::block(double from_s, double to_s) { return slice_log(log_, from_s, to_s); }
+
+BlockPreparation::BlockPreparation(LogBlockSource& source, const CalibrationOptions& options,
+                                   LogPreparation& done)
+    : source_(source),
+      options_(options),
+      done_(done),
+      nominal_(source.vehicle().nominal_params()),
+      log_start_s_(source.first_wheel_time_s()) {
+  // The first block looks back over a standing start for its standstills (and their bias).
+  source_.keep_back(options_.prepare_block_s);
+  start_s_ = find_start();
+}
+
+double BlockPreparation::find_start() {
+  if (!options_.start_at_first_motion) return log_start_s_;
+  // Windows of a block, each from the last sample of the one before (so that no pair of samples
+  // is missed), until the wheels move.
+  double from_s = log_start_s_;
+  while (true) {
+    const Log window = source_.block(from_s, from_s + options_.prepare_block_s);
+    const std::optional<double> moving =
+        first_motion_s(window.wheels, nominal_, options_.coverage.moving_speed_mps);
+    if (moving) {
+      if (*moving - log_start_s_ <= kMinStandingStartS) return log_start_s_;
+      done_.started_at_s = *moving - kLeadS;
+      changed_ = true;
+      return *done_.started_at_s;
+    }
+    if (window.wheels.t_s.empty() ||
+        !source_.wheels_reach(std::nextafter(window.wheels.t_s.back(), kInfinity)))
+      return log_start_s_;
+    from_s = window.wheels.t_s.back();
+  }
+}
+
+std::optional<PreparedBlock> BlockPreparation::next() {
+  if (finished_) return std::nullopt;
+  const double length_s = options_.prepare_block_s;
+  PreparedBlock block;
+  block.first = index_ == 0;
+  block.core_from_s = start_s_ + static_cast<double>(index_) * length_s;
+  block.last = !source_.wheels_reach(block.core_from_s + 2.0 * length_s);
+  block.core_to_s = block.last ? kInfinity : block.core_from_s + length_s;
+  const double context_from =
+      block.first ? std::max(log_start_s_, start_s_ - length_s) : block.core_from_s - kBlockMarginS;
+  block.context = source_.block(context_from, block.core_to_s + kBlockMarginS);
+  if (block.first) start_wheel_chain(block.context.wheels);
+  prepare(block);
+  ++index_;
+  finished_ = block.last;
+  return block;
+}
+
+void BlockPreparation::prepare(PreparedBlock& block) {
+  Log& log = block.context;
+  if (log.wheels.size() < 2) return;
+  // What is recorded belongs to the block's own span (the first block's from the context's start:
+  // a standing start is reported although it is not used).
+  const double record_from = block.first ? log.wheels.t_s.front() : block.core_from_s;
+  const auto own = [&](double t_s) { return t_s >= record_from && t_s < block.core_to_s; };
+
+  const std::vector<Standstill> standing = find_standstills(log, nominal_, options_.standstill);
+  for (const Standstill& still : standing) {
+    const Standstill clipped{std::max(still.start_s, record_from),
+                             std::min(still.end_s, block.core_to_s)};
+    if (clipped.end_s > clipped.start_s) add_standstill(done_.standstills, clipped);
+  }
+
+  if (options_.remove_wheel_rate_bias && rate_sensor(log.wheels)) {
+    if (!standing.empty()) {
+      bias_ = wheel_rate_bias(log.wheels, standing);
+      done_.wheel_rate_bias_per_block.push_back({block.core_from_s, *bias_});
+      WheelRateBias mean;
+      for (const LogPreparation::BlockBias& each : done_.wheel_rate_bias_per_block) {
+        mean.rl_rev_per_s += each.bias.standing_s * each.bias.rl_rev_per_s;
+        mean.rr_rev_per_s += each.bias.standing_s * each.bias.rr_rev_per_s;
+        mean.standing_s += each.bias.standing_s;
+      }
+      mean.rl_rev_per_s /= mean.standing_s;
+      mean.rr_rev_per_s /= mean.standing_s;
+      done_.wheel_rate_bias = mean;
+    }
+    if (bias_) {
+      remove_wheel_rate_bias(log.wheels, *bias_);
+      changed_ = true;
+    }
+  }
+
+  if (options_.use_gnss_altitude) {
+    if (const auto profile = grade_from_gnss_altitude(log, nominal_, options_.grade_window_m)) {
+      const auto [first, last] = core_rows(block, log.wheels.t_s);
+      const double core_m =
+          last > first ? profile->wheel_distance_m[last - 1] - profile->wheel_distance_m[first]
+                       : 0.0;
+      done_.typical_max_grade =
+          std::max(done_.typical_max_grade.value_or(0.0), profile->typical_max_grade());
+      grade_distance_m_ += core_m;
+      grade_excess_m_ += core_m * profile->length_excess();
+      grade_scale_variance_m2_ += core_m * core_m * profile->scale_variance();
+      if (grade_distance_m_ > 0.0) {
+        done_.length_excess = grade_excess_m_ / grade_distance_m_;
+        done_.grade_scale_variance =
+            grade_scale_variance_m2_ / (grade_distance_m_ * grade_distance_m_);
+      } else {
+        done_.length_excess = profile->length_excess();
+        done_.grade_scale_variance = profile->scale_variance();
+      }
+      project_to_horizontal(log, *profile);
+      changed_ = true;
+    }
+  }
+
+  const double max_gap_s = options_.max_wheel_gap_s > 0.0 ? options_.max_wheel_gap_s
+                                                          : default_max_wheel_gap_s(log.wheels);
+  const std::vector<WheelGap> gaps = find_wheel_gaps(log.wheels, max_gap_s);
+  if (!gaps.empty()) {
+    break_chain_at_gaps(log.wheels, gaps);
+    changed_ = true;
+  }
+  for (const WheelGap& gap : gaps) {
+    if (own(log.wheels.t_s[gap.sample])) done_.wheel_gaps.push_back(gap);
+  }
+}
+
+}  // namespace odocal

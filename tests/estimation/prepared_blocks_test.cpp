@@ -1,0 +1,110 @@
+// A long log is prepared a block at a time: the blocks together are the log, each with its own
+// standstills, wheel-rate bias, grade and gaps; a log shorter than two blocks is prepared whole.
+
+#include "odocal/estimation/prepared_blocks.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "odocal/estimation/calibration.hpp"
+#include "odocal/estimation/log_preparation.hpp"
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/io/simulation_writer.hpp"
+#include "odocal/sim/simulator.hpp"
+
+namespace odocal {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// Two laps of the urban block (stops at junctions and lights), angular-rate wheel sensors with
+// zero-rate biases, a wheel gap.
+Log urban_rate_sensor_log() {
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.ideal = true;
+  scenario.wheels.output = WheelUnit::kRadiansPerSecond;
+  scenario.wheels.rate_bias_rl_radps = -0.33 * kDeg;
+  scenario.wheels.rate_bias_rr_radps = 1.22 * kDeg;
+  Log log = simulated_log(sim::simulate(scenario));
+  // A 1.5 s gap in the wheels at 200 s.
+  WheelStream& wheels = log.wheels;
+  std::size_t k = 0;
+  while (wheels.t_s[k] < 200.0) ++k;
+  const std::size_t gap_end = k + 75;
+  for (auto* column : {&wheels.t_s, &wheels.rev_rl, &wheels.rev_rr}) {
+    column->erase(column->begin() + static_cast<std::ptrdiff_t>(k),
+                  column->begin() + static_cast<std::ptrdiff_t>(gap_end));
+  }
+  return log;
+}
+
+CalibrationOptions in_blocks_of(double seconds) {
+  CalibrationOptions options;
+  options.prepare_block_s = seconds;
+  return options;
+}
+
+TEST(PreparedBlocks, TheBlocksTogetherAreTheLog) {
+  const Log log = urban_rate_sensor_log();
+  LogPreparation whole_done, blocks_done;
+  const std::optional<Log> whole = prepare_log(log, CalibrationOptions{}, whole_done);
+  const std::optional<Log> blocks = prepare_log(log, in_blocks_of(120.0), blocks_done);
+  ASSERT_TRUE(whole && blocks);
+  // Every sample once, in order, whatever the block length.
+  ASSERT_EQ(blocks->wheels.t_s, whole->wheels.t_s);
+  ASSERT_EQ(blocks->gnss.t_s, whole->gnss.t_s);
+  ASSERT_EQ(blocks->imu->t_s, whole->imu->t_s);
+  ASSERT_EQ(blocks->heading->t_s, whole->heading->t_s);
+  // The gap is found once and breaks the chain in both.
+  ASSERT_EQ(blocks_done.wheel_gaps.size(), 1u);
+  ASSERT_EQ(whole_done.wheel_gaps.size(), 1u);
+  EXPECT_DOUBLE_EQ(blocks_done.wheel_gaps[0].start_s, whole_done.wheel_gaps[0].start_s);
+  EXPECT_EQ(blocks->wheels.chain_break, whole->wheels.chain_break);
+  // Standstills split by a block boundary are one again.
+  ASSERT_EQ(blocks_done.standstills.size(), whole_done.standstills.size());
+  for (std::size_t i = 0; i < whole_done.standstills.size(); ++i) {
+    EXPECT_NEAR(blocks_done.standstills[i].start_s, whole_done.standstills[i].start_s, 0.05);
+    EXPECT_NEAR(blocks_done.standstills[i].end_s, whole_done.standstills[i].end_s, 0.05);
+  }
+  // Each block measures its own bias from its own stops: all the same sensor's.
+  EXPECT_GT(blocks_done.wheel_rate_bias_per_block.size(), 1u);
+  for (const auto& [from_s, bias] : blocks_done.wheel_rate_bias_per_block) {
+    EXPECT_NEAR(360.0 * bias.rl_rev_per_s, -0.33, 0.02) << "block from " << from_s;
+    EXPECT_NEAR(360.0 * bias.rr_rev_per_s, 1.22, 0.02) << "block from " << from_s;
+  }
+  ASSERT_TRUE(blocks_done.wheel_rate_bias.has_value());
+  EXPECT_NEAR(360.0 * blocks_done.wheel_rate_bias->rr_rev_per_s, 1.22, 0.02);
+  EXPECT_NE(blocks_done.describe().find("blocks' own"), std::string::npos)
+      << blocks_done.describe();
+  // The distance driven is the same to a fraction of a millimetre per kilometre.
+  double whole_m = 0.0, blocks_m = 0.0;
+  for (std::size_t k = 1; k < whole->wheels.size(); ++k) {
+    whole_m += whole->wheels.rev_rl[k] + whole->wheels.rev_rr[k];
+    blocks_m += blocks->wheels.rev_rl[k] + blocks->wheels.rev_rr[k];
+  }
+  EXPECT_NEAR(blocks_m / whole_m, 1.0, 1e-6);
+}
+
+TEST(PreparedBlocks, AShortLogIsOneBlockAndALongOneCalibratesAlike) {
+  const Log log = urban_rate_sensor_log();
+  InMemoryLogSource source(log);
+  LogPreparation done;
+  BlockPreparation blocks(source, CalibrationOptions{}, done);
+  const auto block = blocks.next();
+  ASSERT_TRUE(block.has_value());
+  EXPECT_TRUE(block->first && block->last);
+  EXPECT_FALSE(blocks.next().has_value());
+
+  const BatchSummary whole = calibrate_batch(log);
+  const BatchSummary in_blocks = calibrate_batch(log, {}, in_blocks_of(120.0));
+  ASSERT_TRUE(whole.usable()) << whole.message;
+  ASSERT_TRUE(in_blocks.usable()) << in_blocks.message;
+  EXPECT_NEAR(in_blocks.estimate.circumference_rl_m, whole.estimate.circumference_rl_m,
+              0.2 * whole.sigma_rl_m());
+  EXPECT_NEAR(in_blocks.estimate.circumference_rr_m, whole.estimate.circumference_rr_m,
+              0.2 * whole.sigma_rr_m());
+}
+
+}  // namespace
+}  // namespace odocal
