@@ -18,7 +18,7 @@ void require_rows_and_time(const CsvTable& table) {
 
 }  // namespace
 
-GnssStream gnss_stream_from_table(const CsvTable& table) {
+GnssStream gnss_stream_from_table(const CsvTable& table, const GeodeticOrigin* origin) {
   detail::require_known_columns(table,
                                 {"t", "x", "y", "lat", "lon", "alt", "sigma_m", "speed_mps"});
   const bool metric = table.has("x") || table.has("y");
@@ -60,8 +60,9 @@ GnssStream gnss_stream_from_table(const CsvTable& table) {
   const auto altitude = [&](std::size_t k) {
     return stream.altitude_m.empty() ? 0.0 : stream.altitude_m[k];
   };
-  stream.origin = GeodeticOrigin{lat[0], lon[0], altitude(0)};
-  const GeographicLib::LocalCartesian enu(lat[0], lon[0], altitude(0));
+  stream.origin = origin != nullptr ? *origin : GeodeticOrigin{lat[0], lon[0], altitude(0)};
+  const GeographicLib::LocalCartesian enu(stream.origin->latitude_deg, stream.origin->longitude_deg,
+                                          stream.origin->altitude_m);
   stream.x_m.resize(table.rows());
   stream.y_m.resize(table.rows());
   for (std::size_t k = 0; k < table.rows(); ++k) {

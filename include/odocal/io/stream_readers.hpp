@@ -19,8 +19,10 @@ struct WheelReadOptions {
 // wheels.csv: t plus {rl,rr,fl,fr}_{ticks,rad,radps,mps}; rl_* and rr_* required.
 WheelStream wheel_stream_from_table(const CsvTable& table, const VehicleConfig& vehicle,
                                     const WheelReadOptions& options = {});
-// gnss.csv: t,x,y or t,lat,lon; optional alt, sigma_m, speed_mps.
-GnssStream gnss_stream_from_table(const CsvTable& table);
+// gnss.csv: t,x,y or t,lat,lon; optional alt, sigma_m, speed_mps. Latitude and longitude become
+// east and north metres around `origin`, by default the first fix (a file read in chunks passes
+// the first chunk's).
+GnssStream gnss_stream_from_table(const CsvTable& table, const GeodeticOrigin* origin = nullptr);
 // imu.csv: t,ax,ay,wz.
 ImuStream imu_stream_from_table(const CsvTable& table);
 // heading.csv: t,heading.
