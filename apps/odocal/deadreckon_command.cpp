@@ -2,20 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <limits>
 #include <memory>
 #include <optional>
 
 #include "log_window_args.hpp"
 #include "number_checks.hpp"
 #include "odocal/error.hpp"
-#include "odocal/estimation/dead_reckoning.hpp"
-#include "odocal/estimation/driving_state.hpp"
-#include "odocal/estimation/interpolation.hpp"
-#include "odocal/estimation/log_preparation.hpp"
-#include "odocal/estimation/motion_coverage.hpp"
-#include "odocal/estimation/start_pose.hpp"
-#include "odocal/estimation/trajectory_errors.hpp"
-#include "odocal/io/log_reader.hpp"
+#include "odocal/estimation/log_dead_reckoning.hpp"
+#include "odocal/io/log_block_reader.hpp"
 #include "odocal/io/trajectory_writer.hpp"
 #include "odocal/model/angle.hpp"
 
@@ -24,81 +19,45 @@ namespace {
 
 struct DeadreckonArgs {
   std::string log_dir;
-  std::optional<double> circumference_rl_m;
-  std::optional<double> circumference_rr_m;
-  std::optional<double> track_width_m;
-  bool plain = false;  // ignore vehicle.yaml's tyre_model
+  LogDeadReckoningOptions options;
   std::string start = "auto";
   std::string out_csv;
   std::string out_tum;
   LogWindowArgs window;
 };
 
-// Where the odometry chain breaks (a wheel gap), dead reckoning restarts from the reference: the
-// truth pose, else the GNSS position there with heading.csv's heading (else the dead-reckoned
-// one).
-Pose2 restart_pose(const Log& log, double t_s, const Pose2& carried) {
-  if (log.truth) {
-    if (const auto pose = interpolate_pose(*log.truth, t_s)) return *pose;
-  }
-  Pose2 pose = carried;
-  const auto x = interpolate_linear(log.gnss.t_s, log.gnss.x_m, t_s);
-  const auto y = interpolate_linear(log.gnss.t_s, log.gnss.y_m, t_s);
-  if (x && y) pose.head<2>() = Eigen::Vector2d(*x, *y);
-  if (log.heading) {
-    if (const auto heading = interpolate_angle(log.heading->t_s, log.heading->heading_rad, t_s))
-      pose.z() = carried.z() + angle_difference(*heading, carried.z());
-  }
-  return pose;
-}
+// The log is read a block at a time and the trajectory written as it comes: memory does not
+// grow with the drive (docs/real-data.md).
+void run_deadreckon(DeadreckonArgs args) {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  LogBlockReader reader(args.log_dir, {}, args.window.from_s.value_or(-kInfinity),
+                        args.window.to_s.value_or(kInfinity));
+  args.options.start = args.start == "truth"  ? LogStart::kTruth
+                       : args.start == "gnss" ? LogStart::kGnss
+                                              : LogStart::kAuto;
+  if (args.options.start == LogStart::kTruth && !reader.has_truth())
+    throw InputError({args.log_dir + "/truth.csv", 0, ""}, "--start truth needs this file");
+  std::optional<TrajectoryFileWriter> csv, tum;
+  if (!args.out_csv.empty()) csv.emplace(args.out_csv, TrajectoryFormat::kCsv);
+  if (!args.out_tum.empty()) tum.emplace(args.out_tum, TrajectoryFormat::kTum);
+  const LogDeadReckoning run =
+      dead_reckon_log(reader, args.options, [&](double t_s, const Pose2& pose) {
+        if (csv) csv->add(t_s, pose);
+        if (tum) tum->add(t_s, pose);
+      });
 
-Pose2 choose_start(const Log& log, const OdometryParams& params, const std::string& start) {
-  const double t0 = log.wheels.t_s.front();
-  const bool use_truth = start == "truth" || (start == "auto" && log.truth.has_value());
-  if (use_truth) {
-    if (!log.truth)
-      throw InputError({log.source + "/truth.csv", 0, ""}, "--start truth needs this file");
-    return start_pose_from_truth(*log.truth, t0);
-  }
-  return start_pose_from_gnss(log, params);
-}
-
-void run_deadreckon(const DeadreckonArgs& args) {
-  const Log input = args.window.apply(read_log(args.log_dir));
-  LogPreparation prepared_by;
-  const std::optional<Log> prepared = prepare_log(input, CalibrationOptions{}, prepared_by, false);
-  const Log& log = prepared ? *prepared : input;
-  OdometryParams params = log.vehicle.nominal_params();
-  if (args.circumference_rl_m) params.circumference_rl_m = *args.circumference_rl_m;
-  if (args.circumference_rr_m) params.circumference_rr_m = *args.circumference_rr_m;
-  if (args.track_width_m) params.track_width_m = *args.track_width_m;
-
-  const Pose2 start = choose_start(log, params, args.start);
-  const TyreModel tyre = args.plain ? TyreModel{} : log.vehicle.tyre_model.value_or(TyreModel{});
-  const WheelStream wheels = with_tyre_model(log, params, tyre);
-  const PoseStream trajectory = dead_reckon(
-      wheels, params, start,
-      [&](double t_s, const Pose2& carried) { return restart_pose(log, t_s, carried); });
-  const ReferencePath reference =
-      log.truth ? reference_from_poses(*log.truth, "truth.csv")
-                : reference_from_gnss(log.gnss, log.heading ? &*log.heading : nullptr);
-  const TrajectoryErrors errors = trajectory_errors(trajectory, reference);
-
-  const double duration_s = log.wheels.t_s.back() - log.wheels.t_s.front();
-  // The one distance figure: wheel odometry while moving (motion_coverage.hpp).
-  const double distance_m =
-      motion_coverage(log, params, log.wheels.t_s.front(), log.wheels.t_s.back()).distance_m;
-  fmt::print("log          {} ({} wheel samples, {:.1f} s, {:.1f} m driven)\n", log.source,
-             log.wheels.size(), duration_s, distance_m);
-  if (const std::string done = prepared_by.describe(); !done.empty())
+  const TrajectoryErrors& errors = run.errors;
+  fmt::print("log          {} ({} wheel samples, {:.1f} s, {:.1f} m driven)\n", reader.source(),
+             run.wheel_samples, run.duration_s, run.distance_m);
+  if (const std::string done = run.prepared.describe(); !done.empty())
     fmt::print("prepared     {}\n", done);
   fmt::print("parameters   c_RL {:.6f} m, c_RR {:.6f} m, t_R {:.4f} m{}\n",
-             params.circumference_rl_m, params.circumference_rr_m, params.track_width_m,
-             tyre.plain() ? "" : ", with vehicle.yaml's tyre_model");
-  fmt::print("start pose   x {:.3f} m, y {:.3f} m, heading {:.2f} deg (from {})\n", start.x(),
-             start.y(), deg_from_rad(start.z()),
-             args.start == "auto" ? (log.truth ? "truth" : "gnss") : args.start);
-  fmt::print("reference    {} ({} position samples)\n", reference.name, errors.position_samples);
+             run.params.circumference_rl_m, run.params.circumference_rr_m, run.params.track_width_m,
+             run.tyre_model ? ", with vehicle.yaml's tyre_model" : "");
+  fmt::print("start pose   x {:.3f} m, y {:.3f} m, heading {:.2f} deg (from {})\n", run.start.x(),
+             run.start.y(), deg_from_rad(run.start.z()), run.start_from);
+  fmt::print("reference    {} ({} position samples)\n", run.reference_name,
+             errors.position_samples);
   fmt::print("position     mean {:.3f} m, max {:.3f} m\n", errors.mean_position_m,
              errors.max_position_m);
   if (errors.heading_samples > 0) {
@@ -108,10 +67,11 @@ void run_deadreckon(const DeadreckonArgs& args) {
     fmt::print("heading      no heading reference in this log\n");
   }
   fmt::print("final drift  {:.3f} m = {:.3f} % of {:.1f} m driven\n", errors.final_position_m,
-             distance_m > 0.0 ? 100.0 * errors.final_position_m / distance_m : 0.0, distance_m);
+             run.distance_m > 0.0 ? 100.0 * errors.final_position_m / run.distance_m : 0.0,
+             run.distance_m);
 
-  if (!args.out_csv.empty()) write_trajectory_csv(trajectory, args.out_csv);
-  if (!args.out_tum.empty()) write_trajectory_tum(trajectory, args.out_tum);
+  if (csv) csv->commit();
+  if (tum) tum->commit();
 }
 
 }  // namespace
@@ -124,19 +84,19 @@ void add_deadreckon_command(CLI::App& app) {
       "truth.csv (else GNSS)");
   command->add_option("LOG", args->log_dir, "Log directory (docs/log-format.md)")->required();
   command
-      ->add_option("--circumference-rl", args->circumference_rl_m,
+      ->add_option("--circumference-rl", args->options.circumference_rl_m,
                    "Rear-left circumference in m (default: vehicle.yaml)")
       ->check(finite_in(kCircumferenceM));
   command
-      ->add_option("--circumference-rr", args->circumference_rr_m,
+      ->add_option("--circumference-rr", args->options.circumference_rr_m,
                    "Rear-right circumference in m (default: vehicle.yaml)")
       ->check(finite_in(kCircumferenceM));
   command
-      ->add_option("--track-width", args->track_width_m,
+      ->add_option("--track-width", args->options.track_width_m,
                    "Rear track width in m (default: vehicle.yaml)")
       ->check(finite_in(kTrackWidthM));
   command->add_flag(
-      "--plain", args->plain,
+      "--plain", args->options.plain,
       "Constant circumferences: ignore vehicle.yaml's tyre_model (docs/tyre-model.md)");
   command
       ->add_option("--start", args->start,

@@ -251,6 +251,16 @@ LogBlockReader::~LogBlockReader() = default;
 const std::string& LogBlockReader::source() const { return streams_->source; }
 const VehicleConfig& LogBlockReader::vehicle() const { return streams_->vehicle; }
 
+bool LogBlockReader::has_heading() {
+  streams_->open_streams();
+  return streams_->heading.has_value();
+}
+
+bool LogBlockReader::has_truth() {
+  streams_->open_streams();
+  return streams_->truth.has_value();
+}
+
 double LogBlockReader::first_wheel_time_s() {
   Streams& s = *streams_;
   s.wheels.fill_until(-kInfinity);

@@ -34,14 +34,6 @@ int write_all(int fd, std::string_view contents) {
   return 0;
 }
 
-void write_in_place(const fs::path& target, const fs::path& shown, std::string_view contents) {
-  const int fd = ::open(target.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
-  if (fd < 0) fail(shown, errno);
-  const int error = write_all(fd, contents);
-  if (::close(fd) != 0 && error == 0) fail(shown, errno);
-  if (error != 0) fail(shown, error);
-}
-
 // A name no other writer (this process or another) uses at the same time.
 fs::path temporary_beside(const fs::path& target) {
   static std::atomic<unsigned> counter{0};
@@ -51,7 +43,7 @@ fs::path temporary_beside(const fs::path& target) {
 
 }  // namespace
 
-void write_output_file(const fs::path& path, std::string_view contents) {
+OutputFileStream::OutputFileStream(const fs::path& path) : shown_(path) {
   std::error_code error;
   fs::path target = path;
   if (fs::is_symlink(fs::symlink_status(path, error))) {
@@ -61,25 +53,56 @@ void write_output_file(const fs::path& path, std::string_view contents) {
   const fs::file_status status = fs::status(target, error);
   if (fs::exists(status) && !fs::is_regular_file(status)) {
     if (fs::is_directory(status)) fail(path, EISDIR);
-    write_in_place(target, path, contents);
+    // A device or FIFO cannot be replaced: written in place.
+    fd_ = ::open(target.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+    if (fd_ < 0) fail(path, errno);
+    target_ = target;
     return;
   }
   if (target.filename().empty()) fail(path, EISDIR);
   if (target.parent_path().empty()) target = fs::path(".") / target;
-
-  const fs::path temporary = temporary_beside(target);
+  target_ = target;
+  temporary_ = temporary_beside(target);
   // A replaced file keeps its permissions; a new one gets the umask's.
-  const mode_t mode = fs::exists(status) ? static_cast<mode_t>(status.permissions()) : 0666;
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode);
-  if (fd < 0) fail(path, errno);
-  int write_error = write_all(fd, contents);
-  if (fs::exists(status) && write_error == 0 && ::fchmod(fd, mode) != 0) write_error = errno;
-  if (::close(fd) != 0 && write_error == 0) write_error = errno;
-  if (write_error == 0 && ::rename(temporary.c_str(), target.c_str()) != 0) write_error = errno;
-  if (write_error != 0) {
-    ::unlink(temporary.c_str());
-    fail(path, write_error);
-  }
+  replaced_ = fs::exists(status);
+  mode_ = replaced_ ? static_cast<unsigned>(status.permissions()) : 0666;
+  fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC,
+               static_cast<mode_t>(mode_));
+  if (fd_ < 0) fail(path, errno);
+}
+
+OutputFileStream::~OutputFileStream() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!committed_ && !temporary_.empty()) ::unlink(temporary_.c_str());
+}
+
+void OutputFileStream::write(std::string_view contents) {
+  if (error_ == 0) error_ = write_all(fd_, contents);
+  if (error_ != 0) abandon();
+}
+
+void OutputFileStream::commit() {
+  if (replaced_ && error_ == 0 && ::fchmod(fd_, static_cast<mode_t>(mode_)) != 0) error_ = errno;
+  if (::close(fd_) != 0 && error_ == 0) error_ = errno;
+  fd_ = -1;
+  if (error_ == 0 && !temporary_.empty() && ::rename(temporary_.c_str(), target_.c_str()) != 0)
+    error_ = errno;
+  if (error_ != 0) abandon();
+  committed_ = true;
+}
+
+void OutputFileStream::abandon() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (!temporary_.empty()) ::unlink(temporary_.c_str());
+  temporary_.clear();
+  fail(shown_, error_);
+}
+
+void write_output_file(const fs::path& path, std::string_view contents) {
+  OutputFileStream out(path);
+  out.write(contents);
+  out.commit();
 }
 
 }  // namespace odocal

@@ -17,6 +17,9 @@ class LogBlockSource {
 
   virtual const std::string& source() const = 0;
   virtual const VehicleConfig& vehicle() const = 0;
+  // Whether the log has these streams at all (a block may hold none of their samples).
+  virtual bool has_heading() = 0;
+  virtual bool has_truth() = 0;
   // The first wheel sample's time (the log's start).
   virtual double first_wheel_time_s() = 0;
   // Whether the wheel stream has a sample at or after t_s (reading ahead that far).

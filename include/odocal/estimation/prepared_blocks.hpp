@@ -41,6 +41,8 @@ class InMemoryLogSource final : public LogBlockSource {
   explicit InMemoryLogSource(const Log& log) : log_(log) {}
   const std::string& source() const override { return log_.source; }
   const VehicleConfig& vehicle() const override { return log_.vehicle; }
+  bool has_heading() override { return log_.heading.has_value(); }
+  bool has_truth() override { return log_.truth.has_value(); }
   double first_wheel_time_s() override { return log_.wheels.t_s.front(); }
   bool wheels_reach(double t_s) override { return log_.wheels.t_s.back() >= t_s; }
   Log block(double from_s, double to_s) override;

@@ -36,4 +36,19 @@ struct TrajectoryErrors {
 // reference position falls inside it.
 TrajectoryErrors trajectory_errors(const PoseStream& trajectory, const ReferencePath& reference);
 
+// The same over a trajectory that comes in pieces (a long log dead-reckoned a block at a time):
+// each piece starts with the last pose of the one before, and is compared at the reference
+// samples after that pose, so that every sample counts once.
+class TrajectoryErrorSum {
+ public:
+  void add(const PoseStream& piece, const ReferencePath& reference);
+  // Throws Error (naming `reference_name`) when no reference position fell inside.
+  TrajectoryErrors result(const std::string& reference_name) const;
+
+ private:
+  TrajectoryErrors sums_;
+  double position_sum_m_{}, heading_sum_rad_{};
+  bool first_piece_ = true;
+};
+
 }  // namespace odocal

@@ -27,6 +27,8 @@ class LogBlockReader final : public LogBlockSource {
 
   const std::string& source() const override;
   const VehicleConfig& vehicle() const override;
+  bool has_heading() override;
+  bool has_truth() override;
   double first_wheel_time_s() override;
   bool wheels_reach(double t_s) override;
   Log block(double from_s, double to_s) override;
