@@ -31,22 +31,53 @@ double mean_over(const std::vector<double>& t_s, const std::vector<double>& valu
 
 }  // namespace
 
+std::size_t grid_rows(const Log& log, double from_s, double step_s) {
+  const double to = std::min(log.wheels.t_s.back(), log.gnss.t_s.back());
+  if (!(to > from_s)) return 0;
+  return static_cast<std::size_t>((to - from_s) / step_s);
+}
+
 DiagnosisSignals diagnosis_signals(const Log& log, double step_s) {
   DiagnosisSignals s;
   s.step_s = step_s;
   const double from = std::max(log.wheels.t_s.front(), log.gnss.t_s.front());
   const double to = std::min(log.wheels.t_s.back(), log.gnss.t_s.back());
   if (!(to - from > 5.0)) return s;
-  const auto n = static_cast<std::size_t>((to - from) / step_s);
+  append_diagnosis_signals(log, from, step_s, 0, grid_rows(log, from, step_s), s);
+  return s;
+}
+
+void append_diagnosis_signals(const Log& log, double from, double step_s, std::size_t first,
+                              std::size_t last, DiagnosisSignals& s) {
+  s.step_s = step_s;
+  const std::size_t rows = grid_rows(log, from, step_s);
+  last = std::min(last, rows);
+  if (first >= last) return;
   const OdometryParams nominal = log.vehicle.nominal_params();
   const std::vector<double> rev_rl = cumulative(log.wheels.rev_rl);
   const std::vector<double> rev_rr = cumulative(log.wheels.rev_rr);
+  const auto grid_t = [&](std::size_t i) { return from + (static_cast<double>(i) + 0.5) * step_s; };
   // GNSS velocity from the mean positions of the second before and after: a 3 m noise averages
   // down over a 50 Hz second, and a 1-5 Hz receiver still gives a few fixes.
   constexpr double kHalfWindowS = 1.0;
-  std::vector<double> vx(n, kNaN), vy(n, kNaN);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = from + (static_cast<double>(i) + 0.5) * step_s;
+  const auto lag = static_cast<std::size_t>(std::lround(kHalfWindowS / step_s));
+  const auto velocity = [&](std::size_t i) {
+    const double t = grid_t(i);
+    const double x0 = mean_over(log.gnss.t_s, log.gnss.x_m, t - kHalfWindowS, t);
+    const double x1 = mean_over(log.gnss.t_s, log.gnss.x_m, t, t + kHalfWindowS);
+    const double y0 = mean_over(log.gnss.t_s, log.gnss.y_m, t - kHalfWindowS, t);
+    const double y1 = mean_over(log.gnss.t_s, log.gnss.y_m, t, t + kHalfWindowS);
+    return std::make_pair((x1 - x0) / kHalfWindowS, (y1 - y0) / kHalfWindowS);
+  };
+  // Velocities of the rows and of their course-rate neighbours, each once.
+  const std::size_t v_first = first >= lag ? first - lag : 0;
+  const std::size_t v_last = std::min(rows, last + lag);
+  std::vector<std::pair<double, double>> velocities;
+  velocities.reserve(v_last - v_first);
+  for (std::size_t i = v_first; i < v_last; ++i) velocities.push_back(velocity(i));
+  const auto velocity_at = [&](std::size_t i) { return velocities[i - v_first]; };
+  for (std::size_t i = first; i < last; ++i) {
+    const double t = grid_t(i);
     s.t_s.push_back(t);
     // Wheel distance over a second: one tick of a 96-tick encoder in 0.1 s is a 0.13 rad/s
     // jump of the yaw rate; over a second it is 0.013 rad/s.
@@ -57,14 +88,9 @@ DiagnosisSignals diagnosis_signals(const Log& log, double step_s) {
                              nominal.circumference_rr_m / kSmoothS);
     s.wheel_yaw_rate_radps.push_back((s.speed_rr_mps.back() - s.speed_rl_mps.back()) /
                                      nominal.track_width_m);
-    const double x0 = mean_over(log.gnss.t_s, log.gnss.x_m, t - kHalfWindowS, t);
-    const double x1 = mean_over(log.gnss.t_s, log.gnss.x_m, t, t + kHalfWindowS);
-    const double y0 = mean_over(log.gnss.t_s, log.gnss.y_m, t - kHalfWindowS, t);
-    const double y1 = mean_over(log.gnss.t_s, log.gnss.y_m, t, t + kHalfWindowS);
-    vx[i] = (x1 - x0) / kHalfWindowS;
-    vy[i] = (y1 - y0) / kHalfWindowS;
+    const auto [vx, vy] = velocity_at(i);
     s.gnss_speed_mps.push_back(!log.gnss.speed_mps.empty() ? at(log.gnss.t_s, log.gnss.speed_mps, t)
-                                                           : std::hypot(vx[i], vy[i]));
+                                                           : std::hypot(vx, vy));
     // The 4 s baseline: wheel distance over it, GNSS chord between the means of its first and
     // last 2 s (centres 2 s before and after).
     constexpr double kLongS = 4.0;
@@ -82,31 +108,28 @@ DiagnosisSignals diagnosis_signals(const Log& log, double step_s) {
     s.gnss_speed_long_mps.push_back(!log.gnss.speed_mps.empty()
                                         ? at(log.gnss.t_s, log.gnss.speed_mps, t)
                                         : std::hypot(gx1 - gx0, gy1 - gy0) / kLongS);
-  }
-  // Course rate over 1 s where the GNSS moves (below 2 m/s its course is noise).
-  const auto lag = static_cast<std::size_t>(std::lround(kHalfWindowS / step_s));
-  s.gnss_course_rate_radps.assign(n, kNaN);
-  for (std::size_t i = lag; i + lag < n; ++i) {
-    const std::size_t a = i - lag, b = i + lag;
-    if (std::hypot(vx[a], vy[a]) < 2.0 || std::hypot(vx[b], vy[b]) < 2.0) continue;
-    s.gnss_course_rate_radps[i] =
-        angle_difference(std::atan2(vy[b], vx[b]), std::atan2(vy[a], vx[a])) /
-        (static_cast<double>(b - a) * step_s);
-  }
-  if (log.imu) {
-    // Averaged over the wheels' second, so that both see the same motion.
-    const auto smoothed = [&](const std::vector<double>& values, double t) {
-      const double mean = mean_over(log.imu->t_s, values, t - 0.5 * kSmoothS, t + 0.5 * kSmoothS);
-      return std::isfinite(mean) ? mean : at(log.imu->t_s, values, t);
-    };
-    for (const double t : s.t_s) {
-      s.gyro_radps.push_back(smoothed(log.imu->wz_radps, t));
-      s.ax_mps2.push_back(smoothed(log.imu->ax_mps2, t));
-      s.ay_mps2.push_back(smoothed(log.imu->ay_mps2, t));
+    // Course rate over 1 s where the GNSS moves (below 2 m/s its course is noise).
+    double course_rate = kNaN;
+    if (i >= lag && i + lag < rows) {
+      const auto [ax, ay] = velocity_at(i - lag);
+      const auto [bx, by] = velocity_at(i + lag);
+      if (std::hypot(ax, ay) >= 2.0 && std::hypot(bx, by) >= 2.0) {
+        course_rate = angle_difference(std::atan2(by, bx), std::atan2(ay, ax)) /
+                      (static_cast<double>(2 * lag) * step_s);
+      }
     }
-  }
-  if (log.heading) {
-    for (const double t : s.t_s) {
+    s.gnss_course_rate_radps.push_back(course_rate);
+    if (log.imu) {
+      // Averaged over the wheels' second, so that both see the same motion.
+      const auto smoothed = [&](const std::vector<double>& values) {
+        const double mean = mean_over(log.imu->t_s, values, t - 0.5 * kSmoothS, t + 0.5 * kSmoothS);
+        return std::isfinite(mean) ? mean : at(log.imu->t_s, values, t);
+      };
+      s.gyro_radps.push_back(smoothed(log.imu->wz_radps));
+      s.ax_mps2.push_back(smoothed(log.imu->ax_mps2));
+      s.ay_mps2.push_back(smoothed(log.imu->ay_mps2));
+    }
+    if (log.heading) {
       const auto before =
           interpolate_angle(log.heading->t_s, log.heading->heading_rad, t - 0.5 * step_s);
       const auto after =
@@ -115,7 +138,6 @@ DiagnosisSignals diagnosis_signals(const Log& log, double step_s) {
                                                      : kNaN);
     }
   }
-  return s;
 }
 
 double slope_through_origin(const std::vector<double>& x, const std::vector<double>& y,

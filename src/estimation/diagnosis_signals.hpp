@@ -31,6 +31,13 @@ struct DiagnosisSignals {
 // Empty (size 0) when wheels and GNSS share less than a few seconds.
 DiagnosisSignals diagnosis_signals(const Log& log, double step_s = 0.1);
 
+// Rows [first, last) of the grid t_i = from + (i + 1/2) step_s of a longer log, computed from
+// this piece of it (which holds a few seconds either side of them), appended to `into`: a grid
+// made a block at a time is the grid of the whole log. Rows beyond the piece's wheels or GNSS
+// are left out.
+void append_diagnosis_signals(const Log& log, double from, double step_s, std::size_t first,
+                              std::size_t last, DiagnosisSignals& into);
+
 // Least-squares slope of y on x through the origin, over samples where both are finite and
 // `use` holds; NaN with fewer than `min_samples`.
 double slope_through_origin(const std::vector<double>& x, const std::vector<double>& y,

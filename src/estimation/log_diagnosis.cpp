@@ -7,9 +7,11 @@
 #include <numbers>
 #include <optional>
 
+#include "diagnosis_facts.hpp"
 #include "diagnosis_signals.hpp"
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/median.hpp"
+#include "odocal/estimation/prepared_blocks.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
 #include "odocal/model/angle.hpp"
@@ -27,7 +29,7 @@ struct KnownFactor {
   const char* fix;
 };
 
-std::optional<KnownFactor> known_wheel_factor(double ratio, const WheelStream& wheels) {
+std::optional<KnownFactor> known_wheel_factor(double ratio, WheelUnit unit) {
   static const KnownFactor kFactors[] = {
       {180.0 / kPi, "wheel angles in degrees read as radians",
        "give the wheel columns in rad (or unit: deg in the import map)"},
@@ -50,7 +52,7 @@ std::optional<KnownFactor> known_wheel_factor(double ratio, const WheelStream& w
   for (const KnownFactor& known : kFactors) {
     if (near(known.factor)) return known;
   }
-  if (wheels.unit_rear == WheelUnit::kTicks) {
+  if (unit == WheelUnit::kTicks) {
     for (int n = 2; n <= 16; ++n) {
       if (near(n))
         return KnownFactor{double(n), "ticks_per_rev too small by an integer factor", ""};
@@ -63,7 +65,8 @@ std::optional<KnownFactor> known_wheel_factor(double ratio, const WheelStream& w
 
 class Doctor {
  public:
-  Doctor(const Log& log) : log_(log), signals_(detail::diagnosis_signals(log)) {
+  Doctor(detail::DiagnosisFacts facts, DiagnosisSignals signals)
+      : facts_(std::move(facts)), signals_(std::move(signals)) {
     moving_.resize(signals_.size());
     turning_.resize(signals_.size());
     for (std::size_t k = 0; k < signals_.size(); ++k) {
@@ -127,8 +130,10 @@ class Doctor {
 
   // Time scale and span: the wheels' and GNSS's clocks must cover the same drive.
   bool check_spans() {
-    const double wheels_s = log_.wheels.t_s.back() - log_.wheels.t_s.front();
-    const double gnss_s = log_.gnss.t_s.back() - log_.gnss.t_s.front();
+    const auto& wheels = facts_.wheels;
+    const auto& gnss = facts_.gnss;
+    const double wheels_s = wheels.last_s - wheels.first_s;
+    const double gnss_s = gnss.last_s - gnss.first_s;
     const double ratio = gnss_s / wheels_s;
     for (const double factor : {10.0, 100.0, 1000.0, 1e6, 1e9, 60.0, 3600.0}) {
       for (const double r : {factor, 1.0 / factor}) {
@@ -143,8 +148,8 @@ class Doctor {
         }
       }
     }
-    const double overlap_s = std::min(log_.wheels.t_s.back(), log_.gnss.t_s.back()) -
-                             std::max(log_.wheels.t_s.front(), log_.gnss.t_s.front());
+    const double overlap_s =
+        std::min(wheels.last_s, gnss.last_s) - std::max(wheels.first_s, gnss.first_s);
     if (signals_.size() == 0 && overlap_s > 0.0) {
       add("time.short", FindingSeverity::kNote, "too short to compare the streams",
           fmt::format("wheels and GNSS share {:.1f} s", overlap_s), "", "");
@@ -152,8 +157,8 @@ class Doctor {
     }
     if (signals_.size() == 0) {
       add("time.span", FindingSeverity::kBlocking, "wheels and GNSS share no time",
-          fmt::format("wheels {:.3f} to {:.3f} s, GNSS {:.3f} to {:.3f} s", log_.wheels.t_s.front(),
-                      log_.wheels.t_s.back(), log_.gnss.t_s.front(), log_.gnss.t_s.back()),
+          fmt::format("wheels {:.3f} to {:.3f} s, GNSS {:.3f} to {:.3f} s", wheels.first_s,
+                      wheels.last_s, gnss.first_s, gnss.last_s),
           "the two loggers' clocks are unrelated (different epochs)",
           "give both streams one clock (import map: time.offset_s)");
       return false;
@@ -166,22 +171,22 @@ class Doctor {
           "a logger started late or stopped early, or its clock is offset",
           "calibration uses the shared span only; check the time columns if it should be longer");
     }
-    check_optional_span("imu.csv", log_.imu ? &log_.imu->t_s : nullptr);
-    check_optional_span("heading.csv", log_.heading ? &log_.heading->t_s : nullptr);
+    check_optional_span("imu.csv", facts_.imu);
+    check_optional_span("heading.csv", facts_.heading);
     return true;
   }
 
   // An IMU or heading stream that covers much less of the wheels' span than the wheels do: the
   // reference has no gyro or heading for the rest.
-  void check_optional_span(const char* file, const std::vector<double>* t_s) {
-    if (t_s == nullptr || t_s->empty()) return;
-    const double wheels_from = log_.wheels.t_s.front(), wheels_to = log_.wheels.t_s.back();
-    const double covered = std::min(wheels_to, t_s->back()) - std::max(wheels_from, t_s->front());
+  void check_optional_span(const char* file, const detail::StreamSpan& span) {
+    if (span.samples == 0) return;
+    const double wheels_from = facts_.wheels.first_s, wheels_to = facts_.wheels.last_s;
+    const double covered = std::min(wheels_to, span.last_s) - std::max(wheels_from, span.first_s);
     const double wheels_s = wheels_to - wheels_from;
     if (covered < 0.9 * wheels_s - 2.0) {
       add("time.span", FindingSeverity::kWarning, "the streams cover different spans",
           fmt::format("{} covers {:.1f} s of the wheels' {:.1f} s ({:.3f} to {:.3f} s)", file,
-                      std::max(0.0, covered), wheels_s, t_s->front(), t_s->back()),
+                      std::max(0.0, covered), wheels_s, span.first_s, span.last_s),
           "a logger started late or stopped early, or its clock is offset",
           fmt::format("the reference has no {} for the rest; check its time column", file));
     }
@@ -243,8 +248,8 @@ class Doctor {
       const char* id;    // rl, rr: in check names and vehicle.yaml keys
       double ratio, other_ratio, nominal_m;
     };
-    for (const Wheel& wheel : {Wheel{"RL", "rl", rl, rr, log_.vehicle.circumference_rl_m},
-                               Wheel{"RR", "rr", rr, rl, log_.vehicle.circumference_rr_m}}) {
+    for (const Wheel& wheel : {Wheel{"RL", "rl", rl, rr, facts_.vehicle.circumference_rl_m},
+                               Wheel{"RR", "rr", rr, rl, facts_.vehicle.circumference_rr_m}}) {
       const auto [name, id, ratio, other_ratio, nominal] = wheel;
       if (ratio < 0.0) {
         add(fmt::format("wheels.{}_sign", id), FindingSeverity::kBlocking,
@@ -256,11 +261,11 @@ class Doctor {
                 name),
             fmt::format("negate the {} wheel column (import map: {}: scale: -1)", name, id));
         ok = false;
-      } else if (const auto known = known_wheel_factor(ratio, log_.wheels)) {
+      } else if (const auto known = known_wheel_factor(ratio, facts_.wheel_unit)) {
         const std::string fix = *known->fix
                                     ? known->fix
                                     : fmt::format("ticks_per_rev: {:g} in vehicle.yaml",
-                                                  *log_.vehicle.ticks_per_rev * known->factor);
+                                                  *facts_.vehicle.ticks_per_rev * known->factor);
         add(fmt::format("wheels.{}_unit", id), FindingSeverity::kBlocking,
             fmt::format("the {} wheel's distance is {:.4g}x the GNSS distance", name, ratio),
             fmt::format("median speed ratio {:.4f} over {:.0f} s of driving", ratio,
@@ -329,9 +334,9 @@ class Doctor {
           "negate wz (import map: imu frame: frd)");
     } else if (wheel_course < -kAgree && (!gyro || wheel_gyro > kAgree)) {
       add("gnss.mirrored", FindingSeverity::kBlocking, "the GNSS track is mirrored", evidence,
-          log_.gnss.origin ? "latitude and longitude are swapped"
-                           : "x and y (east and north) are swapped",
-          log_.gnss.origin ? "swap the lat and lon columns" : "swap the x and y columns");
+          facts_.gnss_geodetic ? "latitude and longitude are swapped"
+                               : "x and y (east and north) are swapped",
+          facts_.gnss_geodetic ? "swap the lat and lon columns" : "swap the x and y columns");
     } else if (!gyro && wheel_course < -kAgree) {
       add("wheels.swapped", FindingSeverity::kBlocking,
           "the wheels turn opposite to the GNSS course", evidence,
@@ -443,14 +448,9 @@ class Doctor {
   }
 
   void check_gnss_repeats() {
-    std::size_t repeated = 0, first = 0;
-    for (std::size_t k = 1; k < log_.gnss.size(); ++k) {
-      if (log_.gnss.x_m[k] == log_.gnss.x_m[k - 1] && log_.gnss.y_m[k] == log_.gnss.y_m[k - 1]) {
-        if (repeated++ == 0) first = k;
-      }
-    }
+    const std::size_t repeated = facts_.gnss_repeated, first = facts_.gnss_first_repeated_row;
     const double share =
-        log_.gnss.size() > 1 ? double(repeated) / double(log_.gnss.size() - 1) : 0.0;
+        facts_.gnss.samples > 1 ? double(repeated) / double(facts_.gnss.samples - 1) : 0.0;
     // Standing still repeats a fix legitimately; a quarter of all rows is more than that.
     if (share > 0.25) {
       add("gnss.repeated", FindingSeverity::kBlocking, "GNSS fixes are repeated on many rows",
@@ -463,7 +463,7 @@ class Doctor {
   }
 
   void check_gaps() {
-    const auto gaps = find_wheel_gaps(log_.wheels, default_max_wheel_gap_s(log_.wheels));
+    const auto& gaps = facts_.wheel_gaps;
     if (!gaps.empty()) {
       const auto longest = std::max_element(
           gaps.begin(), gaps.end(),
@@ -474,13 +474,8 @@ class Doctor {
           "dropped packets or a logger pause",
           "none needed: the odometry chain restarts at each gap");
     }
-    std::vector<double> dt;
-    for (std::size_t k = 1; k < log_.gnss.size(); ++k)
-      dt.push_back(log_.gnss.t_s[k] - log_.gnss.t_s[k - 1]);
-    if (dt.empty()) return;
-    const double typical = median(dt);
-    const double longest = *std::max_element(dt.begin(), dt.end());
-    if (longest > std::max(2.0, 10.0 * typical)) {
+    if (facts_.gnss_gap) {
+      const auto [longest, typical] = *facts_.gnss_gap;
       add("gnss.gaps", FindingSeverity::kNote, "the GNSS has gaps",
           fmt::format("longest {:.1f} s (fixes every {:.3g} s)", longest, typical),
           "an outage (tunnel, garage) or dropped messages", "none needed");
@@ -488,18 +483,10 @@ class Doctor {
   }
 
   void check_standstill_biases() {
-    const auto standing = find_standstills(log_, log_.vehicle.nominal_params(), {});
-    if (standing.empty()) return;
-    if (log_.imu) {
-      double sum = 0.0, sum_squares = 0.0;
-      std::size_t n = 0;
-      for (const Standstill& still : standing) {
-        const WindowSum window =
-            window_sum(log_.imu->t_s, log_.imu->wz_radps, still.start_s, still.end_s);
-        sum += window.sum;
-        sum_squares += window.sum_squares;
-        n += window.count;
-      }
+    if (!facts_.standing) return;
+    if (facts_.imu.samples > 0) {
+      const double sum = facts_.gyro_standing_sum, sum_squares = facts_.gyro_standing_sum_squares;
+      const std::size_t n = facts_.gyro_standing_samples;
       // A bias, not the gyro's noise over a few standing seconds: 4 standard errors.
       const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
       const double spread =
@@ -513,15 +500,12 @@ class Doctor {
             "an uncalibrated gyro", "none needed: the reference filter estimates it");
       }
     }
-    const bool rate_sensor = log_.wheels.unit_rear == WheelUnit::kRadiansPerSecond ||
-                             log_.wheels.unit_rear == WheelUnit::kMetresPerSecond;
-    if (rate_sensor) {
-      const WheelRateBias bias = wheel_rate_bias(log_.wheels, standing);
-      if (std::max(std::abs(bias.rl_rev_per_s), std::abs(bias.rr_rev_per_s)) * 360.0 > 0.1) {
+    if (const auto& bias = facts_.wheel_rate_bias) {
+      if (std::max(std::abs(bias->rl_rev_per_s), std::abs(bias->rr_rev_per_s)) * 360.0 > 0.1) {
         add("wheels.rate_bias", FindingSeverity::kNote,
             "the wheel rate sensors have zero-rate biases",
             fmt::format("RL {:+.3f} deg/s, RR {:+.3f} deg/s over {:.1f} s standing",
-                        360.0 * bias.rl_rev_per_s, 360.0 * bias.rr_rev_per_s, bias.standing_s),
+                        360.0 * bias->rl_rev_per_s, 360.0 * bias->rr_rev_per_s, bias->standing_s),
             "angular-rate wheel sensors read a little at rest",
             "none needed: removed before calibrating");
       }
@@ -529,7 +513,7 @@ class Doctor {
   }
 
   void check_altitude() {
-    if (log_.gnss.altitude_m.empty()) {
+    if (!facts_.gnss_altitude) {
       add("gnss.altitude", FindingSeverity::kNote, "the GNSS has no altitude",
           "gnss.csv has no alt column",
           "on hills the 3-D path is longer than the planar one and biases the circumferences",
@@ -537,7 +521,7 @@ class Doctor {
     }
   }
 
-  const Log& log_;
+  detail::DiagnosisFacts facts_;
   DiagnosisSignals signals_;
   std::vector<bool> moving_, turning_;
   Diagnosis out_;
@@ -570,6 +554,15 @@ std::string describe(const Finding& finding) {
   return line + " (" + finding.check + ")";
 }
 
-Diagnosis diagnose_log(const Log& log) { return Doctor(log).run(); }
+Diagnosis diagnose_log(LogBlockSource& source) {
+  DiagnosisSignals signals;
+  detail::DiagnosisFacts facts = detail::diagnosis_facts(source, signals);
+  return Doctor(std::move(facts), std::move(signals)).run();
+}
+
+Diagnosis diagnose_log(const Log& log) {
+  InMemoryLogSource source(log);
+  return diagnose_log(source);
+}
 
 }  // namespace odocal

@@ -79,6 +79,28 @@ BlockPreparation::BlockPreparation(LogBlockSource& source, const CalibrationOpti
   // The first block looks back over a standing start for its standstills (and their bias).
   source_.keep_back(options_.prepare_block_s);
   start_s_ = find_start();
+  blocks_.emplace(source_, start_s_, options_.prepare_block_s,
+                  std::max(log_start_s_, start_s_ - options_.prepare_block_s));
+}
+
+LogBlocks::LogBlocks(LogBlockSource& source, double start_s, double block_s, double first_context_s)
+    : source_(source), start_s_(start_s), block_s_(block_s), first_context_s_(first_context_s) {}
+
+std::optional<PreparedBlock> LogBlocks::next() {
+  if (finished_) return std::nullopt;
+  PreparedBlock block;
+  block.first = index_ == 0;
+  // Boundaries computed alike on both sides, so that neighbouring blocks meet exactly.
+  const auto boundary = [&](std::size_t k) { return start_s_ + static_cast<double>(k) * block_s_; };
+  block.core_from_s = boundary(index_);
+  block.last = !source_.wheels_reach(boundary(index_ + 2));
+  block.core_to_s = block.last ? kInfinity : boundary(index_ + 1);
+  const double context_from = block.first ? first_context_s_ : block.core_from_s - kBlockMarginS;
+  block.context = source_.block(context_from, block.core_to_s + kBlockMarginS);
+  if (block.first) start_wheel_chain(block.context.wheels);
+  ++index_;
+  finished_ = block.last;
+  return block;
 }
 
 double BlockPreparation::find_start() {
@@ -104,20 +126,8 @@ double BlockPreparation::find_start() {
 }
 
 std::optional<PreparedBlock> BlockPreparation::next() {
-  if (finished_) return std::nullopt;
-  const double length_s = options_.prepare_block_s;
-  PreparedBlock block;
-  block.first = index_ == 0;
-  block.core_from_s = start_s_ + static_cast<double>(index_) * length_s;
-  block.last = !source_.wheels_reach(block.core_from_s + 2.0 * length_s);
-  block.core_to_s = block.last ? kInfinity : block.core_from_s + length_s;
-  const double context_from =
-      block.first ? std::max(log_start_s_, start_s_ - length_s) : block.core_from_s - kBlockMarginS;
-  block.context = source_.block(context_from, block.core_to_s + kBlockMarginS);
-  if (block.first) start_wheel_chain(block.context.wheels);
-  prepare(block);
-  ++index_;
-  finished_ = block.last;
+  std::optional<PreparedBlock> block = blocks_->next();
+  if (block) prepare(*block);
   return block;
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "odocal/data/log.hpp"
+#include "odocal/data/log_source.hpp"
 
 namespace odocal {
 
@@ -39,6 +40,9 @@ struct Diagnosis {
 };
 
 Diagnosis diagnose_log(const Log& log);
+// The same a block at a time (a log streamed from its files: the doctor holds its 10 Hz grid,
+// never the log).
+Diagnosis diagnose_log(LogBlockSource& source);
 
 const char* severity_name(FindingSeverity severity);
 // One line: "[blocking] what: evidence; likely cause; fix: ...".

@@ -51,6 +51,20 @@ class InMemoryLogSource final : public LogBlockSource {
   const Log& log_;
 };
 
+// The blocks of a log as they come (not prepared): from start_s, blocks of block_s, each with
+// its margins; the first block's context reaches back to first_context_s.
+class LogBlocks {
+ public:
+  LogBlocks(LogBlockSource& source, double start_s, double block_s, double first_context_s);
+  std::optional<PreparedBlock> next();
+
+ private:
+  LogBlockSource& source_;
+  double start_s_, block_s_, first_context_s_;
+  std::size_t index_{};
+  bool finished_{};
+};
+
 class BlockPreparation {
  public:
   // Finds where the log is used from (its first motion, options.start_at_first_motion) and
@@ -72,8 +86,8 @@ class BlockPreparation {
   LogPreparation& done_;
   OdometryParams nominal_;
   double log_start_s_{}, start_s_{};
-  std::size_t index_{};
-  bool finished_{}, changed_{};
+  std::optional<LogBlocks> blocks_;
+  bool changed_{};
   std::optional<WheelRateBias> bias_;  // the last block's, for blocks without a standstill
   double grade_distance_m_{}, grade_excess_m_{}, grade_scale_variance_m2_{};
 };
