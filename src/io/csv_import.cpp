@@ -6,7 +6,9 @@
 #include <GeographicLib/LocalCartesian.hpp>
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -18,8 +20,10 @@
 #include "odocal/io/csv_table.hpp"
 #include "odocal/io/import_output.hpp"
 #include "odocal/io/input_file.hpp"
+#include "odocal/io/log_block_reader.hpp"
 #include "odocal/io/log_directory_output.hpp"
 #include "odocal/io/log_reader.hpp"
+#include "odocal/io/output_file.hpp"
 #include "odocal/io/text_output.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
 #include "odocal/model/angle.hpp"
@@ -34,19 +38,82 @@ using detail::Quantity;
 using detail::YamlMap;
 namespace fs = std::filesystem;
 
+using detail::SourceFiles;
+using detail::StreamChunk;
 using detail::StreamReader;
-using detail::TableCache;
 
-// Rows where every column is finite (resampled columns are NaN outside their file's span).
-std::vector<std::size_t> complete_rows(const std::vector<const std::vector<double>*>& columns,
-                                       std::size_t rows) {
-  std::vector<std::size_t> keep;
-  for (std::size_t k = 0; k < rows; ++k) {
-    bool ok = true;
-    for (const auto* column : columns) ok = ok && std::isfinite((*column)[k]);
-    if (ok) keep.push_back(k);
+// Writes the complete rows of a stream (every value finite: a value from another file is NaN
+// outside that file's span) chunk by chunk. `convert` turns a row's values into the file's
+// columns in place (false: leave the row out).
+template <typename Convert>
+std::size_t write_complete_rows(StreamReader& stream, const fs::path& path,
+                                const std::string& header, std::vector<int> decimals,
+                                Convert&& convert) {
+  StreamCsvWriter out(path, header, std::move(decimals));
+  StreamChunk chunk;
+  std::vector<double> row;
+  while (stream.next(chunk)) {
+    for (std::size_t k = 0; k < chunk.rows(); ++k) {
+      row.clear();
+      for (const std::vector<double>& column : chunk.values) row.push_back(column[k]);
+      if (!std::all_of(row.begin(), row.end(), [](double v) { return std::isfinite(v); })) continue;
+      if (!convert(chunk.t_s[k], row)) continue;
+      out.add(chunk.t_s[k], row.data());
+    }
   }
-  return keep;
+  out.commit();
+  return out.rows();
+}
+
+// A truth without a heading column: the course over ground of its path (forward driving), from
+// the rows 0.5 m of path before and after each. Read forward, each row waits until the path has
+// gone 0.5 m beyond it (or the file ends), and the rows more than 0.5 m behind are forgotten.
+template <typename Local>
+void write_truth_with_course(StreamReader& truth, Local&& local, StreamCsvWriter& out) {
+  struct Row {
+    double t, x, y, path;
+  };
+  std::deque<Row> rows;     // from the oldest row a pending one may need, to the newest
+  std::size_t pending = 0;  // index in `rows` of the next row to write
+  const auto write_next = [&](bool at_end) {
+    const Row& row = rows[pending];
+    const auto before = std::upper_bound(rows.begin(), rows.end(), row.path - 0.5,
+                                         [](double path, const Row& r) { return path < r.path; });
+    const Row& a = before == rows.begin() ? rows.front() : *(before - 1);
+    const auto after =
+        std::lower_bound(rows.begin() + static_cast<std::ptrdiff_t>(pending), rows.end(),
+                         row.path + 0.5, [](const Row& r, double path) { return r.path < path; });
+    if (after == rows.end() && !at_end) return false;
+    const Row& b = after == rows.end() ? rows.back() : *after;
+    if (std::hypot(b.x - a.x, b.y - a.y) > 0.5 && std::isfinite(row.x) && std::isfinite(row.y)) {
+      const double values[] = {row.x, row.y, std::atan2(b.y - a.y, b.x - a.x)};
+      out.add(row.t, values);
+    }
+    // Rows before `a` are no pending row's `a` any more.
+    const auto forget =
+        static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, (before - rows.begin()) - 1));
+    rows.erase(rows.begin(), rows.begin() + static_cast<std::ptrdiff_t>(forget));
+    pending = pending - forget + 1;
+    return true;
+  };
+  StreamChunk chunk;
+  std::vector<double> row;
+  while (truth.next(chunk)) {
+    for (std::size_t k = 0; k < chunk.rows(); ++k) {
+      row.clear();
+      for (const std::vector<double>& column : chunk.values) row.push_back(column[k]);
+      local(row);
+      double path = rows.empty() ? 0.0 : rows.back().path;
+      if (!rows.empty()) {
+        const double step = std::hypot(row[0] - rows.back().x, row[1] - rows.back().y);
+        path += std::isfinite(step) ? step : 0.0;
+      }
+      rows.push_back({chunk.t_s[k], row[0], row[1], path});
+      while (pending < rows.size() && write_next(false)) {
+      }
+    }
+  }
+  while (pending < rows.size()) write_next(true);
 }
 
 // What one stream left out, for the summary.
@@ -96,32 +163,38 @@ void report_accounts(const std::vector<StreamAccount>& accounts, ImportSummary& 
   }
 }
 
-// Adds `shift_s` to the time (first) column of a log stream file, leaving every other byte.
+// Adds `shift_s` to the time (first) column of a log stream file, leaving every other byte; line
+// by line, so that a file of any length passes through.
 void shift_times(const fs::path& file, double shift_s) {
-  const std::string text = read_input_file(file);
-  write_text_file(file, [&](TextBuffer& out) {
-    std::size_t at = 0;
-    bool header = true;
-    while (at < text.size()) {
-      const std::size_t end = std::min(text.find('\n', at), text.size());
-      const std::string_view line(text.data() + at, end - at);
-      at = end + 1;
-      if (header || line.empty()) {
-        out.print("{}\n", line);
-        header = false;
-        continue;
-      }
+  std::ifstream in = open_input_stream(file);
+  OutputFileStream out(file);
+  fmt::memory_buffer buffer;
+  std::string line;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (header || line.empty()) {
+      fmt::format_to(std::back_inserter(buffer), "{}\n", line);
+      header = false;
+    } else {
       const std::size_t comma = line.find(',');
-      const double t = std::stod(std::string(line.substr(0, comma)));
-      out.print("{:.6f}{}\n", t + shift_s,
-                comma == std::string_view::npos ? std::string_view{} : line.substr(comma));
+      const double t = std::stod(line.substr(0, comma));
+      fmt::format_to(
+          std::back_inserter(buffer), "{:.6f}{}\n", t + shift_s,
+          comma == std::string::npos ? std::string_view{} : std::string_view(line).substr(comma));
     }
-  });
+    if (buffer.size() >= (std::size_t{1} << 20)) {
+      out.write({buffer.data(), buffer.size()});
+      buffer.clear();
+    }
+  }
+  out.write({buffer.data(), buffer.size()});
+  out.commit();
 }
 
 // --sync: the doctor's clock-offset estimates against the wheels, applied to the staged files.
 std::vector<std::string> sync_clocks(const fs::path& staged) {
-  const Diagnosis diagnosis = diagnose_log(read_log(staged));
+  LogBlockReader reader(staged);
+  const Diagnosis diagnosis = diagnose_log(reader);
   std::vector<std::string> applied;
   for (const Finding& finding : diagnosis.findings) {
     const char* file = finding.check == "time.gnss_offset"  ? "gnss.csv"
@@ -135,11 +208,11 @@ std::vector<std::string> sync_clocks(const fs::path& staged) {
   return applied;
 }
 
-std::optional<StreamReader> stream(YamlMap& streams, const std::string& name, TableCache& cache,
-                                   const YAML::Node& root) {
+std::optional<StreamReader> stream(YamlMap& streams, const std::string& name,
+                                   const SourceFiles& files, const YAML::Node& root) {
   auto map = streams.map(name);
   if (!map) return std::nullopt;
-  return StreamReader(std::move(*map), root["streams"][name], cache);
+  return StreamReader(std::move(*map), root["streams"][name], files);
 }
 
 }  // namespace
@@ -172,23 +245,26 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
       skip_lines[name] = static_cast<std::size_t>(skip);
     }
   }
-  TableCache cache(source_dir, skip_lines);
+  const SourceFiles files(source_dir, skip_lines);
   constexpr double kPi = std::numbers::pi;
   std::vector<StreamAccount> accounts;
 
   // Wheels: the unit says what the column holds.
-  auto wheels = stream(*streams, "wheels", cache, root_node);
+  auto wheels = stream(*streams, "wheels", files, root_node);
   if (!wheels)
     throw InputError({map_file.string(), 0, "streams.wheels"}, "required stream is missing");
   {
     std::vector<std::string> names;
-    std::vector<std::vector<double>> values;
+    std::vector<int> decimals;
+    std::vector<bool> ticks;
     std::string kind;
     for (const char* wheel : {"rl", "rr", "fl", "fr"}) {
       const bool rear = wheel[0] == 'r';
       if (!rear && !wheels->has(wheel)) continue;
-      auto [column, quantity] = wheels->values(
-          wheel, {Quantity::kTicks, Quantity::kAngle, Quantity::kAngularSpeed, Quantity::kSpeed});
+      const Quantity quantity = wheels
+                                    ->add_value(wheel, {Quantity::kTicks, Quantity::kAngle,
+                                                        Quantity::kAngularSpeed, Quantity::kSpeed})
+                                    .second;
       const std::string this_kind =
           enum_name(quantity == Quantity::kTicks          ? WheelUnit::kTicks
                     : quantity == Quantity::kAngle        ? WheelUnit::kRadians
@@ -200,34 +276,30 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
                          "speeds or speeds)");
       }
       kind = rear ? this_kind : kind;
-      if (quantity == Quantity::kTicks && vehicle.counter_bits) {
-        // A wrapping counter read with scale -1 runs below zero: back into [0, 2^bits), where
-        // the log reader unwraps it.
-        const double modulus = std::ldexp(1.0, *vehicle.counter_bits);
-        for (double& v : column) {
-          if (!std::isfinite(v)) continue;
-          v = std::fmod(v, modulus);
-          if (v < 0.0) v += modulus;
-        }
-      }
       names.push_back(fmt::format("{}_{}", wheel, this_kind));
-      values.push_back(std::move(column));
+      ticks.push_back(quantity == Quantity::kTicks);
+      decimals.push_back(quantity == Quantity::kTicks ? 0 : 9);
     }
     wheels->done();
-    std::vector<const std::vector<double>*> columns;
-    for (const auto& v : values) columns.push_back(&v);
-    const auto rows = complete_rows(columns, wheels->t_s().size());
-    std::vector<int> decimals(columns.size(), 9);
-    for (std::size_t c = 0; c < names.size(); ++c) {
-      if (names[c].ends_with("_ticks")) decimals[c] = 0;
-    }
-    write_stream_csv(dir / "wheels.csv", fmt::format("t,{}", fmt::join(names, ",")), wheels->t_s(),
-                     columns, rows, decimals);
-    accounts.push_back(account("wheels", *wheels, rows.size()));
+    // A wrapping counter read with scale -1 runs below zero: back into [0, 2^bits), where the
+    // log reader unwraps it.
+    const std::optional<double> modulus =
+        vehicle.counter_bits ? std::optional(std::ldexp(1.0, *vehicle.counter_bits)) : std::nullopt;
+    const std::size_t written =
+        write_complete_rows(*wheels, dir / "wheels.csv", fmt::format("t,{}", fmt::join(names, ",")),
+                            decimals, [&](double, std::vector<double>& row) {
+                              for (std::size_t c = 0; c < row.size(); ++c) {
+                                if (!ticks[c] || !modulus) continue;
+                                row[c] = std::fmod(row[c], *modulus);
+                                if (row[c] < 0.0) row[c] += *modulus;
+                              }
+                              return true;
+                            });
+    accounts.push_back(account("wheels", *wheels, written));
   }
 
   // GNSS: lat/lon (degrees) or local metres; optional altitude, sigma and Doppler speed.
-  auto gnss = stream(*streams, "gnss", cache, root_node);
+  auto gnss = stream(*streams, "gnss", files, root_node);
   if (!gnss) throw InputError({map_file.string(), 0, "streams.gnss"}, "required stream is missing");
   std::optional<GeographicLib::LocalCartesian> enu;
   {
@@ -236,73 +308,74 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
       throw InputError(gnss->map().location("position"), "expected latlon or local");
     const bool latlon = position == "latlon";
     std::vector<std::string> header = {"t", latlon ? "lat" : "x", latlon ? "lon" : "y"};
-    std::vector<std::vector<double>> values;
-    values.push_back(
-        gnss->values(latlon ? "lat" : "x", {latlon ? Quantity::kAngle : Quantity::kLength}).first);
-    values.push_back(
-        gnss->values(latlon ? "lon" : "y", {latlon ? Quantity::kAngle : Quantity::kLength}).first);
-    if (latlon) {
-      for (auto& column : values)
-        for (double& v : column) v *= 180.0 / kPi;  // back to degrees
-    }
+    gnss->add_value(latlon ? "lat" : "x", {latlon ? Quantity::kAngle : Quantity::kLength});
+    gnss->add_value(latlon ? "lon" : "y", {latlon ? Quantity::kAngle : Quantity::kLength});
     std::vector<int> decimals = {latlon ? 9 : 4, latlon ? 9 : 4};
+    bool has_alt = false;
     for (const auto& [key, name, quantity] : {std::tuple{"alt", "alt", Quantity::kLength},
                                               std::tuple{"sigma", "sigma_m", Quantity::kLength},
                                               std::tuple{"speed", "speed_mps", Quantity::kSpeed}}) {
       if (!gnss->has(key)) continue;
-      values.push_back(gnss->values(key, {quantity}).first);
+      gnss->add_value(key, {quantity});
       header.emplace_back(name);
       decimals.push_back(4);
+      has_alt = has_alt || std::string_view(key) == "alt";
     }
     gnss->done();
-    std::vector<const std::vector<double>*> columns;
-    for (const auto& v : values) columns.push_back(&v);
-    const auto rows = complete_rows(columns, gnss->t_s().size());
-    if (rows.empty()) throw InputError(gnss->map().location(), "no complete GNSS row");
-    if (latlon) {
-      const bool has_alt = std::find(header.begin(), header.end(), "alt") != header.end();
-      enu.emplace(values[0][rows[0]], values[1][rows[0]], has_alt ? values[2][rows[0]] : 0.0);
-    }
-    write_stream_csv(dir / "gnss.csv", fmt::format("{}", fmt::join(header, ",")), gnss->t_s(),
-                     columns, rows, decimals);
-    accounts.push_back(account("gnss", *gnss, rows.size()));
+    const std::size_t written =
+        write_complete_rows(*gnss, dir / "gnss.csv", fmt::format("{}", fmt::join(header, ",")),
+                            decimals, [&](double, std::vector<double>& row) {
+                              if (latlon) {
+                                row[0] *= 180.0 / kPi;  // back to degrees
+                                row[1] *= 180.0 / kPi;
+                                // The first complete fix is the local origin of a geodetic truth.
+                                if (!enu) enu.emplace(row[0], row[1], has_alt ? row[2] : 0.0);
+                              }
+                              return true;
+                            });
+    if (written == 0) throw InputError(gnss->map().location(), "no complete GNSS row");
+    accounts.push_back(account("gnss", *gnss, written));
   }
 
   // IMU: body accelerations and yaw rate, converted to forward-left-up.
-  if (auto imu = stream(*streams, "imu", cache, root_node)) {
+  if (auto imu = stream(*streams, "imu", files, root_node)) {
     const std::string frame = imu->text("frame", "flu");
     if (frame != "flu" && frame != "frd")
       throw InputError(imu->map().location("frame"),
                        "expected flu (forward-left-up) or frd (forward-right-down)");
-    auto ax = imu->values("ax", {Quantity::kAcceleration}).first;
-    auto ay = imu->values("ay", {Quantity::kAcceleration}).first;
-    auto wz = imu->values("wz", {Quantity::kAngularSpeed}).first;
+    imu->add_value("ax", {Quantity::kAcceleration});
+    imu->add_value("ay", {Quantity::kAcceleration});
+    imu->add_value("wz", {Quantity::kAngularSpeed});
     imu->done();
-    if (frame == "frd") {  // y right -> left, z down -> up
-      for (double& v : ay) v = -v;
-      for (double& v : wz) v = -v;
-    }
-    const auto rows = complete_rows({&ax, &ay, &wz}, imu->t_s().size());
-    write_stream_csv(dir / "imu.csv", "t,ax,ay,wz", imu->t_s(), {&ax, &ay, &wz}, rows, {6, 6, 7});
-    accounts.push_back(account("imu", *imu, rows.size()));
+    const std::size_t written = write_complete_rows(
+        *imu, dir / "imu.csv", "t,ax,ay,wz", {6, 6, 7}, [&](double, std::vector<double>& row) {
+          if (frame == "frd") {  // y right -> left, z down -> up
+            row[1] = -row[1];
+            row[2] = -row[2];
+          }
+          return true;
+        });
+    accounts.push_back(account("imu", *imu, written));
   }
 
   // Heading: ENU counter-clockwise from east, or compass clockwise from north.
-  if (auto heading = stream(*streams, "heading", cache, root_node)) {
+  if (auto heading = stream(*streams, "heading", files, root_node)) {
     const std::string convention = heading->text("convention", "enu_ccw");
     if (convention != "enu_ccw" && convention != "compass_cw") {
       throw InputError(heading->map().location("convention"), "expected enu_ccw or compass_cw");
     }
-    auto values = heading->values("heading", {Quantity::kAngle}).first;
+    heading->add_value("heading", {Quantity::kAngle});
     heading->done();
-    for (double& v : values) v = wrap_angle(convention == "compass_cw" ? kPi / 2 - v : v);
-    const auto rows = complete_rows({&values}, heading->t_s().size());
-    write_stream_csv(dir / "heading.csv", "t,heading", heading->t_s(), {&values}, rows, {7});
-    accounts.push_back(account("heading", *heading, rows.size()));
+    const std::size_t written = write_complete_rows(
+        *heading, dir / "heading.csv", "t,heading", {7}, [&](double, std::vector<double>& row) {
+          row[0] = wrap_angle(convention == "compass_cw" ? kPi / 2 - row[0] : row[0]);
+          return true;
+        });
+    accounts.push_back(account("heading", *heading, written));
   }
 
   // Truth: in the GNSS's local frame; heading from a column or from the course of the path.
-  if (auto truth = stream(*streams, "truth", cache, root_node)) {
+  if (auto truth = stream(*streams, "truth", files, root_node)) {
     const std::string position = truth->text("position", "local");
     if (position != "local" && position != "latlon" && position != "ecef") {
       throw InputError(truth->map().location("position"), "expected local, latlon or ecef");
@@ -312,63 +385,61 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
           truth->map().location("position"),
           "a geodetic truth needs the GNSS stream in latlon (its first fix is the local origin)");
     }
-    std::vector<double> x, y;
+    const bool ecef = position == "ecef";
     if (position == "local") {
-      x = truth->values("x", {Quantity::kLength}).first;
-      y = truth->values("y", {Quantity::kLength}).first;
+      truth->add_value("x", {Quantity::kLength});
+      truth->add_value("y", {Quantity::kLength});
     } else {
-      const bool ecef = position == "ecef";
-      auto a =
-          truth->values(ecef ? "x" : "lat", {ecef ? Quantity::kLength : Quantity::kAngle}).first;
-      auto b =
-          truth->values(ecef ? "y" : "lon", {ecef ? Quantity::kLength : Quantity::kAngle}).first;
-      auto c = truth->values(ecef ? "z" : "alt", {Quantity::kLength}).first;
-      x.resize(a.size());
-      y.resize(a.size());
-      for (std::size_t k = 0; k < a.size(); ++k) {
-        double lat = a[k] * 180 / kPi, lon = b[k] * 180 / kPi, h = c[k], up = 0;
-        if (ecef) GeographicLib::Geocentric::WGS84().Reverse(a[k], b[k], c[k], lat, lon, h);
-        enu->Forward(lat, lon, h, x[k], y[k], up);
-      }
+      truth->add_value(ecef ? "x" : "lat", {ecef ? Quantity::kLength : Quantity::kAngle});
+      truth->add_value(ecef ? "y" : "lon", {ecef ? Quantity::kLength : Quantity::kAngle});
+      truth->add_value(ecef ? "z" : "alt", {Quantity::kLength});
     }
-    std::vector<double> yaw(x.size(), NAN);
     const std::string heading_source = !truth->has("heading") ? "course"
                                        : truth->is_text("heading")
                                            ? truth->text("heading", "course")
                                            : "column";
-    if (heading_source == "course") {
-      // Course over ground of the truth path (forward driving), from the neighbours 0.5 m of
-      // path before and after; found by bisection over the path length (a standing stretch of
-      // n rows would otherwise cost n^2).
-      std::vector<double> path_m(x.size(), 0.0);
-      for (std::size_t k = 1; k < x.size(); ++k) {
-        const double step = std::hypot(x[k] - x[k - 1], y[k] - y[k - 1]);
-        path_m[k] = path_m[k - 1] + (std::isfinite(step) ? step : 0.0);
-      }
-      for (std::size_t k = 0; k < x.size(); ++k) {
-        const auto first_before =
-            std::upper_bound(path_m.begin(), path_m.end(), path_m[k] - 0.5) - path_m.begin();
-        const std::size_t a = first_before > 0 ? static_cast<std::size_t>(first_before) - 1 : 0;
-        const std::size_t b = std::min<std::size_t>(
-            static_cast<std::size_t>(
-                std::lower_bound(path_m.begin(), path_m.end(), path_m[k] + 0.5) - path_m.begin()),
-            x.size() - 1);
-        if (std::hypot(x[b] - x[a], y[b] - y[a]) > 0.5)
-          yaw[k] = std::atan2(y[b] - y[a], x[b] - x[a]);
-      }
-    } else if (heading_source == "column") {
-      const std::string convention = truth->text("convention", "enu_ccw");
-      yaw = truth->values("heading", {Quantity::kAngle}).first;
-      for (double& v : yaw) v = wrap_angle(convention == "compass_cw" ? kPi / 2 - v : v);
-    } else {
+    if (heading_source != "course" && heading_source != "column") {
       throw InputError(truth->map().location("heading"),
                        "expected 'course' or a column {column, unit}");
     }
+    const std::string convention =
+        heading_source == "column" ? truth->text("convention", "enu_ccw") : "enu_ccw";
+    if (heading_source == "column") truth->add_value("heading", {Quantity::kAngle});
     truth->done();
-    const auto rows = complete_rows({&x, &y, &yaw}, truth->t_s().size());
-    write_stream_csv(dir / "truth.csv", "t,x,y,heading", truth->t_s(), {&x, &y, &yaw}, rows,
-                     {4, 4, 7});
-    accounts.push_back(account("truth", *truth, rows.size()));
+    // Each row as x, y (local metres) and its heading (NaN: from the course, filled in later).
+    const auto local = [&](std::vector<double>& row) {
+      if (position != "local") {
+        double lat = row[0] * 180 / kPi, lon = row[1] * 180 / kPi, h = row[2], up = 0, x = 0, y = 0;
+        if (ecef) GeographicLib::Geocentric::WGS84().Reverse(row[0], row[1], row[2], lat, lon, h);
+        enu->Forward(lat, lon, h, x, y, up);
+        const double heading = heading_source == "column" ? row[3] : NAN;
+        row = {x, y, heading};
+      } else {
+        row = {row[0], row[1], heading_source == "column" ? row[2] : NAN};
+      }
+      if (heading_source == "column")
+        row[2] = wrap_angle(convention == "compass_cw" ? kPi / 2 - row[2] : row[2]);
+    };
+    StreamCsvWriter out(dir / "truth.csv", "t,x,y,heading", {4, 4, 7});
+    if (heading_source == "column") {
+      StreamChunk chunk;
+      std::vector<double> row;
+      while (truth->next(chunk)) {
+        for (std::size_t k = 0; k < chunk.rows(); ++k) {
+          row.clear();
+          for (const std::vector<double>& column : chunk.values) row.push_back(column[k]);
+          if (!std::all_of(row.begin(), row.end(), [](double v) { return std::isfinite(v); }))
+            continue;
+          local(row);
+          if (std::isfinite(row[0]) && std::isfinite(row[1]) && std::isfinite(row[2]))
+            out.add(chunk.t_s[k], row.data());
+        }
+      }
+    } else {
+      write_truth_with_course(*truth, local, out);
+    }
+    out.commit();
+    accounts.push_back(account("truth", *truth, out.rows()));
   }
   streams->reject_unknown_keys();
   root.reject_unknown_keys();

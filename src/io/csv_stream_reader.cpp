@@ -6,24 +6,13 @@
 #include <cmath>
 
 #include "odocal/error.hpp"
-#include "odocal/estimation/interpolation.hpp"
 
 namespace odocal::detail {
+namespace {
 
-const CsvTable& TableCache::get(const std::string& file) {
-  auto it = tables_.find(file);
-  if (it == tables_.end()) {
-    CsvOptions options;
-    options.logger_dialect = true;
-    options.bad_numbers_as_nan = true;  // garbage in a column nobody uses must not matter
-    if (const auto skip = skip_lines_.find(file); skip != skip_lines_.end())
-      options.skip_lines = skip->second;
-    it = tables_.emplace(file, read_csv_table(source_dir_ / file, options)).first;
-  }
-  return it->second;
-}
+constexpr std::size_t kChunkRows = std::size_t{1} << 16;
 
-StreamReader::TimeSpec StreamReader::read_time_spec(YamlMap& time) const {
+TimeSpec read_time_spec(YamlMap& time) {
   TimeSpec spec;
   std::string unit_name = "s";
   double scale = 1.0;
@@ -42,45 +31,132 @@ StreamReader::TimeSpec StreamReader::read_time_spec(YamlMap& time) const {
   return spec;
 }
 
-std::vector<double> StreamReader::times_of(const CsvTable& table, const TimeSpec& spec) const {
-  if (spec.column.empty() || !table.has(spec.column)) {
-    throw InputError(spec.where, fmt::format("column '{}' is not in {}", spec.column, table.file));
-  }
-  std::vector<double> t = table.column(spec.column);
-  double last = -INFINITY;
-  std::size_t last_row = 0;
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    t[k] = t[k] * spec.to_si + spec.offset_s;
-    if (!std::isfinite(t[k])) {
-      if (!drop_bad_) {
-        throw InputError(table.at(k, spec.column),
-                         "not a finite time after the unit conversion (bad_values: drop leaves "
-                         "such rows out)");
-      }
-      t[k] = NAN;
-      continue;
+std::size_t column_of(const CsvChunkReader& reader, const std::string& column,
+                      const InputLocation& where) {
+  const auto& header = reader.header();
+  const auto at = std::find(header.begin(), header.end(), column);
+  if (column.empty() || at == header.end())
+    throw InputError(where, fmt::format("column '{}' is not in {}", column, reader.file()));
+  return static_cast<std::size_t>(at - header.begin());
+}
+
+// A file's times in SI: a time that is not finite after the conversion is an error, or NaN under
+// bad_values: drop; finite times must strictly increase (`last_t`, `last_line` carry that across
+// chunks).
+double converted_time(const CsvTable& chunk, std::size_t column, std::size_t row,
+                      const TimeSpec& spec, bool drop_bad, double& last_t, std::size_t& last_line) {
+  const double t = chunk.columns[column][row] * spec.to_si + spec.offset_s;
+  const InputLocation at{chunk.file, chunk.line_of_row[row], spec.column};
+  if (!std::isfinite(t)) {
+    if (!drop_bad) {
+      throw InputError(at,
+                       "not a finite time after the unit conversion (bad_values: drop leaves "
+                       "such rows out)");
     }
-    if (!(t[k] > last) && last > -INFINITY) {
-      throw InputError(table.at(k, spec.column),
-                       fmt::format("time must strictly increase (line {} has {:.9g} s)",
-                                   table.line_of_row[last_row], last));
-    }
-    last = t[k];
-    last_row = k;
+    return NAN;
   }
+  if (!(t > last_t) && last_t > -INFINITY) {
+    throw InputError(
+        at, fmt::format("time must strictly increase (line {} has {:.9g} s)", last_line, last_t));
+  }
+  last_t = t;
+  last_line = chunk.line_of_row[row];
   return t;
 }
 
-void StreamReader::note_bad_time(const CsvTable& table, std::size_t row) {
-  ++dropped_.bad_values;
-  if (dropped_.first_bad_line == 0 || table.line_of_row[row] < dropped_.first_bad_line) {
-    dropped_.first_bad_line = table.line_of_row[row];
-    dropped_.first_bad_file = table.file;
+// A value in SI units: a finite cell that is not finite after the conversion is an error.
+double converted_value(const CsvTable& chunk, std::size_t column, std::size_t row, double to_si,
+                       double scale, double offset, const std::string& column_name,
+                       const std::string& unit_name) {
+  const double raw = chunk.columns[column][row];
+  const double value = raw * to_si * scale + offset;
+  if (std::isfinite(raw) && !std::isfinite(value)) {
+    throw InputError({chunk.file, chunk.line_of_row[row], column_name},
+                     fmt::format("{:g} {} is not a finite value in SI units", raw, unit_name));
   }
+  return value;
 }
 
-StreamReader::StreamReader(YamlMap map, YAML::Node node, TableCache& cache)
-    : node_(std::move(node)), map_(std::move(map)), cache_(cache) {
+[[noreturn]] void reject_bad(const CsvTable& chunk, std::size_t row, const std::string& column) {
+  throw InputError({chunk.file, chunk.line_of_row[row], column},
+                   "expected a finite number (bad_values: drop leaves such rows out)");
+}
+
+}  // namespace
+
+std::unique_ptr<CsvChunkReader> SourceFiles::open(const std::string& file) const {
+  CsvOptions options;
+  options.logger_dialect = true;
+  options.bad_numbers_as_nan = true;  // garbage in a column nobody uses must not matter
+  if (const auto skip = skip_lines_.find(file); skip != skip_lines_.end())
+    options.skip_lines = skip->second;
+  return std::make_unique<CsvChunkReader>(source_dir_ / file, options);
+}
+
+// A value from another file of the same sensor: its finite samples on its own clock, interpolated
+// onto the stream's times (NaN outside its span), read forward as the stream's times advance.
+class ResampledColumn {
+ public:
+  ResampledColumn(std::unique_ptr<CsvChunkReader> reader, TimeSpec time, std::size_t column,
+                  std::string column_name, double to_si, double scale, double offset,
+                  std::string unit_name, bool drop_bad)
+      : reader_(std::move(reader)),
+        time_(std::move(time)),
+        time_column_(column_of(*reader_, time_.column, time_.where)),
+        column_(column),
+        column_name_(std::move(column_name)),
+        unit_name_(std::move(unit_name)),
+        to_si_(to_si),
+        scale_(scale),
+        offset_(offset),
+        drop_bad_(drop_bad) {}
+
+  // The value at t; t never decreases from one call to the next.
+  double at(double t) {
+    while (!ended_ && (samples_.empty() || samples_.back().first < t)) read_chunk();
+    while (samples_.size() >= 2 && samples_[1].first <= t) samples_.pop_front();
+    if (samples_.empty() || t < samples_.front().first) return NAN;
+    if (t == samples_.front().first) return samples_.front().second;
+    if (samples_.size() < 2) return NAN;
+    const auto& [t0, v0] = samples_[0];
+    const auto& [t1, v1] = samples_[1];
+    return v0 + (t - t0) / (t1 - t0) * (v1 - v0);
+  }
+
+ private:
+  void read_chunk() {
+    const std::optional<CsvTable> chunk = reader_->next(kChunkRows);
+    if (!chunk) {
+      ended_ = true;
+      return;
+    }
+    for (std::size_t row = 0; row < chunk->rows(); ++row) {
+      const double t =
+          converted_time(*chunk, time_column_, row, time_, drop_bad_, last_t_, last_line_);
+      const double v =
+          converted_value(*chunk, column_, row, to_si_, scale_, offset_, column_name_, unit_name_);
+      if (std::isnan(t) || !std::isfinite(v)) {
+        if (!std::isnan(t) && !drop_bad_) reject_bad(*chunk, row, column_name_);
+        continue;
+      }
+      samples_.emplace_back(t, v);
+    }
+  }
+
+  std::unique_ptr<CsvChunkReader> reader_;
+  TimeSpec time_;
+  std::size_t time_column_, column_;
+  std::string column_name_, unit_name_;
+  double to_si_, scale_, offset_;
+  bool drop_bad_;
+  std::deque<std::pair<double, double>> samples_;
+  bool ended_ = false;
+  double last_t_ = -INFINITY;
+  std::size_t last_line_{};
+};
+
+StreamReader::StreamReader(YamlMap map, YAML::Node node, const SourceFiles& files)
+    : node_(std::move(node)), map_(std::move(map)), files_(files) {
   map_.read("file", file_);
   if (file_.empty())
     throw InputError(map_.location(), "'file' is required: the CSV that holds this stream");
@@ -92,50 +168,18 @@ StreamReader::StreamReader(YamlMap map, YAML::Node node, TableCache& cache)
   auto time = map_.map("time");
   if (!time) throw InputError(map_.location(), "'time' is required: {column, unit, offset_s}");
   time_ = read_time_spec(*time);
-  const CsvTable& table = cache_.get(file_);
-  source_rows_ = table.rows();
-  const std::vector<double> t = times_of(table, time_);
-
+  reader_ = files_.open(file_);
+  time_column_ = column_of(*reader_, time_.column, time_.where);
   // dedupe: a row whose named columns all equal those of the row kept before it repeats it.
-  std::vector<const std::vector<double>*> dedupe;
   for (const YAML::Node& name : map_.sequence("dedupe")) {
     const std::string column = name.IsScalar() ? name.Scalar() : "";
-    if (!table.has(column)) {
-      throw InputError(map_.location("dedupe"),
-                       fmt::format("column '{}' is not in {}", column, table.file));
-    }
-    dedupe.push_back(&table.column(column));
+    dedupe_columns_.push_back(column_of(*reader_, column, map_.location("dedupe")));
   }
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    if (std::isnan(t[k])) {
-      note_bad_time(table, k);
-      continue;
-    }
-    if (!dedupe.empty() && !rows_.empty() &&
-        std::all_of(dedupe.begin(), dedupe.end(),
-                    [&](const auto* column) { return (*column)[k] == (*column)[rows_.back()]; })) {
-      ++dropped_.repeated;
-      continue;
-    }
-    rows_.push_back(k);
-    t_s_.push_back(t[k]);
-  }
-  value_bad_.assign(rows_.size(), 0);
+  last_dedupe_.resize(dedupe_columns_.size());
 }
 
-DroppedRows StreamReader::dropped() const {
-  DroppedRows out = dropped_;
-  for (std::size_t i = 0; i < value_bad_.size(); ++i) {
-    if (!value_bad_[i]) continue;
-    ++out.bad_values;
-    const std::size_t line = cache_.get(file_).line_of_row[rows_[i]];
-    if (out.first_bad_line == 0 || line < out.first_bad_line) {
-      out.first_bad_line = line;
-      out.first_bad_file = cache_.get(file_).file;
-    }
-  }
-  return out;
-}
+StreamReader::~StreamReader() = default;
+StreamReader::StreamReader(StreamReader&&) noexcept = default;
 
 std::string StreamReader::text(const std::string& key, const std::string& fallback) {
   std::string value = fallback;
@@ -143,7 +187,7 @@ std::string StreamReader::text(const std::string& key, const std::string& fallba
   return value;
 }
 
-std::pair<std::vector<double>, Quantity> StreamReader::values(
+std::pair<std::size_t, Quantity> StreamReader::add_value(
     const std::string& key, std::initializer_list<Quantity> quantities) {
   auto spec = map_.map(key);
   if (!spec) throw InputError(map_.location(), fmt::format("'{}' is required", key));
@@ -167,56 +211,80 @@ std::pair<std::vector<double>, Quantity> StreamReader::values(
     for (Quantity q : quantities) accepted += (accepted.empty() ? "" : ", ") + unit_names(q);
     throw InputError(spec->location("unit"), fmt::format("expected one of {}", accepted));
   }
-  const CsvTable& table = cache_.get(file);
-  if (column.empty() || !table.has(column)) {
-    throw InputError(spec->location("column"),
-                     fmt::format("column '{}' is not in {}", column, table.file));
-  }
-  const std::vector<double>& raw = table.column(column);
-  const auto convert = [&](std::size_t row) {
-    const double converted = raw[row] * unit->to_si * scale + offset;
-    if (std::isfinite(raw[row]) && !std::isfinite(converted)) {
-      throw InputError(
-          table.at(row, column),
-          fmt::format("{:g} {} is not a finite value in SI units", raw[row], unit_name));
-    }
-    return converted;
-  };
-  const auto bad = [&](std::size_t row) {
-    if (!drop_bad_) {
-      throw InputError(table.at(row, column),
-                       "expected a finite number (bad_values: drop leaves such rows out)");
-    }
-  };
+  Value value;
+  value.own = {0, column, unit_name, unit->to_si, scale, offset};
   if (file == file_) {
-    std::vector<double> out(rows_.size());
-    for (std::size_t i = 0; i < rows_.size(); ++i) {
-      out[i] = convert(rows_[i]);
-      if (!std::isfinite(out[i])) {
-        bad(rows_[i]);
-        value_bad_[i] = 1;
+    value.own.column = column_of(*reader_, column, spec->location("column"));
+  } else {
+    std::unique_ptr<CsvChunkReader> other = files_.open(file);
+    const std::size_t index = column_of(*other, column, spec->location("column"));
+    value.other =
+        std::make_unique<ResampledColumn>(std::move(other), other_time, index, column, unit->to_si,
+                                          scale, offset, unit_name, drop_bad_);
+  }
+  values_.push_back(std::move(value));
+  return {values_.size() - 1, unit->quantity};
+}
+
+void StreamReader::note_bad(const std::string& file, std::size_t line) {
+  ++dropped_.bad_values;
+  if (dropped_.first_bad_line == 0 || line < dropped_.first_bad_line) {
+    dropped_.first_bad_line = line;
+    dropped_.first_bad_file = file;
+  }
+}
+
+bool StreamReader::next(StreamChunk& out) {
+  out.t_s.clear();
+  out.values.assign(values_.size(), {});
+  while (out.rows() == 0) {
+    const std::optional<CsvTable> chunk = reader_->next(kChunkRows);
+    if (!chunk) return false;
+    source_rows_ += chunk->rows();
+    std::vector<std::size_t> rows;  // of the chunk, kept
+    for (std::size_t row = 0; row < chunk->rows(); ++row) {
+      const double t =
+          converted_time(*chunk, time_column_, row, time_, drop_bad_, last_t_, last_line_);
+      if (std::isnan(t)) {
+        note_bad(chunk->file, chunk->line_of_row[row]);
+        continue;
+      }
+      bool repeats = have_kept_ && !dedupe_columns_.empty();
+      for (std::size_t d = 0; repeats && d < dedupe_columns_.size(); ++d)
+        repeats = chunk->columns[dedupe_columns_[d]][row] == last_dedupe_[d];
+      if (repeats) {
+        ++dropped_.repeated;
+        continue;
+      }
+      for (std::size_t d = 0; d < dedupe_columns_.size(); ++d)
+        last_dedupe_[d] = chunk->columns[dedupe_columns_[d]][row];
+      have_kept_ = true;
+      rows.push_back(row);
+      out.t_s.push_back(t);
+    }
+    std::vector<std::uint8_t> bad(rows.size(), 0);  // a used value is not finite
+    for (std::size_t v = 0; v < values_.size(); ++v) {
+      Value& value = values_[v];
+      std::vector<double>& column = out.values[v];
+      column.resize(rows.size());
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (value.other) {
+          column[i] = value.other->at(out.t_s[i]);
+          continue;
+        }
+        const OwnValue& own = value.own;
+        column[i] = converted_value(*chunk, own.column, rows[i], own.to_si, own.scale, own.offset,
+                                    own.column_name, own.unit_name);
+        if (!std::isfinite(column[i])) {
+          if (!drop_bad_) reject_bad(*chunk, rows[i], own.column_name);
+          bad[i] = 1;
+        }
       }
     }
-    return {std::move(out), unit->quantity};
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      if (bad[i]) note_bad(chunk->file, chunk->line_of_row[rows[i]]);
   }
-  // Another file of the same sensor: its finite samples on its own clock, interpolated onto this
-  // stream's time base (NaN outside its span).
-  const std::vector<double> t = times_of(table, other_time);
-  std::vector<double> other_t, other_v;
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    const double v = convert(k);
-    if (std::isnan(t[k]) || !std::isfinite(v)) {
-      if (!std::isnan(t[k])) bad(k);
-      continue;
-    }
-    other_t.push_back(t[k]);
-    other_v.push_back(v);
-  }
-  std::vector<double> resampled(t_s_.size(), NAN);
-  for (std::size_t k = 0; k < t_s_.size(); ++k) {
-    if (const auto v = interpolate_linear(other_t, other_v, t_s_[k])) resampled[k] = *v;
-  }
-  return {std::move(resampled), unit->quantity};
+  return true;
 }
 
 }  // namespace odocal::detail

@@ -252,6 +252,64 @@ streams:
   }
 }
 
+// A logger longer than a chunk of rows (the importer reads 65 536 at a time): dedupe, the time
+// order and another file's values carry across chunk boundaries, and the truth's course comes
+// out of a path read piece by piece, standing stops included.
+TEST(CsvImport, ALongLoggerStreamsThroughChunks) {
+  const TempLogDir src;
+  std::string wheels = "t,left,right\n", gnss = "t,x,y\n", speed = "clock,v\n", truth = "t,x,y\n";
+  constexpr int kRows = 150'000;    // 25 minutes at 100 Hz
+  const auto x_at = [](double t) {  // 10 m/s east, standing from 600 to 660 s
+    return t < 600.0 ? 10.0 * t : t < 660.0 ? 6000.0 : 6000.0 + 10.0 * (t - 660.0);
+  };
+  for (int k = 0; k < kRows; ++k) {
+    const double t = 0.01 * k;
+    const double v = t >= 600.0 && t < 660.0 ? 0.0 : 10.0;
+    wheels += fmt::format("{:.2f},{},{}\n", t, v, v);
+    // A 10 Hz fix written on every 100 Hz row.
+    const double fix_t = 0.1 * std::floor(t * 10.0 + 1e-9);
+    gnss += fmt::format("{:.2f},{:.3f},0\n", t, x_at(fix_t));
+    if (k % 3 == 0) speed += fmt::format("{:.3f},{}\n", t + 0.005, v);
+    truth += fmt::format("{:.2f},{:.3f},0\n", t, x_at(t));
+  }
+  src.write("wheels.csv", wheels);
+  src.write("gnss.csv", gnss);
+  src.write("speed.csv", speed);
+  src.write("truth.csv", truth);
+  src.write("map.yaml",
+            R"(vehicle: {track_width_m: 1.6, circumference_rl_m: 1.96, circumference_rr_m: 1.96}
+streams:
+  wheels: {file: wheels.csv, time: {column: t, unit: s}, rl: {column: left, unit: m/s}, rr: {column: right, unit: m/s}}
+  gnss:
+    file: gnss.csv
+    time: {column: t, unit: s}
+    dedupe: [x, y]
+    position: local
+    x: {column: x, unit: m}
+    y: {column: y, unit: m}
+    speed: {file: speed.csv, column: v, unit: m/s, time: {column: clock, unit: s}}
+  truth: {file: truth.csv, time: {column: t, unit: s}, position: local, x: {column: x, unit: m}, y: {column: y, unit: m}}
+)");
+  const TempLogDir out;
+  const ImportSummary summary = import_csv(src.file("map.yaml"), src.path(), out.path());
+  const Log log = read_log(out.path());
+  EXPECT_EQ(log.wheels.size(), static_cast<std::size_t>(kRows));
+  // One row per fix while driving; standing, the fix repeats and collapses into one.
+  const std::size_t fixes_driving = 14'400;
+  EXPECT_NEAR(static_cast<double>(log.gnss.size()), static_cast<double>(fixes_driving + 1), 2.0);
+  for (std::size_t k = 1; k < log.gnss.size(); ++k) {
+    ASSERT_GT(log.gnss.t_s[k], log.gnss.t_s[k - 1]);
+    // The other file's speed, interpolated across its own chunks: 10 m/s except near the stop.
+    if (log.gnss.t_s[k] < 590.0 || log.gnss.t_s[k] > 670.0)
+      ASSERT_NEAR(log.gnss.speed_mps[k], 10.0, 1e-9) << log.gnss.t_s[k];
+  }
+  ASSERT_TRUE(log.truth.has_value());
+  // The course east everywhere, the standing rows included (0.5 m before and after the stop).
+  EXPECT_GT(log.truth->size(), static_cast<std::size_t>(kRows) - 200);
+  for (const Pose2& pose : log.truth->pose) ASSERT_NEAR(pose.z(), 0.0, 1e-9);
+  EXPECT_NEAR(summary.wheel_distance_m, 14'400.0, 1.0);
+}
+
 TEST(CsvImportRejects, ZeroScale) {
   expect_map_error("unit: ticks}\n    rr=>unit: ticks, scale: 0}\n    rr",
                    "streams.wheels.rl.scale", "must not be 0");
