@@ -82,7 +82,7 @@ class BlockPreparation {
   void prepare(PreparedBlock& block);
 
   LogBlockSource& source_;
-  const CalibrationOptions& options_;
+  CalibrationOptions options_;  // a copy: a temporary may be passed
   LogPreparation& done_;
   OdometryParams nominal_;
   double log_start_s_{}, start_s_{};
