@@ -207,7 +207,11 @@ CsvTable parse_csv_table(std::string_view text, const std::string& file_label,
 CsvChunkReader::CsvChunkReader(const std::filesystem::path& path, const CsvOptions& options)
     : parser_(std::make_unique<detail::CsvLineParser>(path.string(), options)),
       stream_(open_input_stream(path)) {
-  buffer_.resize(kReadBytes);
+  // A small file needs no megabyte of buffer (a fuzzer reads thousands of them a second).
+  std::error_code error;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, error);
+  buffer_.resize(error ? kReadBytes
+                       : static_cast<std::size_t>(std::min<std::uintmax_t>(kReadBytes, bytes + 1)));
   // The header (and anything before it) comes with the first chunk's rows or alone.
   CsvTable none = parser_->empty_table();
   while (!parser_->have_header() && read_line()) parser_->add_line(line_, none);
