@@ -1016,35 +1016,40 @@ ceres::Solver::Summary solve_extended(BatchProblem& batch, const BatchOptions& o
   return solver;
 }
 
-// tyre_model auto: the extended model replaces the plain one where the information criterion
-// says that the log supports its coefficients.
-void choose_tyre_model(BatchProblem& batch, const BatchOptions& options, double max_change,
-                       BatchSummary& summary, ceres::Solver::Summary& solver) {
+// tyre_model auto: the plain fit stands unless the extended model, fitted on its own exactly as
+// `extended` fits it, has the lower information criterion and is a tyre. The result is one of
+// the two fits, never a blend (so that a log the plain model explains calibrates as under none).
+void choose_tyre_model(std::unique_ptr<BatchProblem>& batch, const Log& log,
+                       const ReferenceTrajectory& reference, const BatchOptions& options,
+                       const CalibrationOptions& common, BatchSummary& summary,
+                       ceres::Solver::Summary& solver) {
   constexpr double kMaxTyreEffect = 0.03;
   if (!solver.IsSolutionUsable()) return;
   TyreModelSelection& selection = summary.tyre_selection;
-  selection.plain_bic = batch.information_criterion(solver);
-  ceres::Solver::Summary extended = solve_extended(batch, options, summary);
-  selection.extended_bic = extended.IsSolutionUsable() ? batch.information_criterion(extended)
+  selection.plain_bic = batch->information_criterion(solver);
+  auto candidate = std::make_unique<BatchProblem>(log, reference, options, common, summary.nominal);
+  BatchSummary candidate_summary;
+  candidate_summary.nominal = summary.nominal;
+  ceres::Solver::Summary extended = solve_extended(*candidate, options, candidate_summary);
+  summary.solves += candidate_summary.solves;
+  selection.extended_bic = extended.IsSolutionUsable() ? candidate->information_criterion(extended)
                                                        : std::numeric_limits<double>::infinity();
   selection.compared = true;
   // Coefficients that change the circumference by percents at the log's typical driving state
   // are not a tyre: they are the model explaining something else (a skid-steer robot, a wrong
   // input), and so is a circumference that leaves the plausible band.
   const TyreModel::Vector effect =
-      batch.tyre_model().coefficients().cwiseProduct(batch.regressor_rms()).cwiseAbs();
-  const auto& p = batch.params();
-  const bool physical = effect.maxCoeff() <= kMaxTyreEffect &&
-                        std::abs(p[0] / summary.nominal.circumference_rl_m - 1.0) <= max_change &&
-                        std::abs(p[1] / summary.nominal.circumference_rr_m - 1.0) <= max_change;
-  selection.physical = physical;
-  if (physical && batch.free_tyre_coefficients() > 0 &&
+      candidate->tyre_model().coefficients().cwiseProduct(candidate->regressor_rms()).cwiseAbs();
+  const auto& p = candidate->params();
+  const double max_change = common.max_relative_change;
+  selection.physical = effect.maxCoeff() <= kMaxTyreEffect &&
+                       std::abs(p[0] / summary.nominal.circumference_rl_m - 1.0) <= max_change &&
+                       std::abs(p[1] / summary.nominal.circumference_rr_m - 1.0) <= max_change;
+  if (selection.physical && candidate->free_tyre_coefficients() > 0 &&
       selection.extended_bic < selection.plain_bic) {
+    batch = std::move(candidate);
     solver = extended;
-    return;
   }
-  batch.set_tyre_model(false);
-  solver = solve_relinearised(batch, options, summary);
 }
 
 }  // namespace
@@ -1054,14 +1059,15 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   require_valid("batch", options.validate());
   BatchSummary summary;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
-  BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
+  auto batch =
+      std::make_unique<BatchProblem>(run.log(), run.reference(), options, common, summary.nominal);
   ceres::Solver::Summary solver = options.tyre_model == TyreModelChoice::kExtended
-                                      ? solve_extended(batch, options, summary)
-                                      : solve_relinearised(batch, options, summary);
+                                      ? solve_extended(*batch, options, summary)
+                                      : solve_relinearised(*batch, options, summary);
   if (options.tyre_model == TyreModelChoice::kAuto)
-    choose_tyre_model(batch, options, common.max_relative_change, summary, solver);
-  adapt_gnss_noise(batch, options, common, summary, solver);
-  summarise(run.log(), options, batch, solver, summary);
+    choose_tyre_model(batch, run.log(), run.reference(), options, common, summary, solver);
+  adapt_gnss_noise(*batch, options, common, summary, solver);
+  summarise(run.log(), options, *batch, solver, summary);
   run.finish(summary);
   return summary;
 }

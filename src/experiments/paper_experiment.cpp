@@ -13,6 +13,7 @@
 #include "experiments/monte_carlo.hpp"
 #include "experiments/piece_cache.hpp"
 #include "experiments/single_run.hpp"
+#include "experiments/tyre_model_experiment.hpp"
 #include "experiments/wear_table.hpp"
 #include "odocal/error.hpp"
 #include "odocal/io/calibration_io.hpp"
@@ -22,7 +23,7 @@ namespace odocal::experiments {
 namespace {
 
 // Bump when an experiment's code changes what it writes: finished pieces are then recomputed.
-constexpr int kExperimentVersion = 4;
+constexpr int kExperimentVersion = 5;
 
 std::string stamp(const std::string& piece, const sim::Scenario& scenario) {
   return nlohmann::json{{"version", kExperimentVersion},
@@ -72,11 +73,15 @@ void run_paper_experiment(const PaperExperimentOptions& options, std::FILE* prog
   if (const std::string problem = options.validate(); !problem.empty())
     throw Error("invalid experiment options: " + problem);
   const int per_mode = 2 + options.seeds;
-  const bool robustness =
-      options.robustness &&
-      std::find(options.modes.begin(), options.modes.end(), SimMode::kIdeal) != options.modes.end();
+  const auto has_mode = [&](SimMode mode) {
+    return std::find(options.modes.begin(), options.modes.end(), mode) != options.modes.end();
+  };
+  const bool robustness = options.robustness && has_mode(SimMode::kIdeal);
+  const bool tyre_models =
+      options.tyre_models && has_mode(SimMode::kIdeal) && has_mode(SimMode::kRealistic);
   ExperimentProgress progress(progress_out, per_mode * static_cast<int>(options.modes.size()) +
-                                                (robustness ? options.seeds : 0));
+                                                (robustness ? options.seeds : 0) +
+                                                (tyre_models ? 2 * options.seeds : 0));
   PieceRunner runner(options.fresh, progress);
   const std::filesystem::path& out = options.out_dir;
   const std::uint64_t single_seed = 1;
@@ -122,6 +127,29 @@ void run_paper_experiment(const PaperExperimentOptions& options, std::FILE* prog
       seeds.push_back(read_json_file(dir / "result.json"));
     }
     write_json_file(out / "robustness" / "summary.json", summarise_robustness(seeds));
+  }
+
+  if (tyre_models) {
+    std::vector<nlohmann::json> seeds, urban;
+    for (int seed = 1; seed <= options.seeds; ++seed) {
+      const std::filesystem::path dir = out / "tyre_models" / fmt::format("seed-{:02}", seed);
+      const auto noise_seed = static_cast<std::uint64_t>(seed);
+      runner.run(
+          fmt::format("tyre models, rear and front drive: seed {}/{}", seed, options.seeds), dir,
+          stamp("tyre_models", paper_scenario(options.setup, SimMode::kRealistic, noise_seed)),
+          [&] {
+            write_json_file(dir / "result.json", run_tyre_model_seed(options.setup, noise_seed));
+          });
+      seeds.push_back(read_json_file(dir / "result.json"));
+      const std::filesystem::path urban_dir =
+          out / "tyre_models" / fmt::format("urban-{:02}", seed);
+      runner.run(fmt::format("tyre models, urban drift: seed {}/{}", seed, options.seeds),
+                 urban_dir, stamp("tyre_models_urban", load_scenario("urban")), [&] {
+                   write_json_file(urban_dir / "result.json", run_urban_drift_seed(noise_seed));
+                 });
+      urban.push_back(read_json_file(urban_dir / "result.json"));
+    }
+    write_json_file(out / "tyre_models" / "summary.json", summarise_tyre_models(seeds, urban));
   }
 
   nlohmann::json modes = nlohmann::json::array();

@@ -1,7 +1,7 @@
 #pragma once
 // `odocal experiment paper`: every table and figure of the paper (Table 1 / Fig. 2, Figs. 4-7,
 // Figs. 8-11, Fig. 12) in each simulator mode, with the Cramér–Rao bound of every run, plus the
-// batch estimator beside them and under degraded GNSS. Results go
+// batch estimator beside them, under degraded GNSS and with its tyre model (issue 17). Results go
 // to CSV/JSON under out_dir (layout in docs/results.md); tools/paper_report.py draws them.
 
 #include <cstdio>
@@ -19,6 +19,7 @@ struct PaperExperimentOptions {
   int seeds = 10;  // Figs. 8-11
   std::vector<SimMode> modes{SimMode::kIdeal, SimMode::kRealistic};
   bool robustness = true;    // the degraded-GNSS runs (ideal mode only)
+  bool tyre_models = true;   // the tyre model runs (both modes needed)
   bool fresh = false;        // recompute pieces that a previous run finished
   std::string command_line;  // recorded in experiment.json
 

@@ -5,6 +5,7 @@
 
 #include "odocal/error.hpp"
 #include "odocal/estimation/dead_reckoning.hpp"
+#include "odocal/estimation/driving_state.hpp"
 #include "odocal/model/angle.hpp"
 
 namespace odocal::experiments {
@@ -26,7 +27,11 @@ TruthComparison compare_with_truth(const CalibrationSummary& result, const Log& 
   c.error_rr_mm = 1e3 * (result.estimate.circumference_rr_m - truth.circumference_rr_m);
   c.reported_sigma_rl_mm = 1e3 * result.sigma_rl_m();
   c.reported_sigma_rr_mm = 1e3 * result.sigma_rr_m();
-  const PoseStream path = dead_reckon(log.wheels, result.estimate, truth_path.pose.front());
+  // A result with a tyre model dead-reckons the wheels as its model counts them.
+  const PoseStream path = dead_reckon(
+      result.tyre_model.plain() ? log.wheels
+                                : with_tyre_model(log, result.estimate, result.tyre_model),
+      result.estimate, truth_path.pose.front());
   c.dead_reckoning = trajectory_errors(path, reference_from_poses(truth_path, "truth"));
   return c;
 }

@@ -15,7 +15,8 @@ struct TruthComparison {
   double error_rr_mm{};
   double reported_sigma_rl_mm{};  // the method's own 1-sigma (its covariance)
   double reported_sigma_rr_mm{};
-  // Whole-log dead reckoning with the estimate from the true start pose, against the truth.
+  // Whole-log dead reckoning with the estimate (and its tyre model) from the true start pose,
+  // against the truth.
   TrajectoryErrors dead_reckoning;
 };
 

@@ -96,10 +96,17 @@ TEST(TyreModelBatch, RecoversKnownCoefficientsWhereThePlainModelIsBiased) {
 TEST(TyreModelBatch, AutoKeepsThePlainModelWhereTheLogNeedsNoMore) {
   BatchOptions auto_options;
   auto_options.tyre_model = TyreModelChoice::kAuto;
-  const BatchSummary chosen = calibrate_batch(ideal_lap(), auto_options);
+  const Log log = ideal_lap();
+  const BatchSummary chosen = calibrate_batch(log, auto_options);
   EXPECT_TRUE(chosen.tyre_selection.compared);
   EXPECT_TRUE(chosen.tyre_model.plain()) << chosen.full_report();
   EXPECT_GT(chosen.tyre_selection.extended_bic, chosen.tyre_selection.plain_bic);
+  // Keeping the plain model is calibrating as under none, not a plain model re-solved from where
+  // the extended fit left the problem.
+  const BatchSummary plain = calibrate_batch(log);
+  EXPECT_EQ(chosen.estimate.circumference_rl_m, plain.estimate.circumference_rl_m);
+  EXPECT_EQ(chosen.estimate.circumference_rr_m, plain.estimate.circumference_rr_m);
+  EXPECT_NEAR(chosen.sigma_rl_m(), plain.sigma_rl_m(), 1e-6 * plain.sigma_rl_m());
 }
 
 TEST(TyreModelBatch, GentleSegmentsFitOnlyTheOdometryInsideTheLimits) {

@@ -1,0 +1,223 @@
+#include "experiments/tyre_model_experiment.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "experiments/truth_comparison.hpp"
+#include "odocal/error.hpp"
+#include "odocal/estimation/drift_validation.hpp"
+#include "odocal/estimation/driving_state.hpp"
+#include "odocal/estimation/log_preparation.hpp"
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/io/simulation_writer.hpp"
+#include "odocal/sim/simulator.hpp"
+
+namespace odocal::experiments {
+namespace {
+
+constexpr TyreModelChoice kRealisticModels[] = {TyreModelChoice::kNone, TyreModelChoice::kExtended,
+                                                TyreModelChoice::kAuto};
+constexpr sim::Drivetrain kDrivetrains[] = {sim::Drivetrain::kRear, sim::Drivetrain::kFront};
+
+// The targets.
+constexpr double kTargetMeanAbsErrorMm = 1.0;
+constexpr double kTargetWithin3Sigma = 0.9;
+constexpr double kTargetDeadReckoningOverIdeal = 3.0;
+constexpr double kTargetUrbanDriftPercent = 0.3;
+constexpr double kTargetIdealErrorChange = 0.05;
+constexpr double kTargetSecondsExtended = 3.0;
+
+const char* drivetrain_name(sim::Drivetrain drivetrain) {
+  return drivetrain == sim::Drivetrain::kFront ? "front" : "rear";
+}
+
+CalibrationConfig batch_options(SimMode mode, TyreModelChoice model) {
+  CalibrationConfig options = method_options(CalibrationMethod::kBatch, mode);
+  options.batch.tyre_model = model;
+  // The extended model's sigma (~1.4 mm on this drive) is above the default refusal threshold of
+  // 1 mm: every estimate is scored here, usable or not.
+  options.batch.max_sigma_circumference_m = 0.01;
+  return options;
+}
+
+nlohmann::json run_json(const Log& log, const OdometryParams& truth,
+                        const CalibrationConfig& options) {
+  const MethodRun run = run_method(log, truth, options);
+  nlohmann::json json = method_run_to_json(run);
+  json["tyre_model_used"] = !core(run.result).tyre_model.plain();
+  return json;
+}
+
+double mean(const std::vector<double>& values) {
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  return values.empty() ? NAN : sum / static_cast<double>(values.size());
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return NAN;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// One configuration's runs over the seeds.
+nlohmann::json row_summary(const std::vector<nlohmann::json>& runs) {
+  std::vector<double> absolute, position, heading, seconds;
+  int inside = 0, with_model = 0;
+  for (const nlohmann::json& run : runs) {
+    for (const char* wheel : {"rl", "rr"}) {
+      const double error = run.at(std::string("error_") + wheel + "_mm").get<double>();
+      const double sigma = run.at(std::string("reported_sigma_") + wheel + "_mm").get<double>();
+      absolute.push_back(std::abs(error));
+      inside += std::abs(error) <= 3.0 * sigma;
+    }
+    position.push_back(run.at("dr_mean_position_m").get<double>());
+    heading.push_back(run.at("dr_mean_heading_deg").get<double>());
+    seconds.push_back(run.at("milliseconds").get<double>() / 1e3);
+    with_model += run.at("tyre_model_used").get<bool>();
+  }
+  return {{"mean_abs_error_mm", mean(absolute)},
+          {"max_abs_error_mm", *std::max_element(absolute.begin(), absolute.end())},
+          {"within_3_reported_sigma",
+           static_cast<double>(inside) / static_cast<double>(absolute.size())},
+          {"mean_dr_position_m", mean(position)},
+          {"mean_dr_heading_deg", mean(heading)},
+          {"mean_seconds", mean(seconds)},
+          {"max_seconds", *std::max_element(seconds.begin(), seconds.end())},
+          {"runs_with_tyre_model", with_model},
+          {"runs", runs.size()}};
+}
+
+nlohmann::json target(const std::string& what, double measured, double limit, bool met) {
+  return {{"target", what}, {"measured", measured}, {"limit", limit}, {"met", met}};
+}
+
+}  // namespace
+
+nlohmann::json run_tyre_model_seed(const PaperSetup& setup, std::uint64_t seed) {
+  nlohmann::json result{{"seed", seed}};
+  for (const sim::Drivetrain drivetrain : kDrivetrains) {
+    sim::Scenario scenario = paper_scenario(setup, SimMode::kRealistic, seed);
+    scenario.dynamics.drivetrain = drivetrain;
+    const sim::SimulatedDrive drive = sim::simulate(scenario);
+    const Log log = simulated_log(drive, true);
+    for (const TyreModelChoice model : kRealisticModels)
+      result["realistic"][drivetrain_name(drivetrain)][enum_name(model)] =
+          run_json(log, drive.true_params, batch_options(SimMode::kRealistic, model));
+  }
+  const sim::SimulatedDrive ideal = sim::simulate(paper_scenario(setup, SimMode::kIdeal, seed));
+  const Log ideal_log = simulated_log(ideal, true);
+  for (const TyreModelChoice model : {TyreModelChoice::kNone, TyreModelChoice::kAuto})
+    result["ideal"][enum_name(model)] =
+        run_json(ideal_log, ideal.true_params, batch_options(SimMode::kIdeal, model));
+  return result;
+}
+
+nlohmann::json run_urban_drift_seed(std::uint64_t seed) {
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.seeds.noise = seed;
+  const Log input = simulated_log(sim::simulate(scenario));
+  CalibrationConfig options = method_options(CalibrationMethod::kBatch, SimMode::kRealistic);
+  options.batch.tyre_model = TyreModelChoice::kAuto;
+  const AnyCalibrationSummary result = calibrate(input, options);
+  const CalibrationSummary& summary = core(result);
+
+  // As `odocal validate --params` does it: the prepared log, the smoothed reference, each
+  // parameter set with its own tyre model.
+  CalibrationOptions common = options.common;
+  common.reference.mode = ReferenceMode::kSmoother;
+  LogPreparation done;
+  const std::optional<Log> prepared = prepare_log(input, common, done);
+  const Log& log = prepared ? *prepared : input;
+  const ReferenceTrajectory reference = compute_reference(log, common.reference);
+  const OdometryParams nominal = log.vehicle.nominal_params();
+  const DriftValidation drift =
+      validate_drift(with_tyre_model(log, nominal, log.vehicle.tyre_model.value_or(TyreModel{})),
+                     with_tyre_model(log, summary.estimate, summary.tyre_model), reference, nominal,
+                     summary.estimate);
+  return {{"seed", seed},
+          {"usable", summary.usable()},
+          {"tyre_model_used", !summary.tyre_model.plain()},
+          {"windows", drift.calibrated_statistics.windows},
+          {"nominal_median_drift_percent", drift.nominal_statistics.median_drift_percent},
+          {"calibrated_median_drift_percent", drift.calibrated_statistics.median_drift_percent}};
+}
+
+nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
+                                     const std::vector<nlohmann::json>& urban) {
+  if (seeds.empty() || urban.empty()) throw Error("no tyre model seeds to summarise");
+  const auto runs = [&](const nlohmann::json::json_pointer& at) {
+    std::vector<nlohmann::json> found;
+    for (const nlohmann::json& seed : seeds) found.push_back(seed.at(at));
+    return found;
+  };
+  nlohmann::json rows = nlohmann::json::array();
+  nlohmann::json targets = nlohmann::json::array();
+  const nlohmann::json ideal_none = row_summary(runs("/ideal/none"_json_pointer));
+  const nlohmann::json ideal_auto = row_summary(runs("/ideal/auto"_json_pointer));
+  const double ideal_dr = ideal_auto.at("mean_dr_position_m").get<double>();
+  for (const sim::Drivetrain drivetrain : kDrivetrains) {
+    for (const TyreModelChoice model : kRealisticModels) {
+      nlohmann::json row = row_summary(runs(nlohmann::json::json_pointer(
+          std::string("/realistic/") + drivetrain_name(drivetrain) + "/" + enum_name(model))));
+      row["mode"] = "realistic";
+      row["drivetrain"] = drivetrain_name(drivetrain);
+      row["tyre_model"] = enum_name(model);
+      if (model == TyreModelChoice::kAuto) {
+        const std::string who = std::string(drivetrain_name(drivetrain)) + "-wheel drive, auto: ";
+        const double error = row.at("mean_abs_error_mm");
+        const double inside = row.at("within_3_reported_sigma");
+        const double dr = row.at("mean_dr_position_m");
+        targets.push_back(target(who + "mean abs error [mm]", error, kTargetMeanAbsErrorMm,
+                                 error <= kTargetMeanAbsErrorMm));
+        targets.push_back(target(who + "share inside 3 reported sigma", inside, kTargetWithin3Sigma,
+                                 inside >= kTargetWithin3Sigma));
+        targets.push_back(target(who + "whole-log DR over the ideal mode's", dr / ideal_dr,
+                                 kTargetDeadReckoningOverIdeal,
+                                 dr <= kTargetDeadReckoningOverIdeal * ideal_dr));
+      }
+      if (model == TyreModelChoice::kExtended) {
+        const double seconds = row.at("max_seconds");
+        targets.push_back(target(
+            std::string(drivetrain_name(drivetrain)) + "-wheel drive, extended: slowest batch [s]",
+            seconds, kTargetSecondsExtended, seconds < kTargetSecondsExtended));
+      }
+      rows.push_back(row);
+    }
+  }
+  for (const auto& [name, row] : {std::pair{"none", ideal_none}, std::pair{"auto", ideal_auto}}) {
+    nlohmann::json r = row;
+    r["mode"] = "ideal";
+    r["drivetrain"] = "rear";
+    r["tyre_model"] = name;
+    rows.push_back(r);
+  }
+  const double plain_error = ideal_none.at("mean_abs_error_mm");
+  const double auto_error = ideal_auto.at("mean_abs_error_mm");
+  const int ideal_extended = ideal_auto.at("runs_with_tyre_model");
+  targets.push_back(target("ideal, auto: runs that chose the extended model", ideal_extended, 0,
+                           ideal_extended == 0));
+  const double change = std::abs(auto_error - plain_error) / plain_error;
+  targets.push_back(target("ideal, auto: change of the mean abs error against none", change,
+                           kTargetIdealErrorChange, change <= kTargetIdealErrorChange));
+
+  std::vector<double> nominal_drift, calibrated_drift;
+  for (const nlohmann::json& seed : urban) {
+    nominal_drift.push_back(seed.at("nominal_median_drift_percent"));
+    calibrated_drift.push_back(seed.at("calibrated_median_drift_percent"));
+  }
+  const double urban_drift = median(calibrated_drift);
+  targets.push_back(target("urban, auto: held-out median drift [%]", urban_drift,
+                           kTargetUrbanDriftPercent, urban_drift <= kTargetUrbanDriftPercent));
+  return {{"seeds", seeds.size()},
+          {"rows", rows},
+          {"urban",
+           {{"seeds", urban.size()},
+            {"nominal_median_drift_percent", median(nominal_drift)},
+            {"calibrated_median_drift_percent", urban_drift},
+            {"runs", urban}}},
+          {"targets", targets}};
+}
+
+}  // namespace odocal::experiments

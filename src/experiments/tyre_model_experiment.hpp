@@ -1,0 +1,30 @@
+#pragma once
+// Beyond the paper (issue 17): the batch estimator with the plain two-wheel model, the extended
+// tyre model and `auto` on the section 5 scenario, realistic mode, driven by a rear- and a
+// front-wheel-drive car; `auto` on the ideal drive (where it must keep the plain model); and the
+// held-out drift of the realistic urban drive. Every figure beside the issue's target.
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "experiments/paper_setup.hpp"
+
+namespace odocal::experiments {
+
+// {seed, realistic: {rear: {none, extended, auto}, front: {...}}, ideal: {none, auto}} with
+// method_run_to_json entries, each with "tyre_model_used" (whether the result carries one).
+nlohmann::json run_tyre_model_seed(const PaperSetup& setup, std::uint64_t seed);
+
+// {seed, nominal/calibrated median drift %, windows, tyre_model_used}: the built-in urban drive
+// (realistic, rear-wheel drive) calibrated by the batch with tyre_model auto, then `validate`'s
+// 60 s windows dead-reckoned from the smoothed reference.
+nlohmann::json run_urban_drift_seed(std::uint64_t seed);
+
+// Per drivetrain and model: mean |error|, share inside 3 reported sigma, mean whole-log dead
+// reckoning, mean time; the ideal-mode comparison; the urban drift median; each target and
+// whether it is met.
+nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
+                                     const std::vector<nlohmann::json>& urban);
+
+}  // namespace odocal::experiments

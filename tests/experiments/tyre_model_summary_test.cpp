@@ -1,0 +1,77 @@
+// The tyre model summary and its targets against hand-computed figures.
+
+#include <gtest/gtest.h>
+
+#include "experiments/tyre_model_experiment.hpp"
+
+namespace odocal::experiments {
+namespace {
+
+nlohmann::json run(double error_mm, double sigma_mm, double dr_m, bool with_model,
+                   double seconds = 1.0) {
+  return {{"error_rl_mm", error_mm},          {"error_rr_mm", -error_mm},
+          {"reported_sigma_rl_mm", sigma_mm}, {"reported_sigma_rr_mm", sigma_mm},
+          {"dr_mean_position_m", dr_m},       {"dr_mean_heading_deg", 0.1},
+          {"milliseconds", 1e3 * seconds},    {"tyre_model_used", with_model}};
+}
+
+// Both drivetrains alike: none 10 mm off, extended 0.5 mm inside its sigma, auto as extended;
+// ideal: none and auto 0.2 mm off with 4 m of dead reckoning.
+nlohmann::json seed(int n, double extended_dr_m) {
+  nlohmann::json drive{{"none", run(10.0, 1.0, 500.0, false)},
+                       {"extended", run(0.5, 1.0, extended_dr_m, true, 2.0 + n)},
+                       {"auto", run(0.5, 1.0, extended_dr_m, true)}};
+  return {{"seed", n},
+          {"realistic", {{"rear", drive}, {"front", drive}}},
+          {"ideal", {{"none", run(0.2, 0.1, 4.0, false)}, {"auto", run(0.2, 0.1, 4.0, false)}}}};
+}
+
+nlohmann::json urban(int n, double calibrated) {
+  return {{"seed", n},
+          {"nominal_median_drift_percent", 0.7},
+          {"calibrated_median_drift_percent", calibrated}};
+}
+
+const nlohmann::json* find_target(const nlohmann::json& summary, const std::string& start) {
+  for (const nlohmann::json& t : summary.at("targets"))
+    if (t.at("target").get<std::string>().starts_with(start)) return &t;
+  return nullptr;
+}
+
+TEST(TyreModelSummary, TargetsFollowTheRows) {
+  // Dead reckoning 10 and 14 m with extended/auto (mean 12 m, 3x the ideal 4 m: on the limit).
+  const nlohmann::json summary = summarise_tyre_models(
+      {seed(1, 10.0), seed(2, 14.0)}, {urban(1, 0.2), urban(2, 0.5), urban(3, 0.25)});
+  ASSERT_EQ(summary.at("rows").size(), 8u);
+  const nlohmann::json& rear_none = summary["rows"][0];
+  EXPECT_EQ(rear_none["tyre_model"], "none");
+  EXPECT_DOUBLE_EQ(rear_none["mean_abs_error_mm"].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(rear_none["within_3_reported_sigma"].get<double>(), 0.0);
+  const nlohmann::json& rear_extended = summary["rows"][1];
+  EXPECT_DOUBLE_EQ(rear_extended["within_3_reported_sigma"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(rear_extended["mean_dr_position_m"].get<double>(), 12.0);
+  EXPECT_DOUBLE_EQ(rear_extended["max_seconds"].get<double>(), 4.0);
+  EXPECT_EQ(rear_extended["runs_with_tyre_model"], 2);
+
+  const nlohmann::json* error = find_target(summary, "rear-wheel drive, auto: mean abs error");
+  ASSERT_NE(error, nullptr);
+  EXPECT_TRUE((*error)["met"].get<bool>());
+  const nlohmann::json* dr = find_target(summary, "front-wheel drive, auto: whole-log DR");
+  ASSERT_NE(dr, nullptr);
+  EXPECT_DOUBLE_EQ((*dr)["measured"].get<double>(), 3.0);
+  EXPECT_TRUE((*dr)["met"].get<bool>());
+  const nlohmann::json* time = find_target(summary, "rear-wheel drive, extended: slowest");
+  ASSERT_NE(time, nullptr);
+  EXPECT_FALSE((*time)["met"].get<bool>());  // 4 s against 3 s
+  const nlohmann::json* ideal = find_target(summary, "ideal, auto: change");
+  ASSERT_NE(ideal, nullptr);
+  EXPECT_TRUE((*ideal)["met"].get<bool>());
+  const nlohmann::json* drift = find_target(summary, "urban");
+  ASSERT_NE(drift, nullptr);
+  EXPECT_DOUBLE_EQ((*drift)["measured"].get<double>(), 0.25);  // the median of three seeds
+  EXPECT_TRUE((*drift)["met"].get<bool>());
+  EXPECT_THROW(summarise_tyre_models({}, {}), std::exception);
+}
+
+}  // namespace
+}  // namespace odocal::experiments
