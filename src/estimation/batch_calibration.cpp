@@ -906,6 +906,18 @@ ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOption
   return solver;
 }
 
+// Tyre coefficients that change the circumference by more than this at the log's typical driving
+// state (RMS of each regressor) are not a tyre: they are the model explaining something else.
+constexpr double kMaxTyreEffect = 0.03;
+
+double max_tyre_effect(const BatchProblem& batch) {
+  return batch.tyre_model()
+      .coefficients()
+      .cwiseProduct(batch.regressor_rms())
+      .cwiseAbs()
+      .maxCoeff();
+}
+
 // The GNSS error in the solution's residuals; when it differs from the configured noise (a
 // correlated part, or a white level off by more than 25 %), the problem is solved again with it,
 // and again with what that solution's residuals show (a fit that trusts GNSS too much hides part
@@ -930,6 +942,7 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
   if (noise.gauss_markov_sigma_m == 0.0 && white_ratio > 0.8 && white_ratio < 1.25) return;
   const auto before = batch.uncertainty();
   const auto first_params = batch.params();
+  const double first_tyre_effect = max_tyre_effect(batch);
   constexpr int kMaxRounds = 4;
   // What the data can support: a few times the first fit's residuals. Beyond, the error model
   // would explain the odometry's own misfit (a vehicle the two-wheel model does not describe)
@@ -970,15 +983,20 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
                                        before->params.topLeftCorner<2, 2>().trace());
   }
   // The adaptation changes weights; it must not carry a plausible estimate out of the plausible
-  // band (GNSS weighted down so far that a misfit of the odometry model decides). Then the first
+  // band (GNSS weighted down so far that a misfit of the odometry model decides), nor a tyre model
+  // into coefficients that are no tyre (on a circuit's hard braking, GNSS loosened to a metres-
+  // wide correlated error let k_speed reach -4e-4 per (m/s)^2: -100 % at 50 m/s). Then the first
   // estimate stands, with its covariance inflated as the adapted model says.
   const auto implausible = [&](double c_rl, double c_rr) {
     return std::max(std::abs(c_rl / summary.nominal.circumference_rl_m - 1.0),
                     std::abs(c_rr / summary.nominal.circumference_rr_m - 1.0)) >
            common.max_relative_change;
   };
-  if (implausible(batch.params()[0], batch.params()[1]) &&
-      !implausible(first_params[0], first_params[1])) {
+  const bool tyre_ran_away =
+      max_tyre_effect(batch) > kMaxTyreEffect && first_tyre_effect <= kMaxTyreEffect;
+  if ((implausible(batch.params()[0], batch.params()[1]) &&
+       !implausible(first_params[0], first_params[1])) ||
+      tyre_ran_away) {
     batch.set_gnss_noise(1.0, 0.0, 60.0);
     solver = solve_relinearised(batch, options, summary);
     report.reverted = true;
@@ -1023,7 +1041,6 @@ void choose_tyre_model(std::unique_ptr<BatchProblem>& batch, const Log& log,
                        const ReferenceTrajectory& reference, const BatchOptions& options,
                        const CalibrationOptions& common, BatchSummary& summary,
                        ceres::Solver::Summary& solver) {
-  constexpr double kMaxTyreEffect = 0.03;
   if (!solver.IsSolutionUsable()) return;
   TyreModelSelection& selection = summary.tyre_selection;
   selection.plain_bic = batch->information_criterion(solver);
@@ -1038,11 +1055,9 @@ void choose_tyre_model(std::unique_ptr<BatchProblem>& batch, const Log& log,
   // Coefficients that change the circumference by percents at the log's typical driving state
   // are not a tyre: they are the model explaining something else (a skid-steer robot, a wrong
   // input), and so is a circumference that leaves the plausible band.
-  const TyreModel::Vector effect =
-      candidate->tyre_model().coefficients().cwiseProduct(candidate->regressor_rms()).cwiseAbs();
   const auto& p = candidate->params();
   const double max_change = common.max_relative_change;
-  selection.physical = effect.maxCoeff() <= kMaxTyreEffect &&
+  selection.physical = max_tyre_effect(*candidate) <= kMaxTyreEffect &&
                        std::abs(p[0] / summary.nominal.circumference_rl_m - 1.0) <= max_change &&
                        std::abs(p[1] / summary.nominal.circumference_rr_m - 1.0) <= max_change;
   if (selection.physical && candidate->free_tyre_coefficients() > 0 &&

@@ -6,6 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/drift_validation.hpp"
 #include "odocal/estimation/driving_state.hpp"
@@ -107,6 +111,30 @@ TEST(TyreModelBatch, AutoKeepsThePlainModelWhereTheLogNeedsNoMore) {
   EXPECT_EQ(chosen.estimate.circumference_rl_m, plain.estimate.circumference_rl_m);
   EXPECT_EQ(chosen.estimate.circumference_rr_m, plain.estimate.circumference_rr_m);
   EXPECT_NEAR(chosen.sigma_rl_m(), plain.sigma_rl_m(), 1e-6 * plain.sigma_rl_m());
+}
+
+TEST(TyreModelBatch, AdaptingTheGnssNoiseDoesNotCarryTheTyreModelIntoNonsense) {
+  // 3 laps of Hockenheim, front-wheel drive: the rear wheels slip under the brakes' rear share,
+  // which the model cannot follow. The GNSS noise adaptation loosens GNSS to a correlated error of
+  // metres; k_speed then ran to -4e-4 per (m/s)^2 (-100 % at 50 m/s) and c_RL to +45 mm.
+  const std::string track =
+      std::string(ODOCAL_SOURCE_DIR) + "/../shared/data/tracks/hockenheim/track.csv";
+  if (!std::filesystem::exists(track)) GTEST_SKIP() << "shared data absent: " << track;
+  sim::Scenario scenario = load_scenario("circuit");
+  use_track_file(scenario, track);
+  scenario.dynamics.drivetrain = sim::Drivetrain::kFront;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log log = simulated_log(drive);
+  BatchOptions options;
+  options.tyre_model = TyreModelChoice::kExtended;
+  const BatchSummary result = calibrate_batch(log, options);
+  const auto states = driving_states(log, result.estimate);
+  double worst = 0.0;
+  for (const DrivingState& state : states)
+    worst = std::max(worst, std::abs(tyre_factor(result.tyre_model, state, RearWheel::kLeft) - 1));
+  EXPECT_LT(worst, 0.05) << result.full_report();
+  EXPECT_TRUE(result.gnss_noise.reverted) << result.full_report();
+  EXPECT_LT(result.estimate.circumference_rl_m - drive.true_params.circumference_rl_m, 0.02);
 }
 
 TEST(TyreModelBatch, GentleSegmentsFitOnlyTheOdometryInsideTheLimits) {
