@@ -118,7 +118,10 @@ double BlockPreparation::find_start() {
       changed_ = true;
       return *done_.started_at_s;
     }
-    if (window.wheels.t_s.empty() ||
+    // A window that holds only its first sample ends at a gap longer than a block: motion across
+    // a gap is no motion, and the start stays where the log starts (asking again from the same
+    // sample would never end).
+    if (window.wheels.t_s.empty() || !(window.wheels.t_s.back() > from_s) ||
         !source_.wheels_reach(std::nextafter(window.wheels.t_s.back(), kInfinity)))
       return log_start_s_;
     from_s = window.wheels.t_s.back();

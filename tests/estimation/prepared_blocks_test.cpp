@@ -45,6 +45,18 @@ CalibrationOptions in_blocks_of(double seconds) {
   return options;
 }
 
+TEST(PreparedBlocks, AGapLongerThanABlockAfterTheFirstSampleEndsTheSearchForTheStart) {
+  // Found by fuzzing (log_pipeline): the search for the first motion asked again and again for
+  // the window that starts at the first sample when the next one lay more than a block later.
+  Log log = urban_rate_sensor_log();
+  for (std::size_t k = 1; k < log.wheels.size(); ++k) log.wheels.t_s[k] += 5000.0;
+  LogPreparation done;
+  const std::optional<Log> prepared = prepare_log(log, in_blocks_of(600.0), done, false);
+  EXPECT_FALSE(done.started_at_s.has_value());
+  const Log& result = prepared ? *prepared : log;
+  EXPECT_EQ(result.wheels.t_s.front(), log.wheels.t_s.front());
+}
+
 TEST(PreparedBlocks, TheBlocksTogetherAreTheLog) {
   const Log log = urban_rate_sensor_log();
   LogPreparation whole_done, blocks_done;
