@@ -1,10 +1,11 @@
 #!/usr/bin/python3
-"""Tyre model benchmark (issue 17; figures in docs/tyre-model.md): the realistic circuit (3 laps
-of Hockenheim, 13.7 km) driven by a rear- and a front-wheel-drive car over N seeds, calibrated by
+"""Tyre model benchmark (issue 17; figures in docs/tyre-model.md): the built-in realistic circuit
+(3 laps, 13.7 km) driven by a rear- and a front-wheel-drive car over N seeds, calibrated by
 the batch with tyre_model none and extended. Per drivetrain and model: mean |error| of the rear
 circumferences against truth.yaml, the share of errors inside 3 reported sigma, the held-out
-median drift of 60 s windows (`odocal validate`), and the mean time of a calibration. Run from
-the repository after `make build`:
+median drift of 60 s windows (`odocal validate`), and the mean time of a calibration. The same
+on 3 laps of Hockenheim, with `auto` and the issue's targets, is a section of docs/results.md
+(`make paper`). Run from the repository after `make build`:
 
     ODOCAL_CLI=build/apps/odocal/odocal /usr/bin/python3 bench/tyre_model_bench.py \\
         --seeds 10 --work /tmp/tyre-bench
