@@ -18,7 +18,9 @@ nlohmann::json run_tyre_model_seed(const PaperSetup& setup, std::uint64_t seed);
 
 // {seed, nominal/calibrated median drift %, windows, tyre_model_used}: the built-in urban drive
 // (realistic, rear-wheel drive) calibrated by the batch with tyre_model auto, then `validate`'s
-// 60 s windows dead-reckoned from the smoothed reference.
+// 60 s windows (one every 10 s) dead-reckoned from the smoothed reference; beside it the same
+// with the true circumferences at rest, and with them on the drive in ideal mode (the metric's
+// floor: the reference's and the encoders' noise).
 nlohmann::json run_urban_drift_seed(std::uint64_t seed);
 
 // Per drivetrain and model: mean |error|, share inside 3 reported sigma, mean whole-log dead

@@ -29,7 +29,9 @@ nlohmann::json seed(int n, double extended_dr_m) {
 nlohmann::json urban(int n, double calibrated) {
   return {{"seed", n},
           {"nominal_median_drift_percent", 0.7},
-          {"calibrated_median_drift_percent", calibrated}};
+          {"calibrated_median_drift_percent", calibrated},
+          {"true_static_median_drift_percent", 0.6},
+          {"ideal_true_median_drift_percent", 0.2}};
 }
 
 const nlohmann::json* find_target(const nlohmann::json& summary, const std::string& start) {
