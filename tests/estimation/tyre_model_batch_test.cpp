@@ -56,7 +56,9 @@ TEST(TyreModelBatch, RecoversKnownCoefficientsWhereThePlainModelIsBiased) {
   const double truth_m = drive.true_params.circumference_rl_m;
   ASSERT_DOUBLE_EQ(drive.true_params.circumference_rr_m, truth_m);
 
-  const BatchSummary plain = calibrate_batch(log);
+  BatchOptions plain_options;
+  plain_options.tyre_model = TyreModelChoice::kNone;
+  const BatchSummary plain = calibrate_batch(log, plain_options);
   EXPECT_FALSE(plain.model_adequacy.explains) << plain.model_adequacy.verdict;
   EXPECT_NE(plain.model_adequacy.verdict.find("tyre_model: extended"), std::string::npos);
 
@@ -107,7 +109,10 @@ TEST(TyreModelBatch, AutoKeepsThePlainModelWhereTheLogNeedsNoMore) {
   EXPECT_GT(chosen.tyre_selection.extended_bic, chosen.tyre_selection.plain_bic);
   // Keeping the plain model is calibrating as under none, not a plain model re-solved from where
   // the extended fit left the problem.
-  const BatchSummary plain = calibrate_batch(log);
+  BatchOptions plain_options;
+  plain_options.tyre_model = TyreModelChoice::kNone;
+  const BatchSummary plain = calibrate_batch(log, plain_options);
+  EXPECT_FALSE(plain.tyre_selection.compared);
   EXPECT_EQ(chosen.estimate.circumference_rl_m, plain.estimate.circumference_rl_m);
   EXPECT_EQ(chosen.estimate.circumference_rr_m, plain.estimate.circumference_rr_m);
   EXPECT_NEAR(chosen.sigma_rl_m(), plain.sigma_rl_m(), 1e-6 * plain.sigma_rl_m());

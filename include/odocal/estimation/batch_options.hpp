@@ -64,8 +64,9 @@ struct BatchOptions {
   double gentle_max_speed_mps = 0.0;
   double gentle_max_longitudinal_mps2 = 0.0;
   double gentle_max_lateral_mps2 = 0.0;
-  // none by default until auto is validated on fleets and robots (docs/tyre-model.md).
-  TyreModelChoice tyre_model = TyreModelChoice::kNone;
+  // auto: the extended model where the log supports it and it is a tyre, else the plain fit
+  // unchanged (docs/tyre-model.md).
+  TyreModelChoice tyre_model = TyreModelChoice::kAuto;
   int max_solver_iterations = 100;
   // The odometry is pre-integrated at the current parameters and used to first order; when the
   // solution moves them by more than this fraction, it is integrated again and re-solved.
