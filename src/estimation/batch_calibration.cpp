@@ -1060,8 +1060,18 @@ void choose_tyre_model(std::unique_ptr<BatchProblem>& batch, const Log& log,
   selection.physical = max_tyre_effect(*candidate) <= kMaxTyreEffect &&
                        std::abs(p[0] / summary.nominal.circumference_rl_m - 1.0) <= max_change &&
                        std::abs(p[1] / summary.nominal.circumference_rr_m - 1.0) <= max_change;
-  if (selection.physical && candidate->free_tyre_coefficients() > 0 &&
-      selection.extended_bic < selection.plain_bic) {
+  // An extended fit whose circumferences at rest the log cannot pin down (an extrapolation from
+  // the states driven: on a 10-hour drive the BIC prefers effects of a few 1e-4) is no better
+  // answer than an identified plain one.
+  const auto identified = [&](BatchProblem& problem) {
+    const auto u = problem.uncertainty();
+    return u && std::max(u->params(0, 0), u->params(1, 1)) <=
+                    options.max_sigma_circumference_m * options.max_sigma_circumference_m;
+  };
+  const bool better = selection.physical && candidate->free_tyre_coefficients() > 0 &&
+                      selection.extended_bic < selection.plain_bic;
+  selection.identified = !better || identified(*candidate) || !identified(*batch);
+  if (better && selection.identified) {
     batch = std::move(candidate);
     solver = extended;
   }
@@ -1136,10 +1146,12 @@ std::string BatchSummary::full_report() const {
     text += fmt::format(
         "{:<13}{}: BIC {:.1f} with the condition-dependent circumference, {:.1f} without\n",
         "tyre model",
-        extended                  ? "extended (the log supports it)"
-        : tyre_selection.physical ? "plain (the log does not need more)"
-                                  : "plain (the extended fit was not physical: coefficients of "
-                                    "percents, or a circumference out of its band)",
+        extended                     ? "extended (the log supports it)"
+        : !tyre_selection.physical   ? "plain (the extended fit was not physical: coefficients of "
+                                       "percents, or a circumference out of its band)"
+        : !tyre_selection.identified ? "plain (the extended fit's circumferences at rest were not "
+                                       "identified, the plain fit's were)"
+                                     : "plain (the log does not need more)",
         tyre_selection.extended_bic, tyre_selection.plain_bic);
   }
   if (!model_adequacy.verdict.empty())

@@ -142,6 +142,7 @@ void add_details(json& out, const BatchSummary& s) {
     out["tyre_selection"] = {{"plain_bic", number_or_null(s.tyre_selection.plain_bic)},
                              {"extended_bic", number_or_null(s.tyre_selection.extended_bic)},
                              {"extended_physical", s.tyre_selection.physical},
+                             {"extended_identified", s.tyre_selection.identified},
                              {"chosen", s.tyre_model.plain() ? "none" : "extended"}};
   }
   if (s.gentle_limits) {

@@ -99,6 +99,27 @@ TEST(TyreModelBatch, RecoversKnownCoefficientsWhereThePlainModelIsBiased) {
   EXPECT_FALSE(chosen.tyre_model.plain()) << chosen.full_report();
 }
 
+TEST(TyreModelBatch, AutoKeepsAnIdentifiedPlainFitOverAnUnidentifiedExtendedOne) {
+  // The realistic circuit with a front-wheel-drive car: the extended model wins the BIC, but its
+  // circumference at rest is an extrapolation with a sigma of ~1.4 mm where the plain one's is
+  // ~0.13 mm. With a threshold between them, auto keeps the identified answer.
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.dynamics.drivetrain = sim::Drivetrain::kFront;
+  const Log log = simulated_log(sim::simulate(scenario));
+  BatchOptions options;
+  options.tyre_model = TyreModelChoice::kAuto;
+  options.max_sigma_circumference_m = 0.01;
+  const BatchSummary free_choice = calibrate_batch(log, options);
+  ASSERT_FALSE(free_choice.tyre_model.plain()) << free_choice.full_report();
+  EXPECT_TRUE(free_choice.tyre_selection.identified);
+  options.max_sigma_circumference_m = 5e-4;
+  const BatchSummary kept = calibrate_batch(log, options);
+  EXPECT_TRUE(kept.tyre_model.plain()) << kept.full_report();
+  EXPECT_FALSE(kept.tyre_selection.identified);
+  EXPECT_TRUE(kept.usable()) << kept.full_report();
+  EXPECT_NE(kept.full_report().find("were not identified"), std::string::npos);
+}
+
 TEST(TyreModelBatch, AutoKeepsThePlainModelWhereTheLogNeedsNoMore) {
   BatchOptions auto_options;
   auto_options.tyre_model = TyreModelChoice::kAuto;

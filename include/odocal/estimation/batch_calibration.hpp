@@ -52,6 +52,9 @@ struct TyreModelSelection {
   double plain_bic{};
   double extended_bic{};
   bool physical = true;  // false: the extended fit was refused (coefficients, circumferences)
+  // false: the extended fit's circumferences at rest were not identified where the plain fit's
+  // were (their sigma above max_sigma_circumference_m), so it was refused.
+  bool identified = true;
 };
 
 struct BatchSummary : CalibrationSummary {
