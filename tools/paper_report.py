@@ -329,12 +329,20 @@ def reading(report):
     report.write()
 
 
-def robustness(report):
-    path = f"{report.results}/robustness/summary.json"
+def piece_summary(report, piece, title):
+    """The piece's summary.json under a new section, or None (no section) when it was not run."""
+    path = f"{report.results}/{piece}/summary.json"
     if not os.path.exists(path):
+        return None
+    report.section(title)
+    return figures.read_json(path)
+
+
+def robustness(report):
+    summary = piece_summary(report, "robustness",
+                            "Beyond the paper: the batch estimator under degraded GNSS")
+    if summary is None:
         return
-    summary = figures.read_json(path)
-    report.section("Beyond the paper: the batch estimator under degraded GNSS")
     report.write("Ideal mode, the same seeds, GNSS degraded by a first-order Gauss–Markov error "
                  "(σ 2 m, τ 60 s) on top of the white 3 m, 2 % outliers of 20–50 m and a 120 s "
                  "outage. The batch estimator is told the Gauss–Markov σ and τ (error states per "
@@ -365,11 +373,11 @@ def robustness(report):
 
 
 def tyre_models(report):
-    path = f"{report.results}/tyre_models/summary.json"
-    if not os.path.exists(path):
+    summary = piece_summary(
+        report, "tyre_models",
+        "Beyond the paper: a circumference that follows the driving state (issue 17)")
+    if summary is None:
         return
-    summary = figures.read_json(path)
-    report.section("Beyond the paper: a circumference that follows the driving state (issue 17)")
     report.write("The batch estimator with the plain two-wheel model (`tyre_model: none`), the "
                  "extended tyre model (`extended`: the rear circumferences grow or shrink with "
                  "speed, lateral and longitudinal acceleration and yaw rate, docs/tyre-model.md) "
