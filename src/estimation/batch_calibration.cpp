@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -236,17 +237,17 @@ class BatchProblem {
     folded_fixes_ = 0;
     folded_headings_ = 0;
     const OdometryParams at{params_[0], params_[1], params_[2]};
+    problem_.reset();  // its blocks point to the folds replaced here; freed before the states
     if (remeasure_states && tyre_extended_ && !tyre_model().plain()) {
       // The driving state from the wheels as the current model counts them: a slipping wheel
       // overstates speed and acceleration by its slip.
-      const WheelStream counted = with_tyre_model(log_.wheels, states_, tyre_model());
-      states_ = driving_states(counted, log_.imu ? &*log_.imu : nullptr, at);
+      states_ =
+          driving_states(log_.wheels, log_.imu ? &*log_.imu : nullptr, at, states_, tyre_model());
     }
     const TyreConditions tyre{states_, tyre_model()};
     const WheelNoise noise{std::max(noise_.slip_sigma_m_per_sqrt_m, slip_floor),
                            noise_.quantisation_sigma_rev,
                            std::max(noise_.lateral_sigma_m_per_sqrt_m, slip_floor)};
-    problem_.reset();  // its blocks point to the folds replaced here
     params_lin_ = Eigen::Map<const batch::ParamsVector>(params_.data());
     ends_.clear();
     gnss_folds_.assign(keyframes_.size() - 1, {});
@@ -1034,47 +1035,100 @@ ceres::Solver::Summary solve_extended(BatchProblem& batch, const BatchOptions& o
   return solver;
 }
 
+// What tyre_model auto compares of a solved fit, taken before the GNSS noise adaptation (the
+// information criteria are comparable only under one noise model).
+struct FitFacts {
+  bool usable = false;
+  double bic = std::numeric_limits<double>::infinity();
+  int free_tyre_coefficients = 0;
+  double max_tyre_effect = 0.0;
+  std::array<double, 2> circumference{};
+  double max_circumference_variance = std::numeric_limits<double>::infinity();
+};
+
+using FitDecision = std::function<bool(const FitFacts&)>;
+
+// Fits one model; unless `finish` (when given) declines the solved fit, adapts its GNSS noise
+// and fills the summary. Returns whether it did. The problem is freed on return.
+bool fit_model(const CalibrationRun& run, const BatchOptions& options,
+               const CalibrationOptions& common, bool extended, BatchSummary& summary,
+               const FitDecision& finish = {}) {
+  BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
+  ceres::Solver::Summary solver = extended ? solve_extended(batch, options, summary)
+                                           : solve_relinearised(batch, options, summary);
+  if (finish) {
+    FitFacts facts;
+    if (solver.IsSolutionUsable()) {
+      facts.usable = true;
+      facts.bic = batch.information_criterion(solver);
+      facts.free_tyre_coefficients = batch.free_tyre_coefficients();
+      facts.max_tyre_effect = max_tyre_effect(batch);
+      facts.circumference = {batch.params()[0], batch.params()[1]};
+      if (extended) {
+        if (const auto u = batch.uncertainty())
+          facts.max_circumference_variance = std::max(u->params(0, 0), u->params(1, 1));
+      }
+    }
+    if (!finish(facts)) return false;
+  }
+  adapt_gnss_noise(batch, options, common, summary, solver);
+  summarise(run.log(), options, batch, solver, summary);
+  return true;
+}
+
 // tyre_model auto: the plain fit stands unless the extended model, fitted on its own exactly as
 // `extended` fits it, has the lower information criterion and is a tyre. The result is one of
 // the two fits, never a blend (so that a log the plain model explains calibrates as under none).
-void choose_tyre_model(std::unique_ptr<BatchProblem>& batch, const Log& log,
-                       const ReferenceTrajectory& reference, const BatchOptions& options,
-                       const CalibrationOptions& common, BatchSummary& summary,
-                       ceres::Solver::Summary& solver) {
-  if (!solver.IsSolutionUsable()) return;
-  TyreModelSelection& selection = summary.tyre_selection;
-  selection.plain_bic = batch->information_criterion(solver);
-  auto candidate = std::make_unique<BatchProblem>(log, reference, options, common, summary.nominal);
-  BatchSummary candidate_summary;
-  candidate_summary.nominal = summary.nominal;
-  ceres::Solver::Summary extended = solve_extended(*candidate, options, candidate_summary);
-  summary.solves += candidate_summary.solves;
-  selection.extended_bic = extended.IsSolutionUsable() ? candidate->information_criterion(extended)
-                                                       : std::numeric_limits<double>::infinity();
+// The plain fit is finished and its problem freed before the extended one is built, so that one
+// problem lives at a time (a long log's memory is its problem's), and the extended fit is
+// finished (noise adaptation, covariance) only when it is chosen.
+void fit_auto(const CalibrationRun& run, const BatchOptions& options,
+              const CalibrationOptions& common, BatchSummary& summary) {
+  const BatchSummary unfitted = summary;
+  FitFacts plain;
+  fit_model(run, options, common, false, summary, [&](const FitFacts& facts) {
+    plain = facts;
+    return true;
+  });
+  if (!plain.usable) return;
+  TyreModelSelection selection;
   selection.compared = true;
-  // Coefficients that change the circumference by percents at the log's typical driving state
-  // are not a tyre: they are the model explaining something else (a skid-steer robot, a wrong
-  // input), and so is a circumference that leaves the plausible band.
-  const auto& p = candidate->params();
+  selection.plain_bic = plain.bic;
   const double max_change = common.max_relative_change;
-  selection.physical = max_tyre_effect(*candidate) <= kMaxTyreEffect &&
-                       std::abs(p[0] / summary.nominal.circumference_rl_m - 1.0) <= max_change &&
-                       std::abs(p[1] / summary.nominal.circumference_rr_m - 1.0) <= max_change;
-  // An extended fit whose circumferences at rest the log cannot pin down (an extrapolation from
-  // the states driven: on a 10-hour drive the BIC prefers effects of a few 1e-4) is no better
-  // answer than an identified plain one.
-  const auto identified = [&](BatchProblem& problem) {
-    const auto u = problem.uncertainty();
-    return u && std::max(u->params(0, 0), u->params(1, 1)) <=
-                    options.max_sigma_circumference_m * options.max_sigma_circumference_m;
+  const double max_variance = options.max_sigma_circumference_m * options.max_sigma_circumference_m;
+  // As reported: after the plain fit's noise adaptation.
+  const bool plain_identified = summary.parameters.size() >= 2 &&
+                                summary.parameters[0].identified &&
+                                summary.parameters[1].identified;
+  const auto choose = [&](const FitFacts& extended) {
+    selection.extended_bic = extended.bic;
+    if (!extended.usable) return false;
+    // Coefficients that change the circumference by percents at the log's typical driving state
+    // are not a tyre: they are the model explaining something else (a skid-steer robot, a wrong
+    // input), and so is a circumference that leaves the plausible band.
+    selection.physical =
+        extended.max_tyre_effect <= kMaxTyreEffect &&
+        std::abs(extended.circumference[0] / summary.nominal.circumference_rl_m - 1.0) <=
+            max_change &&
+        std::abs(extended.circumference[1] / summary.nominal.circumference_rr_m - 1.0) <=
+            max_change;
+    // An extended fit whose circumferences at rest the log cannot pin down (an extrapolation
+    // from the states driven: on a 10-hour drive the BIC prefers effects of a few 1e-4) is no
+    // better answer than an identified plain one.
+    const bool better = selection.physical && extended.free_tyre_coefficients > 0 &&
+                        selection.extended_bic < selection.plain_bic;
+    selection.identified =
+        !better || extended.max_circumference_variance <= max_variance || !plain_identified;
+    return better && selection.identified;
   };
-  const bool better = selection.physical && candidate->free_tyre_coefficients() > 0 &&
-                      selection.extended_bic < selection.plain_bic;
-  selection.identified = !better || identified(*candidate) || !identified(*batch);
-  if (better && selection.identified) {
-    batch = std::move(candidate);
-    solver = extended;
+  BatchSummary candidate = unfitted;
+  if (fit_model(run, options, common, true, candidate, choose)) {
+    selection.other_solves = summary.solves;
+    summary = std::move(candidate);
+  } else {
+    selection.other_solves = candidate.solves;
   }
+  summary.tyre_selection = selection;
 }
 
 }  // namespace
@@ -1084,15 +1138,12 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   require_valid("batch", options.validate());
   BatchSummary summary;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
-  auto batch =
-      std::make_unique<BatchProblem>(run.log(), run.reference(), options, common, summary.nominal);
-  ceres::Solver::Summary solver = options.tyre_model == TyreModelChoice::kExtended
-                                      ? solve_extended(*batch, options, summary)
-                                      : solve_relinearised(*batch, options, summary);
-  if (options.tyre_model == TyreModelChoice::kAuto)
-    choose_tyre_model(batch, run.log(), run.reference(), options, common, summary, solver);
-  adapt_gnss_noise(*batch, options, common, summary, solver);
-  summarise(run.log(), options, *batch, solver, summary);
+  if (options.tyre_model == TyreModelChoice::kAuto) {
+    fit_auto(run, options, common, summary);
+  } else {
+    fit_model(run, options, common, options.tyre_model == TyreModelChoice::kExtended, summary,
+              nullptr);
+  }
   run.finish(summary);
   return summary;
 }

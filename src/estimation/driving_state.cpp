@@ -7,10 +7,11 @@
 namespace odocal {
 namespace {
 
-// A cumulative quantity sampled at increasing times; its value at any time by linear
+// A cumulative quantity sampled at increasing times (the stream's own, not copied: a long log's
+// states are computed in a few values per sample); its value at any time by linear
 // interpolation, clamped to the span.
 struct Cumulative {
-  std::vector<double> t_s;
+  const std::vector<double>& t_s;
   std::vector<double> value;
 
   double at(double t) const {
@@ -28,39 +29,32 @@ struct Cumulative {
   }
 };
 
-Cumulative cumulative(const std::vector<double>& t_s, const std::vector<double>& steps) {
-  Cumulative c{t_s, std::vector<double>(t_s.size(), 0.0)};
-  for (std::size_t k = 1; k < t_s.size(); ++k) c.value[k] = c.value[k - 1] + steps[k];
-  return c;
-}
-
 // The gyro's turn integrated on its own time base (trapezoids); empty without samples.
 Cumulative gyro_turn(const ImuStream& imu) {
-  std::vector<double> steps(imu.size(), 0.0);
-  for (std::size_t k = 1; k < imu.size(); ++k)
-    steps[k] = 0.5 * (imu.wz_radps[k] + imu.wz_radps[k - 1]) * (imu.t_s[k] - imu.t_s[k - 1]);
-  return cumulative(imu.t_s, steps);
+  Cumulative turn{imu.t_s, std::vector<double>(imu.size(), 0.0)};
+  for (std::size_t k = 1; k < imu.size(); ++k) {
+    turn.value[k] = turn.value[k - 1] +
+                    0.5 * (imu.wz_radps[k] + imu.wz_radps[k - 1]) * (imu.t_s[k] - imu.t_s[k - 1]);
+  }
+  return turn;
 }
 
-}  // namespace
-
-std::vector<DrivingState> driving_states(const Log& log, const OdometryParams& params,
-                                         double half_window_s) {
-  return driving_states(log.wheels, log.imu ? &*log.imu : nullptr, params, half_window_s);
-}
-
-std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
-                                         const OdometryParams& params, double half_window_s) {
+// The states from the wheels' increments, each scaled by `factor(k, wheel)`.
+template <class Factor>
+std::vector<DrivingState> states_of(const WheelStream& wheels, const ImuStream* imu,
+                                    const OdometryParams& params, double half_window_s,
+                                    const Factor& factor) {
   std::vector<DrivingState> states(wheels.size());
   if (wheels.size() < 2) return states;
-  std::vector<double> distance(wheels.size(), 0.0), turn(wheels.size(), 0.0);
+  Cumulative path{wheels.t_s, std::vector<double>(wheels.size(), 0.0)};
+  Cumulative wheel_turn{wheels.t_s, std::vector<double>(wheels.size(), 0.0)};
   for (std::size_t k = 1; k < wheels.size(); ++k) {
-    const BodyIncrement step = body_increment(wheels.increment(k), params);
-    distance[k] = step.distance_m;
-    turn[k] = step.yaw_rad;
+    const WheelIncrement counted{wheels.rev_rl[k] * factor(k, RearWheel::kLeft),
+                                 wheels.rev_rr[k] * factor(k, RearWheel::kRight)};
+    const BodyIncrement step = body_increment(counted, params);
+    path.value[k] = path.value[k - 1] + step.distance_m;
+    wheel_turn.value[k] = wheel_turn.value[k - 1] + step.yaw_rad;
   }
-  const Cumulative path = cumulative(wheels.t_s, distance);
-  const Cumulative wheel_turn = cumulative(wheels.t_s, turn);
   const bool gyro = imu != nullptr && imu->size() >= 2;
   static const ImuStream kNoImu;
   const Cumulative gyro_path = gyro_turn(gyro ? *imu : kNoImu);
@@ -76,6 +70,30 @@ std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStr
     state.longitudinal_mps2 = (path.rate(t + h, h) - path.rate(t - h, h)) / (2.0 * h);
   }
   return states;
+}
+
+}  // namespace
+
+std::vector<DrivingState> driving_states(const Log& log, const OdometryParams& params,
+                                         double half_window_s) {
+  return driving_states(log.wheels, log.imu ? &*log.imu : nullptr, params, half_window_s);
+}
+
+std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
+                                         const OdometryParams& params, double half_window_s) {
+  return states_of(wheels, imu, params, half_window_s, [](std::size_t, RearWheel) { return 1.0; });
+}
+
+std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
+                                         const OdometryParams& params,
+                                         const std::vector<DrivingState>& counted_at,
+                                         const TyreModel& model, double half_window_s) {
+  if (counted_at.size() != wheels.size())
+    throw std::invalid_argument("driving_states: one driving state per wheel sample");
+  if (model.plain()) return driving_states(wheels, imu, params, half_window_s);
+  return states_of(wheels, imu, params, half_window_s, [&](std::size_t k, RearWheel wheel) {
+    return tyre_factor(model, counted_at[k], wheel);
+  });
 }
 
 WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<DrivingState>& states,
@@ -95,8 +113,9 @@ WheelStream with_tyre_model(const Log& log, const OdometryParams& params, const 
   if (model.plain()) return log.wheels;
   // Once more with the state the corrected wheels show, as the batch measures it.
   const ImuStream* imu = log.imu ? &*log.imu : nullptr;
-  const WheelStream first = with_tyre_model(log.wheels, driving_states(log, params), model);
-  return with_tyre_model(log.wheels, driving_states(first, imu, params), model);
+  const std::vector<DrivingState> counted =
+      driving_states(log.wheels, imu, params, driving_states(log, params), model);
+  return with_tyre_model(log.wheels, counted, model);
 }
 
 }  // namespace odocal

@@ -104,5 +104,33 @@ TEST(DrivingState, LateralCoefficientMakesTheOuterWheelRollShorter) {
   EXPECT_NEAR(scaled.rev_rr[250] / log.wheels.rev_rr[250], 1.0 - 3e-3, 1e-6);
 }
 
+TEST(DrivingState, StatesOfTheCountedWheelsNeedNoCopyOfTheStream) {
+  // The batch measures the state again from the wheels as the model counts them; it does so
+  // without copying the stream, and must get what the copy gives, to the bit.
+  Log log = log_of(
+      5.0, [](double t) { return 3.0 + 2.0 * t; }, [](double t) { return 0.1 * t; });
+  add_gyro(log, 0.2);
+  TyreModel model;
+  model.k_lateral_s2pm = 1e-3;
+  model.k_drive_s2pm = 2e-3;
+  model.k_speed_s2pm2 = -1e-5;
+  const OdometryParams params = log.vehicle.nominal_params();
+  const std::vector<DrivingState> first = driving_states(log, params);
+  const std::vector<DrivingState> copied =
+      driving_states(with_tyre_model(log.wheels, first, model), &*log.imu, params);
+  const std::vector<DrivingState> counted =
+      driving_states(log.wheels, &*log.imu, params, first, model);
+  ASSERT_EQ(counted.size(), copied.size());
+  for (std::size_t k = 0; k < counted.size(); ++k) {
+    EXPECT_EQ(counted[k].speed_mps, copied[k].speed_mps) << k;
+    EXPECT_EQ(counted[k].longitudinal_mps2, copied[k].longitudinal_mps2) << k;
+    EXPECT_EQ(counted[k].lateral_mps2, copied[k].lateral_mps2) << k;
+    EXPECT_EQ(counted[k].yaw_rate_radps, copied[k].yaw_rate_radps) << k;
+  }
+  EXPECT_NE(counted[250].speed_mps, first[250].speed_mps);  // the model changed something
+  EXPECT_THROW(driving_states(log.wheels, &*log.imu, params, std::vector<DrivingState>(3), model),
+               std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace odocal

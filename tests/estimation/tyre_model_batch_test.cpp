@@ -97,6 +97,12 @@ TEST(TyreModelBatch, RecoversKnownCoefficientsWhereThePlainModelIsBiased) {
   const BatchSummary chosen = calibrate_batch(log, auto_options);
   EXPECT_TRUE(chosen.tyre_selection.compared);
   EXPECT_FALSE(chosen.tyre_model.plain()) << chosen.full_report();
+  // Choosing the extended model is calibrating as under extended; the plain fit's solves were
+  // spent on the comparison.
+  EXPECT_EQ(chosen.estimate.circumference_rl_m, extended.estimate.circumference_rl_m);
+  EXPECT_EQ(chosen.estimate.circumference_rr_m, extended.estimate.circumference_rr_m);
+  EXPECT_EQ(chosen.solves, extended.solves);
+  EXPECT_EQ(chosen.tyre_selection.other_solves, plain.solves);
 }
 
 TEST(TyreModelBatch, AutoKeepsAnIdentifiedPlainFitOverAnUnidentifiedExtendedOne) {
@@ -137,6 +143,8 @@ TEST(TyreModelBatch, AutoKeepsThePlainModelWhereTheLogNeedsNoMore) {
   EXPECT_EQ(chosen.estimate.circumference_rl_m, plain.estimate.circumference_rl_m);
   EXPECT_EQ(chosen.estimate.circumference_rr_m, plain.estimate.circumference_rr_m);
   EXPECT_NEAR(chosen.sigma_rl_m(), plain.sigma_rl_m(), 1e-6 * plain.sigma_rl_m());
+  EXPECT_EQ(chosen.solves, plain.solves);
+  EXPECT_GT(chosen.tyre_selection.other_solves, 0);
 }
 
 TEST(TyreModelBatch, AdaptingTheGnssNoiseDoesNotCarryTheTyreModelIntoNonsense) {

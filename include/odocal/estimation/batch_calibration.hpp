@@ -55,6 +55,7 @@ struct TyreModelSelection {
   // false: the extended fit's circumferences at rest were not identified where the plain fit's
   // were (their sigma above max_sigma_circumference_m), so it was refused.
   bool identified = true;
+  int other_solves{};  // the solves of the fit not chosen (BatchSummary::solves counts the other)
 };
 
 struct BatchSummary : CalibrationSummary {
@@ -62,7 +63,8 @@ struct BatchSummary : CalibrationSummary {
   std::string solver_report;                   // Ceres' brief report of the last solve
   std::size_t keyframes{};
   std::size_t gnss_fixes{};  // GNSS residuals in the problem
-  int solves{};              // the first, coarse one, the re-linearisations, the adapted one
+  // Of the fit returned: the first, coarse one, the re-linearisations, the adapted one.
+  int solves{};
   GnssNoiseReport gnss_noise;
   // Of [c_RL, c_RR, t_R] (m^2), inflated as the GNSS noise report says; infinite when Ceres
   // could not compute it.

@@ -21,6 +21,13 @@ std::vector<DrivingState> driving_states(const Log& log, const OdometryParams& p
 // The same from a wheel stream and the gyro (null: none).
 std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
                                          const OdometryParams& params, double half_window_s = 0.25);
+// The same from the wheels as `model` counts them at the states `counted_at` (one per wheel
+// sample): driving_states(with_tyre_model(wheels, counted_at, model), ...) without the copy of
+// the stream (a slipping wheel overstates its speed by its slip).
+std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
+                                         const OdometryParams& params,
+                                         const std::vector<DrivingState>& counted_at,
+                                         const TyreModel& model, double half_window_s = 0.25);
 
 // The wheel stream whose rear increments carry the model's factors (c_i,eff / c_i): dead
 // reckoning it with c_i is dead reckoning with the condition-dependent circumference.
