@@ -67,11 +67,8 @@ void bind_calibration(py::module_& m) {
           [](const CalibrationResult& r) {
             const TyreModel& t = r.core().tyre_model;
             py::dict out;
-            out["k_speed_s2pm2"] = t.k_speed_s2pm2;
-            out["k_lateral_s2pm"] = t.k_lateral_s2pm;
-            out["k_drive_s2pm"] = t.k_drive_s2pm;
-            out["k_brake_s2pm"] = t.k_brake_s2pm;
-            out["k_turn_s2prad2"] = t.k_turn_s2prad2;
+            for (const TyreCoefficientName& name : kTyreCoefficientNames)
+              out[name.key] = t.*(name.member);
             return out;
           },
           "the condition-dependent circumference's coefficients (all zero: plain model; "

@@ -69,9 +69,10 @@ TyreModel tyre_of(const Log& log, const py::object& params) {
   if (params.is_none()) return log.vehicle.tyre_model.value_or(TyreModel{});
   if (!py::hasattr(params, "tyre_model")) return {};
   const auto k = params.attr("tyre_model").cast<py::dict>();
-  return {k["k_speed_s2pm2"].cast<double>(), k["k_lateral_s2pm"].cast<double>(),
-          k["k_drive_s2pm"].cast<double>(), k["k_brake_s2pm"].cast<double>(),
-          k["k_turn_s2prad2"].cast<double>()};
+  TyreModel model;
+  for (const TyreCoefficientName& name : kTyreCoefficientNames)
+    model.*(name.member) = k[name.key].cast<double>();
+  return model;
 }
 
 }  // namespace

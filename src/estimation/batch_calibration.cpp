@@ -72,7 +72,7 @@ class BatchProblem {
  public:
   BatchProblem(const Log& log, const ReferenceTrajectory& reference, const BatchOptions& options,
                const CalibrationOptions& common, const OdometryParams& nominal)
-      : log_(log), sensors_(common.reference), batch_(options) {
+      : log_(log), sensors_(common.reference), batch_(options), nominal_(nominal) {
     keyframes_ =
         keyframe_samples(log.wheels, reference.first_wheel_index, batch_.keyframe_interval_s);
     if (keyframes_.size() < 3) {
@@ -83,6 +83,7 @@ class BatchProblem {
       const Pose2& pose = reference.poses.pose[k - reference.first_wheel_index];
       poses_.push_back({pose.x(), pose.y(), pose.z()});
     }
+    start_poses_ = poses_;
     params_ = {nominal.circumference_rl_m, nominal.circumference_rr_m, nominal.track_width_m};
     if (batch_.tyre_model != TyreModelChoice::kNone || gentle_limits()) {
       // The driving state from the log at the nominal parameters: a per mille off in speed
@@ -129,6 +130,21 @@ class BatchProblem {
   void hold_tyre_coefficient(int j, double sigma) {
     tyre_held_sigma_[static_cast<std::size_t>(j)] = sigma;
     params_[static_cast<std::size_t>(kTyreOffset + j)] = 0.0;
+  }
+  // Every unknown back to where the first solve started (the layer-1 reference's poses, the
+  // nominal parameters, the log's own driving state), held coefficients kept at zero: after
+  // coefficients are held, the rest is solved from where a plain fit starts, not from where a
+  // model with more freedom left it (on a skid-steer robot, circumferences of a fraction of a
+  // millimetre).
+  void restart() {
+    poses_ = start_poses_;
+    params_ = {nominal_.circumference_rl_m, nominal_.circumference_rr_m, nominal_.track_width_m};
+    lever_ = {0.0, 0.0};
+    latency_ = heading_bias_ = gyro_bias_ = 0.0;
+    std::fill(gnss_bias_.begin(), gnss_bias_.end(), Block2{0.0, 0.0});
+    std::fill(count_error_.begin(), count_error_.end(), Block2{0.0, 0.0});
+    std::fill(gnss_weights_.begin(), gnss_weights_.end(), 1.0f);
+    if (!states_.empty()) states_ = driving_states(log_, nominal_);
   }
   bool tyre_held(int j) const { return tyre_held_sigma_[static_cast<std::size_t>(j)] > 0.0; }
   double tyre_held_sigma(int j) const { return tyre_held_sigma_[static_cast<std::size_t>(j)]; }
@@ -746,8 +762,10 @@ class BatchProblem {
   double gm_tau_s_ = 60.0;
   // Unknowns.
   std::vector<Block3> poses_;
+  std::vector<Block3> start_poses_;
   ParamsBlock params_{};
   Block2 lever_{0.0, 0.0};
+  OdometryParams nominal_;
   double latency_ = 0.0;
   double heading_bias_ = 0.0;
   double gyro_bias_ = 0.0;
@@ -790,14 +808,13 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   std::vector<bool> block_used{
       true, true, true, log.imu.has_value() && b.use_gyro, log.heading.has_value() && b.use_heading,
       true, true, true};
-  const char* tyre_names[] = {"tyre_speed_s2pm2", "tyre_lateral_s2pm", "tyre_drive_s2pm",
-                              "tyre_brake_s2pm", "tyre_turn_s2prad2"};
   for (int j = 0; j < TyreModel::kCoefficients; ++j) {
     const int p_index = kTyreOffset + j;
     const double sigma_j =
         batch.tyre_held(j) ? batch.tyre_held_sigma(j) : sigma(u.params(p_index, p_index));
     summary.parameters.push_back(
-        {tyre_names[j], p[p_index], sigma_j, batch.tyre_extended(), true, ""});
+        {tyre_parameter_name(kTyreCoefficientNames[static_cast<std::size_t>(j)]), p[p_index],
+         sigma_j, batch.tyre_extended(), true, ""});
     const double rms = batch.regressor_rms()(j);
     thresholds.push_back(rms > 0.0 ? b.max_sigma_tyre_effect / rms : 0.0);
     block_used.push_back(rms > 0.0);
@@ -1005,6 +1022,10 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
   }
 }
 
+// A coefficient this many sigma from zero is kept however wide its sigma: the log needs it, and
+// held at zero the others would bend to stand in for it.
+constexpr double kTyreSignificance = 3.0;
+
 // The extended model with what this log can identify: a coefficient whose sigma exceeds its
 // threshold is held at zero and the rest solved again (a drive at one speed cannot tell k_speed
 // from the circumference; left free, it would carry the circumference's sigma away with it).
@@ -1021,7 +1042,10 @@ ceres::Solver::Summary solve_extended(BatchProblem& batch, const BatchOptions& o
           uncertainty ? uncertainty->params(kTyreOffset + j, kTyreOffset + j) : -1.0;
       const double sigma = variance >= 0.0 ? std::sqrt(variance) : 0.0;
       const double rms = batch.regressor_rms()(j);
-      if (!(variance >= 0.0) || !(rms > 0.0) || sigma * rms > options.max_sigma_tyre_effect) {
+      const double value = batch.params()[static_cast<std::size_t>(kTyreOffset + j)];
+      const bool significant = std::abs(value) > kTyreSignificance * sigma;
+      if (!(variance >= 0.0) || !(rms > 0.0) ||
+          (sigma * rms > options.max_sigma_tyre_effect && !significant)) {
         batch.hold_tyre_coefficient(j, std::isfinite(sigma) && sigma > 0.0
                                            ? sigma
                                            : std::numeric_limits<double>::infinity());
@@ -1029,6 +1053,7 @@ ceres::Solver::Summary solve_extended(BatchProblem& batch, const BatchOptions& o
       }
     }
     if (!held) break;
+    batch.restart();
     solver = solve_relinearised(batch, options, summary);  // without what was just held
     if (batch.free_tyre_coefficients() == 0) break;
   }

@@ -55,11 +55,13 @@ std::string unidentified_reason(const std::string& name, const LogCoverage& c, b
         turns);
   }
   if (name.starts_with("tyre_")) {
-    const std::string what = name == "tyre_speed_s2pm2"    ? "a range of speeds"
-                             : name == "tyre_lateral_s2pm" ? "turns at speed, both ways"
-                             : name == "tyre_drive_s2pm"   ? "accelerations"
-                             : name == "tyre_brake_s2pm"   ? "braking"
-                                                           : "turns";
+    const std::string what = name == "tyre_speed_s2pm2"           ? "a range of speeds"
+                             : name == "tyre_lateral_s2pm"        ? "turns at speed, both ways"
+                             : name == "tyre_drive_s2pm"          ? "accelerations"
+                             : name == "tyre_brake_s2pm"          ? "braking"
+                             : name == "tyre_drive_lateral_s4pm2" ? "accelerating out of turns"
+                             : name == "tyre_brake_lateral_s4pm2" ? "braking into turns"
+                                                                  : "turns";
     return fmt::format(
         "the drive has too little of what shows it ({}); set tyre_model: none or drive more of "
         "it",

@@ -136,17 +136,19 @@ void run_paper_experiment(const PaperExperimentOptions& options, std::FILE* prog
       const auto noise_seed = static_cast<std::uint64_t>(seed);
       runner.run(
           fmt::format("tyre models, rear and front drive: seed {}/{}", seed, options.seeds), dir,
-          stamp("tyre_models", paper_scenario(options.setup, SimMode::kRealistic, noise_seed)),
+          stamp(fmt::format("tyre_models v{}", kTyreModelExperimentVersion),
+                paper_scenario(options.setup, SimMode::kRealistic, noise_seed)),
           [&] {
             write_json_file(dir / "result.json", run_tyre_model_seed(options.setup, noise_seed));
           });
       seeds.push_back(read_json_file(dir / "result.json"));
       const std::filesystem::path urban_dir =
           out / "tyre_models" / fmt::format("urban-{:02}", seed);
-      runner.run(fmt::format("tyre models, urban drift: seed {}/{}", seed, options.seeds),
-                 urban_dir, stamp("tyre_models_urban", load_scenario("urban")), [&] {
-                   write_json_file(urban_dir / "result.json", run_urban_drift_seed(noise_seed));
-                 });
+      runner.run(
+          fmt::format("tyre models, urban drift: seed {}/{}", seed, options.seeds), urban_dir,
+          stamp(fmt::format("tyre_models_urban v{}", kTyreModelExperimentVersion),
+                load_scenario("urban")),
+          [&] { write_json_file(urban_dir / "result.json", run_urban_drift_seed(noise_seed)); });
       urban.push_back(read_json_file(urban_dir / "result.json"));
     }
     write_json_file(out / "tyre_models" / "summary.json", summarise_tyre_models(seeds, urban));

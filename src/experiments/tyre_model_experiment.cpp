@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "experiments/truth_comparison.hpp"
 #include "odocal/error.hpp"
@@ -62,7 +63,11 @@ nlohmann::json row_summary(const std::vector<nlohmann::json>& runs) {
   for (const nlohmann::json& run : runs) {
     for (const char* wheel : {"rl", "rr"}) {
       const double error = run.at(std::string("error_") + wheel + "_mm").get<double>();
-      const double sigma = run.at(std::string("reported_sigma_") + wheel + "_mm").get<double>();
+      // JSON writes an infinite sigma (no covariance: a rank-deficient fit) as null; it covers
+      // any error, as it says nothing.
+      const nlohmann::json& reported = run.at(std::string("reported_sigma_") + wheel + "_mm");
+      const double sigma =
+          reported.is_null() ? std::numeric_limits<double>::infinity() : reported.get<double>();
       absolute.push_back(std::abs(error));
       inside += std::abs(error) <= 3.0 * sigma;
     }

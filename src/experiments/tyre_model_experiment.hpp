@@ -12,6 +12,9 @@
 
 namespace odocal::experiments {
 
+// Bump when the tyre model or its fit changes what these pieces write (their cache key).
+inline constexpr int kTyreModelExperimentVersion = 2;  // 2: the slip's load terms
+
 // {seed, realistic: {rear: {none, extended, auto}, front: {...}}, ideal: {none, auto}} with
 // method_run_to_json entries, each with "tyre_model_used" (whether the result carries one).
 nlohmann::json run_tyre_model_seed(const PaperSetup& setup, std::uint64_t seed);

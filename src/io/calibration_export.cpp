@@ -93,27 +93,18 @@ TyreModel read_calibrated_tyre_model(const std::filesystem::path& json_path) {
   const nlohmann::json json = calibration_json(json_path);
   TyreModel model;
   if (!json.contains("parameters") || !json["parameters"].is_array()) return model;
-  struct Field {
-    const char* name;
-    double TyreModel::*member;
-    PhysicalRange range;
-  };
-  const Field fields[] = {
-      {"tyre_speed_s2pm2", &TyreModel::k_speed_s2pm2, kTyreSpeedCoefficient},
-      {"tyre_lateral_s2pm", &TyreModel::k_lateral_s2pm, kTyreLateralCoefficient},
-      {"tyre_drive_s2pm", &TyreModel::k_drive_s2pm, kTyreSlipCoefficient},
-      {"tyre_brake_s2pm", &TyreModel::k_brake_s2pm, kTyreSlipCoefficient},
-      {"tyre_turn_s2prad2", &TyreModel::k_turn_s2prad2, kTyreTurnCoefficient}};
   for (const nlohmann::json& p : json["parameters"]) {
     if (!p.is_object() || !p.contains("name") || !p["name"].is_string()) continue;
     if (!p.value("estimated", false)) continue;
-    for (const Field& field : fields) {
-      if (p["name"] != field.name) continue;
+    for (int j = 0; j < TyreModel::kCoefficients; ++j) {
+      const TyreCoefficientName& field = kTyreCoefficientNames[static_cast<std::size_t>(j)];
+      const std::string name = tyre_parameter_name(field);
+      if (p["name"] != name) continue;
+      const PhysicalRange range = kTyreCoefficientRanges[j];
       if (!p.contains("value") || !p["value"].is_number() ||
-          !field.range.contains(p["value"].get<double>())) {
-        throw InputError(
-            {json_path.string(), 0, std::string("parameters.") + field.name},
-            fmt::format("expected a number from {} to {}", field.range.min, field.range.max));
+          !range.contains(p["value"].get<double>())) {
+        throw InputError({json_path.string(), 0, "parameters." + name},
+                         fmt::format("expected a number from {} to {}", range.min, range.max));
       }
       model.*(field.member) = p["value"].get<double>();
     }

@@ -64,14 +64,11 @@ VehicleConfig parse_vehicle_config(YamlMap& map) {
   optional("circumference_fr_m", vehicle.circumference_fr_m, kCircumferenceM);
   if (auto tyre = map.map("tyre_model")) {
     TyreModel model;
-    const auto read = [&](const char* key, double& value, PhysicalRange range) {
-      tyre->read(key, value, range.min, range.max);
-    };
-    read("k_speed_s2pm2", model.k_speed_s2pm2, kTyreSpeedCoefficient);
-    read("k_lateral_s2pm", model.k_lateral_s2pm, kTyreLateralCoefficient);
-    read("k_drive_s2pm", model.k_drive_s2pm, kTyreSlipCoefficient);
-    read("k_brake_s2pm", model.k_brake_s2pm, kTyreSlipCoefficient);
-    read("k_turn_s2prad2", model.k_turn_s2prad2, kTyreTurnCoefficient);
+    for (int j = 0; j < TyreModel::kCoefficients; ++j) {
+      const TyreCoefficientName& name = kTyreCoefficientNames[static_cast<std::size_t>(j)];
+      tyre->read(name.key, model.*(name.member), kTyreCoefficientRanges[j].min,
+                 kTyreCoefficientRanges[j].max);
+    }
     tyre->reject_unknown_keys();
     vehicle.tyre_model = model;
   }
@@ -109,11 +106,8 @@ void write_vehicle_config(const VehicleConfig& vehicle, const std::filesystem::p
   if (vehicle.tyre_model) {
     const TyreModel& m = *vehicle.tyre_model;
     out << YAML::Key << "tyre_model" << YAML::Value << YAML::BeginMap;
-    out << YAML::Key << "k_speed_s2pm2" << YAML::Value << m.k_speed_s2pm2;
-    out << YAML::Key << "k_lateral_s2pm" << YAML::Value << m.k_lateral_s2pm;
-    out << YAML::Key << "k_drive_s2pm" << YAML::Value << m.k_drive_s2pm;
-    out << YAML::Key << "k_brake_s2pm" << YAML::Value << m.k_brake_s2pm;
-    out << YAML::Key << "k_turn_s2prad2" << YAML::Value << m.k_turn_s2prad2;
+    for (const TyreCoefficientName& name : kTyreCoefficientNames)
+      out << YAML::Key << name.key << YAML::Value << m.*(name.member);
     out << YAML::EndMap;
   }
   out << YAML::EndMap;

@@ -17,6 +17,7 @@
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/model/tyre_model.hpp"
 #include "scratch_dir.hpp"
 
 namespace odocal::testing {
@@ -254,7 +255,7 @@ TEST(HuskyBag, TyreModelIsNoModelForASkidSteer) {
     EXPECT_EQ(p.at("value").get<double>(), 0.0) << p;
     EXPECT_THAT(p.at("verdict").get<std::string>(), ::testing::HasSubstr("held at zero"));
   }
-  EXPECT_EQ(tyre_parameters, 5);
+  EXPECT_EQ(tyre_parameters, TyreModel::kCoefficients);
   EXPECT_NEAR(extended.at("circumference_rl_m").get<double>(),
               plain.at("circumference_rl_m").get<double>(), 1e-6);
   const nlohmann::json chosen = calibrate("auto");

@@ -60,31 +60,32 @@ void expect_correct_jacobians(const ceres::CostFunction& cost,
 batch::RelativeMotion some_motion() {
   batch::RelativeMotion motion;
   motion.delta << 12.0, 1.5, 0.3;
-  motion.J_delta_params << 3.1, 3.0, -0.2, 40.0, 0.5, -2.0, 1.5, 0.7,  //
-      0.4, -0.5, 0.9, -3.0, 6.0, 0.2, -0.1, -0.3,                      //
-      -0.8, 0.8, -0.1, 0.05, -2.5, 0.3, 0.02, 0.1;
+  motion.J_delta_params << 3.1, 3.0, -0.2, 40.0, 0.5, -2.0, 1.5, 0.7, 0.9, -0.6,  //
+      0.4, -0.5, 0.9, -3.0, 6.0, 0.2, -0.1, -0.3, 0.25, 0.15,                     //
+      -0.8, 0.8, -0.1, 0.05, -2.5, 0.3, 0.02, 0.1, -0.05, 0.4;
   motion.J_delta_first_increment << 1.0, 0.9, -0.3, 0.35, -1.2, 1.25;
-  motion.params_lin << 1.95, 1.96, 1.6, 0.0, 0.0, 0.0, 0.0, 0.0;
+  motion.params_lin << 1.95, 1.96, 1.6, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0;
   return motion;
 }
 
 TEST(BatchResiduals, JacobiansMatchNumericalOnes) {
   const std::vector<double> pose_a{10.0, -4.0, 2.9}, pose_b{21.0, -1.0, 3.3};
-  const std::vector<double> params{1.951, 1.958, 1.62, 1e-6, 3e-4, 5e-3, 1e-3, -2e-3};
+  const std::vector<double> params{1.951, 1.958, 1.62, 1e-6, 3e-4, 5e-3, 1e-3, -2e-3, 4e-4, 2e-4};
   Eigen::Matrix3d sqrt_information;
   sqrt_information << 3.0, 0.2, 0.1, 0.0, 2.5, -0.3, 0.0, 0.0, 40.0;
   expect_correct_jacobians(
-      ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, 8, 2, 2>(
+      ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, batch::kParams, 2, 2>(
           new batch::OdometryResidual{some_motion(), some_motion().J_delta_first_increment,
                                       sqrt_information}),
       {pose_a, pose_b, params, {0.002, -0.001}, {-0.003, 0.001}});
   expect_correct_jacobians(
-      ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, 8, 2, 1, 2, 2>(
+      ceres::AutoDiffCostFunction<batch::GnssResidual, 2, 3, batch::kParams, 2, 1, 2, 2>(
           new batch::GnssResidual{some_motion(), {20.0, 3.0}, {22.0, 5.0}, 2.5}),
       {pose_a, params, {0.4, -0.2}, {0.05}, {0.7, -1.1}, {0.002, -0.001}});
-  expect_correct_jacobians(ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, 8, 1, 2>(
-                               new batch::HeadingResidual{some_motion(), -3.0, 0.15}),
-                           {pose_a, params, {0.02}, {0.002, -0.001}});
+  expect_correct_jacobians(
+      ceres::AutoDiffCostFunction<batch::HeadingResidual, 1, 3, batch::kParams, 1, 2>(
+          new batch::HeadingResidual{some_motion(), -3.0, 0.15}),
+      {pose_a, params, {0.02}, {0.002, -0.001}});
   expect_correct_jacobians(ceres::AutoDiffCostFunction<batch::GyroResidual, 1, 3, 3, 1>(
                                new batch::GyroResidual{0.35, 1.0, 0.003}),
                            {pose_a, pose_b, {0.001}});
@@ -97,7 +98,7 @@ TEST(BatchResiduals, VanishAtTheirClosedFormSolutions) {
   // Keyframe a at (10, -4) heading 90 deg; the motion moves 12 m forward, 1.5 m left, turns 0.3.
   const double pose_a[3] = {10.0, -4.0, M_PI / 2};
   const double pose_b[3] = {10.0 - 1.5, -4.0 + 12.0, M_PI / 2 + 0.3};
-  const double params[8] = {1.95, 1.96, 1.6, 0, 0, 0, 0, 0};  // = params_lin: no change
+  const double params[batch::kParams] = {1.95, 1.96, 1.6};  // = params_lin: no change
   const double no_count_error[2] = {0.0, 0.0};
   double residual[3];
   batch::OdometryResidual{some_motion(), Eigen::Matrix<double, 3, 2>::Zero(),

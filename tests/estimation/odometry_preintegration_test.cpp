@@ -69,7 +69,7 @@ TEST(OdometryPreintegration, TyreJacobianMatchesNumerical) {
   const WheelStream wheels = curving_wheels();
   const std::vector<DrivingState> states = varied_states(wheels.size());
   const OdometryParams params{1.95, 1.96, 1.6};
-  const TyreModel::Vector at = TyreModel{2e-6, 3e-4, 8e-3, -2e-3, -5e-3}.coefficients();
+  const TyreModel::Vector at = TyreModel{2e-6, 3e-4, 8e-3, -2e-3, -5e-3, 6e-4, 4e-4}.coefficients();
   const TyreConditions tyre{states, TyreModel::from(at)};
   const PreintegratedSegment segment = preintegrate(wheels, 0, 120, params, {}, &tyre);
   ASSERT_EQ(segment.J_delta_tyre.size(), segment.delta.size());

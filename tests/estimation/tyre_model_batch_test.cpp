@@ -20,15 +20,15 @@
 namespace odocal {
 namespace {
 
-constexpr TyreModel kTruth{-3e-6, 4e-4, 8e-3, 4e-3, -2e-2};
+constexpr TyreModel kTruth{-3e-6, 4e-4, 8e-3, 4e-3, -2e-2, 7e-4, 5e-4};
 
-// 1 m GNSS: beside five coefficients the circumference at rest is an extrapolation (docs/
+// 1 m GNSS: beside seven coefficients the circumference at rest is an extrapolation (docs/
 // tyre-model.md), about 1 mm at 1 sigma with the scenario's 3 m.
 sim::SimulatedDrive ideal_drive() {
   sim::Scenario scenario = load_scenario("circuit");
   scenario.ideal = true;
   scenario.gnss.sigma_m = 1.0;
-  return sim::simulate(scenario);  // 3 laps: a circumference to a millimetre beside 5 coefficients
+  return sim::simulate(scenario);  // 3 laps: a circumference to a millimetre beside 7 coefficients
 }
 
 Log ideal_lap() { return simulated_log(ideal_drive()); }
@@ -72,7 +72,9 @@ TEST(TyreModelBatch, RecoversKnownCoefficientsWhereThePlainModelIsBiased) {
         std::pair{"tyre_lateral_s2pm", kTruth.k_lateral_s2pm},
         std::pair{"tyre_drive_s2pm", kTruth.k_drive_s2pm},
         std::pair{"tyre_brake_s2pm", kTruth.k_brake_s2pm},
-        std::pair{"tyre_turn_s2prad2", kTruth.k_turn_s2prad2}}) {
+        std::pair{"tyre_turn_s2prad2", kTruth.k_turn_s2prad2},
+        std::pair{"tyre_drive_lateral_s4pm2", kTruth.k_drive_lateral_s4pm2},
+        std::pair{"tyre_brake_lateral_s4pm2", kTruth.k_brake_lateral_s4pm2}}) {
     const EstimatedParameter& p = parameter(extended, name);
     EXPECT_TRUE(p.estimated) << name;
     EXPECT_LT(std::abs(p.value - truth), 3.0 * p.sigma) << name << " " << p.value;
@@ -148,9 +150,12 @@ TEST(TyreModelBatch, AutoKeepsThePlainModelWhereTheLogNeedsNoMore) {
 }
 
 TEST(TyreModelBatch, AdaptingTheGnssNoiseDoesNotCarryTheTyreModelIntoNonsense) {
-  // 3 laps of Hockenheim, front-wheel drive: the rear wheels slip under the brakes' rear share,
-  // which the model cannot follow. The GNSS noise adaptation loosens GNSS to a correlated error of
-  // metres; k_speed then ran to -4e-4 per (m/s)^2 (-100 % at 50 m/s) and c_RL to +45 mm.
+  // 3 laps of Hockenheim, front-wheel drive: the rear wheels slip under the brakes' rear share.
+  // With the five coefficients of 2026-11-24, which could not follow it, the GNSS noise
+  // adaptation loosened GNSS to a correlated error of metres; k_speed then ran to -4e-4 per
+  // (m/s)^2 (-100 % at 50 m/s) and c_RL to +45 mm, and the guard undid the adaptation. With the
+  // slip's load terms the residuals match the configured noise and nothing is adapted; either
+  // way the model must stay a tyre.
   const std::string track =
       std::string(ODOCAL_SOURCE_DIR) + "/../shared/data/tracks/hockenheim/track.csv";
   if (!std::filesystem::exists(track)) GTEST_SKIP() << "shared data absent: " << track;
@@ -166,8 +171,10 @@ TEST(TyreModelBatch, AdaptingTheGnssNoiseDoesNotCarryTheTyreModelIntoNonsense) {
   double worst = 0.0;
   for (const DrivingState& state : states)
     worst = std::max(worst, std::abs(tyre_factor(result.tyre_model, state, RearWheel::kLeft) - 1));
-  EXPECT_LT(worst, 0.05) << result.full_report();
-  EXPECT_TRUE(result.gnss_noise.reverted) << result.full_report();
+  // The truth's own factor reaches ~3 % under the circuit's hardest braking; the run-away
+  // reached -100 %.
+  EXPECT_LT(worst, 0.1) << result.full_report();
+  EXPECT_TRUE(result.gnss_noise.reverted || !result.gnss_noise.adapted) << result.full_report();
   EXPECT_LT(result.estimate.circumference_rl_m - drive.true_params.circumference_rl_m, 0.02);
 }
 

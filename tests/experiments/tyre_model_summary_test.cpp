@@ -75,5 +75,16 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
   EXPECT_THROW(summarise_tyre_models({}, {}), std::exception);
 }
 
+TEST(TyreModelSummary, AnInfiniteSigmaWrittenAsNullCoversItsError) {
+  // A rank-deficient fit reports an infinite sigma, which JSON writes as null.
+  nlohmann::json first = seed(1, 10.0), second = seed(2, 10.0);
+  for (const char* key : {"reported_sigma_rl_mm", "reported_sigma_rr_mm"})
+    first["realistic"]["rear"]["none"][key] = nullptr;
+  const nlohmann::json summary = summarise_tyre_models({first, second}, {urban(1, 0.2)});
+  const nlohmann::json& rear_none = summary["rows"][0];
+  ASSERT_EQ(rear_none["tyre_model"], "none");
+  EXPECT_DOUBLE_EQ(rear_none["within_3_reported_sigma"].get<double>(), 0.5);
+}
+
 }  // namespace
 }  // namespace odocal::experiments

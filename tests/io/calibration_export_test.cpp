@@ -56,7 +56,7 @@ TEST(CalibrationExport, TyreModelGoesToVehicleYamlAndIsSaidMissingInRos2) {
   testing::TempLogDir dir;
   const VehicleConfig nominal = nominal_vehicle();
   const OdometryParams calibrated{1.9546, 1.9578, 1.6};
-  const TyreModel tyre{-3e-6, 5e-5, 0.0114, 0.0067, -0.04};
+  const TyreModel tyre{-3e-6, 5e-5, 0.0114, 0.0067, -0.04, 8e-4, 6e-4};
   write_calibrated_vehicle(nominal, calibrated, dir.file("vehicle-new.yaml"), tyre);
   const VehicleConfig back = read_vehicle_config(dir.file("vehicle-new.yaml"));
   ASSERT_TRUE(back.tyre_model.has_value());
@@ -77,10 +77,12 @@ TEST(CalibrationExport, ResultJsonTyreModelIsItsEstimatedCoefficients) {
   std::ofstream(dir.file("result.json")) << R"({"parameters": [
       {"name": "tyre_drive_s2pm", "value": 0.011, "estimated": true},
       {"name": "tyre_turn_s2prad2", "value": -0.04, "estimated": true},
+      {"name": "tyre_brake_lateral_s4pm2", "value": 6e-4, "estimated": true},
       {"name": "tyre_speed_s2pm2", "value": 5.0, "estimated": false}]})";
   const TyreModel model = read_calibrated_tyre_model(dir.file("result.json"));
   EXPECT_EQ(model.k_drive_s2pm, 0.011);
   EXPECT_EQ(model.k_turn_s2prad2, -0.04);
+  EXPECT_EQ(model.k_brake_lateral_s4pm2, 6e-4);
   EXPECT_EQ(model.k_speed_s2pm2, 0.0);  // not estimated: held at zero
   std::ofstream(dir.file("absurd.json"))
       << R"({"parameters": [{"name": "tyre_brake_s2pm", "value": 7, "estimated": true}]})";

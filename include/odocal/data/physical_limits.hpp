@@ -22,6 +22,11 @@ inline constexpr PhysicalRange kTyreSpeedCoefficient{-1e-4, 1e-4};    // per (m/
 inline constexpr PhysicalRange kTyreLateralCoefficient{-0.01, 0.01};  // per m/s^2
 inline constexpr PhysicalRange kTyreSlipCoefficient{-0.1, 0.1};       // per m/s^2 (drive, brake)
 inline constexpr PhysicalRange kTyreTurnCoefficient{-1.0, 1.0};       // per (rad/s)^2
+inline constexpr PhysicalRange kTyreSlipLoadCoefficient{-0.1, 0.1};   // per (m/s^2)^2
+// In the order of TyreModel's coefficients.
+inline constexpr PhysicalRange kTyreCoefficientRanges[] = {
+    kTyreSpeedCoefficient, kTyreLateralCoefficient,  kTyreSlipCoefficient,    kTyreSlipCoefficient,
+    kTyreTurnCoefficient,  kTyreSlipLoadCoefficient, kTyreSlipLoadCoefficient};
 
 // Log streams. Times are seconds on any clock up to 300 years from its zero (Unix time fits);
 // positions are local metres (UTM northings fit); accelerations reach 50 g and rates 50 rad/s
