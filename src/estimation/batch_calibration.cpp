@@ -1106,16 +1106,17 @@ bool fit_model(const CalibrationRun& run, const BatchOptions& options,
 // the two fits, never a blend (so that a log the plain model explains calibrates as under none).
 // The plain fit is finished and its problem freed before the extended one is built, so that one
 // problem lives at a time (a long log's memory is its problem's), and the extended fit is
-// finished (noise adaptation, covariance) only when it is chosen.
-void fit_auto(const CalibrationRun& run, const BatchOptions& options,
-              const CalibrationOptions& common, BatchSummary& summary) {
+// finished (noise adaptation, covariance) only when it is chosen. Returns whether it has scored
+// the result (run.finish) itself.
+bool fit_auto(CalibrationRun& run, const BatchOptions& options, const CalibrationOptions& common,
+              BatchSummary& summary) {
   const BatchSummary unfitted = summary;
   FitFacts plain;
   fit_model(run, options, common, false, summary, [&](const FitFacts& facts) {
     plain = facts;
     return true;
   });
-  if (!plain.usable) return;
+  if (!plain.usable) return false;
   TyreModelSelection selection;
   selection.compared = true;
   selection.plain_bic = plain.bic;
@@ -1147,13 +1148,22 @@ void fit_auto(const CalibrationRun& run, const BatchOptions& options,
     return better && selection.identified;
   };
   BatchSummary candidate = unfitted;
-  if (fit_model(run, options, common, true, candidate, choose)) {
-    selection.other_solves = summary.solves;
-    summary = std::move(candidate);
-  } else {
-    selection.other_solves = candidate.solves;
+  const bool chosen = fit_model(run, options, common, true, candidate, choose);
+  selection.other_solves = candidate.solves;
+  if (chosen) {
+    // A lower BIC is not enough: with a million samples it prefers effects of a few 1e-5 (an
+    // ideal 100-lap circuit), whose whole-log dead reckoning can be worse than the nominal
+    // parameters' where the plain fit's is not. Scored both ways, the usable one stands.
+    run.finish(candidate);
+    run.finish(summary);
+    selection.dead_reckons = candidate.usable() || !summary.usable();
+    if (selection.dead_reckons) {
+      selection.other_solves = summary.solves;
+      summary = std::move(candidate);
+    }
   }
   summary.tyre_selection = selection;
+  return chosen;
 }
 
 }  // namespace
@@ -1163,13 +1173,13 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   require_valid("batch", options.validate());
   BatchSummary summary;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
+  bool finished = false;  // auto scores its candidates itself
   if (options.tyre_model == TyreModelChoice::kAuto) {
-    fit_auto(run, options, common, summary);
+    finished = fit_auto(run, options, common, summary);
   } else {
-    fit_model(run, options, common, options.tyre_model == TyreModelChoice::kExtended, summary,
-              nullptr);
+    fit_model(run, options, common, options.tyre_model == TyreModelChoice::kExtended, summary);
   }
-  run.finish(summary);
+  if (!finished) run.finish(summary);
   return summary;
 }
 
@@ -1227,7 +1237,10 @@ std::string BatchSummary::full_report() const {
                                        "percents, or a circumference out of its band)"
         : !tyre_selection.identified ? "plain (the extended fit's circumferences at rest were not "
                                        "identified, the plain fit's were)"
-                                     : "plain (the log does not need more)",
+        : !tyre_selection.dead_reckons
+            ? "plain (with the extended fit the log dead-reckons worse than with the nominal "
+              "parameters, with the plain fit it does not)"
+            : "plain (the log does not need more)",
         tyre_selection.extended_bic, tyre_selection.plain_bic);
   }
   if (!model_adequacy.verdict.empty())

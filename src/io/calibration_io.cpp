@@ -143,6 +143,7 @@ void add_details(json& out, const BatchSummary& s) {
                              {"extended_bic", number_or_null(s.tyre_selection.extended_bic)},
                              {"extended_physical", s.tyre_selection.physical},
                              {"extended_identified", s.tyre_selection.identified},
+                             {"extended_dead_reckons", s.tyre_selection.dead_reckons},
                              {"other_solves", s.tyre_selection.other_solves},
                              {"chosen", s.tyre_model.plain() ? "none" : "extended"}};
   }

@@ -149,6 +149,29 @@ TEST(TyreModelBatch, AutoKeepsThePlainModelWhereTheLogNeedsNoMore) {
   EXPECT_GT(chosen.tyre_selection.other_solves, 0);
 }
 
+TEST(TyreModelBatch, AutoKeepsThePlainFitWhereTheExtendedOneDeadReckonsWorse) {
+  // 100 laps of the ideal circuit, a million samples: the BIC prefers the extended model for
+  // effects of a few 1e-5, and its circumferences, 17 um from the plain fit's, dead-reckon the
+  // whole log worse than the nominal parameters (25 m against 1.6 m): not usable. The plain fit
+  // is, and stands.
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;
+  scenario.route.laps = 100;
+  const Log log = simulated_log(sim::simulate(scenario));
+  BatchOptions options;
+  options.tyre_model = TyreModelChoice::kAuto;
+  const BatchSummary chosen = calibrate_batch(log, options);
+  EXPECT_LT(chosen.tyre_selection.extended_bic, chosen.tyre_selection.plain_bic);
+  EXPECT_FALSE(chosen.tyre_selection.dead_reckons);
+  EXPECT_TRUE(chosen.tyre_model.plain()) << chosen.full_report();
+  EXPECT_TRUE(chosen.usable()) << chosen.full_report();
+  EXPECT_NE(chosen.full_report().find("dead-reckons worse"), std::string::npos);
+  options.tyre_model = TyreModelChoice::kNone;
+  const BatchSummary plain = calibrate_batch(log, options);
+  EXPECT_EQ(chosen.estimate.circumference_rl_m, plain.estimate.circumference_rl_m);
+  EXPECT_EQ(chosen.after.mean_position_m, plain.after.mean_position_m);
+}
+
 TEST(TyreModelBatch, AdaptingTheGnssNoiseDoesNotCarryTheTyreModelIntoNonsense) {
   // 3 laps of Hockenheim, front-wheel drive: the rear wheels slip under the brakes' rear share.
   // With the five coefficients of 2026-11-24, which could not follow it, the GNSS noise

@@ -55,6 +55,9 @@ struct TyreModelSelection {
   // false: the extended fit's circumferences at rest were not identified where the plain fit's
   // were (their sigma above max_sigma_circumference_m), so it was refused.
   bool identified = true;
+  // false: the extended fit won the BIC but dead-reckoned the log worse than the nominal
+  // parameters (not usable) where the plain fit did not, so it was refused.
+  bool dead_reckons = true;
   int other_solves{};  // the solves of the fit not chosen (BatchSummary::solves counts the other)
 };
 

@@ -64,8 +64,8 @@ struct BatchOptions {
   double gentle_max_speed_mps = 0.0;
   double gentle_max_longitudinal_mps2 = 0.0;
   double gentle_max_lateral_mps2 = 0.0;
-  // none by default: auto fits both models one after the other, 2.1-2.4x the time on long logs,
-  // and its peak memory is the extended fit's (the 10-hour drive: 1.15 GB against 0.88 GB, past
+  // none by default: auto fits both models one after the other, 2.5x the time on long logs,
+  // and its peak memory is the extended fit's (the 10-hour drive: 1.2 GB against 0.89 GB, past
   // the 1 GB that docs/batch-calibration.md promises; docs/tyre-model.md).
   TyreModelChoice tyre_model = TyreModelChoice::kNone;
   int max_solver_iterations = 100;
