@@ -17,7 +17,6 @@
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/model/angle.hpp"
-#include "odocal/model/tyre_model.hpp"
 #include "scratch_dir.hpp"
 
 namespace odocal::testing {
@@ -225,41 +224,6 @@ TEST_F(MapMistakes, ScalarCompassHeadingOnRecordTime) {
     EXPECT_NEAR(log.heading->heading_rad[k],
                 wrap_angle(2.0 * static_cast<double>(k) * std::numbers::pi / 180.0), 1e-6);
   }
-}
-
-// A skid-steer robot's wheels are no tyre model: extended holds every coefficient at zero (and
-// then gives the plain estimate), auto keeps the plain model.
-TEST(HuskyBag, TyreModelIsNoModelForASkidSteer) {
-  if (!fs::exists(kHuskyBag)) GTEST_SKIP() << "shared data absent: " << kHuskyBag;
-  ScratchDir dir("husky-tyre");
-  const fs::path log_dir = dir.path() / "log";
-  bag::import_bag(kSource / "examples/husky/topics.yaml", kHuskyBag, log_dir);
-  std::ifstream robot(kSource / "examples/robot/calibrate.yaml");
-  const std::string robot_config((std::istreambuf_iterator<char>(robot)), {});
-  ASSERT_NE(robot_config.find("\nbatch:\n"), std::string::npos);
-  const auto calibrate = [&](const std::string& model) {
-    std::string text = robot_config;
-    text.replace(text.find("\nbatch:\n"), 8, "\nbatch:\n  tyre_model: " + model + "\n");
-    const fs::path config = dir.path() / (model + ".yaml"), json = dir.path() / (model + ".json");
-    std::ofstream(config) << text;
-    const CliRun run = run_cli("calibrate " + log_dir.string() + " --config " + config.string() +
-                               " --json " + json.string());
-    EXPECT_EQ(run.status, 0) << run.out << run.err;
-    return nlohmann::json::parse(read_text_file(json.string()));
-  };
-  const nlohmann::json plain = calibrate("none"), extended = calibrate("extended");
-  int tyre_parameters = 0;
-  for (const auto& p : extended.at("parameters")) {
-    if (!p.at("name").get<std::string>().starts_with("tyre_")) continue;
-    ++tyre_parameters;
-    EXPECT_EQ(p.at("value").get<double>(), 0.0) << p;
-    EXPECT_THAT(p.at("verdict").get<std::string>(), ::testing::HasSubstr("held at zero"));
-  }
-  EXPECT_EQ(tyre_parameters, TyreModel::kCoefficients);
-  EXPECT_NEAR(extended.at("circumference_rl_m").get<double>(),
-              plain.at("circumference_rl_m").get<double>(), 1e-6);
-  const nlohmann::json chosen = calibrate("auto");
-  EXPECT_EQ(chosen.at("tyre_selection").at("chosen"), "none");
 }
 
 TEST(BagImportCli, ListAndBadBagExitCodes) {
