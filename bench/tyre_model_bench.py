@@ -1,37 +1,61 @@
 #!/usr/bin/python3
-"""Tyre model benchmark (issue 17; figures in docs/tyre-model.md): the built-in realistic circuit
-(3 laps, 13.7 km) driven by a rear- and a front-wheel-drive car over N seeds, calibrated by
-the batch with tyre_model none and extended. Per drivetrain and model: mean |error| of the rear
-circumferences against truth.yaml, the share of errors inside 3 reported sigma, the held-out
-median drift of 60 s windows (`odocal validate`), and the mean time of a calibration. The same
-on 3 laps of Hockenheim, with `auto` and the issue's targets, is a section of docs/results.md
-(`make paper`). Run from the repository after `make build`:
+"""Tyre model benchmark (issue 17; figures in docs/tyre-model.md): realistic simulated drives
+calibrated by the batch with each tyre model, against the simulator's truth.
+
+Drives: the built-in circuit (3 laps, 13.7 km) and urban drive (2 km), each driven by a rear- and
+a front-wheel-drive car, over N seeds (noise and driver). Cars: the scenario's own (whose body is
+the one vehicle.yaml's defaults describe), and two others that vehicle.yaml does not describe,
+so that the physical terms are tried with a wrong body: "low-heavy" (centre of gravity 0.45 m,
+1800 kg, softer and more load-sensitive tyres, less rolling resistance, more roll stiffness at
+the front) and "high-light" (0.65 m, 1300 kg, stiffer tyres with another slip curve, more rolling
+resistance, the centre of gravity further forward, another brake split). Per drive, car and model:
+mean |error| of both rear circumferences against truth.yaml, the share inside 3 reported sigma,
+the mean sigma, the held-out median drift of 60 s windows (`odocal validate`, usable results
+only) and the mean time of a calibration. The same on 3 laps of Hockenheim, with `auto` and the
+issue's targets, is a section of docs/results.md (`make paper`). Run from the repository after
+`make build`:
 
     ODOCAL_CLI=build/apps/odocal/odocal /usr/bin/python3 bench/tyre_model_bench.py \\
-        --seeds 10 --work /tmp/tyre-bench
+        --seeds 10 --work /tmp/tyre-bench [--drives circuit urban] [--cars scenario low-heavy]
+        [--models none extended physical] [--json FILE]
 """
 import argparse
 import json
 import os
-import re
 import shutil
 import subprocess
 import time
 
+import yaml
+
 CLI = os.environ.get("ODOCAL_CLI", "build/apps/odocal/odocal")
 SOURCE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# The simulator's dynamics keys (config/scenarios/circuit.yaml) of the cars vehicle.yaml does not
+# describe.
+CARS = {
+    "scenario": {},
+    "low-heavy": {"cg_height_m": 0.45, "mass_kg": 1800, "slip_stiffness_per_load": 14,
+                  "radius_load_sensitivity_m_per_n": 6e-7, "rolling_resistance": 0.009,
+                  "front_roll_share": 0.6},
+    "high-light": {"cg_height_m": 0.65, "mass_kg": 1300, "slip_stiffness_per_load": 28,
+                   "radius_load_sensitivity_m_per_n": 2.5e-7, "rolling_resistance": 0.015,
+                   "front_roll_share": 0.5, "longitudinal_shape": 1.4, "brake_front_share": 0.7,
+                   "cg_to_front_axle_m": 1.1},
+}
 
 
 def run(*args):
     return subprocess.run([CLI, *args], capture_output=True, text=True)
 
 
-def scenario_file(work, drivetrain):
-    text = open(os.path.join(SOURCE, "config", "scenarios", "circuit.yaml")).read()
-    text, count = re.subn(r"drivetrain: rear", f"drivetrain: {drivetrain}", text)
-    assert count == 1, "config/scenarios/circuit.yaml no longer states its drivetrain"
-    path = os.path.join(work, f"circuit-{drivetrain}.yaml")
-    open(path, "w").write(text)
+def scenario_file(work, drive, drivetrain, car):
+    scenario = yaml.safe_load(open(os.path.join(SOURCE, "config", "scenarios", f"{drive}.yaml")))
+    dynamics = scenario.setdefault("vehicle", {}).setdefault("dynamics", {})
+    dynamics["drivetrain"] = drivetrain
+    dynamics.update(CARS[car])
+    path = os.path.join(work, f"{drive}-{drivetrain}-{car}.yaml")
+    yaml.safe_dump(scenario, open(path, "w"))
     return path
 
 
@@ -67,37 +91,60 @@ def calibrate(log, model, work):
     return row
 
 
+def mean(values):
+    return sum(values) / len(values) if values else float("nan")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--seeds", type=int, default=10)
     parser.add_argument("--work", default="/tmp/tyre-bench")
+    parser.add_argument("--drives", nargs="*", default=["circuit", "urban"])
+    parser.add_argument("--drivetrains", nargs="*", default=["rear", "front"])
+    parser.add_argument("--cars", nargs="*", default=list(CARS))
+    parser.add_argument("--models", nargs="*", default=["none", "extended", "physical"])
+    parser.add_argument("--json", help="write every row here")
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
-    print(f"{'drivetrain':<11}{'model':<10}{'mean |err| mm':>14}{'in 3 sigma':>12}"
-          f"{'mean sigma mm':>15}{'drift %':>9}{'nominal %':>11}{'time s':>8}")
-    for drivetrain in ("rear", "front"):
-        scenario = scenario_file(args.work, drivetrain)
-        logs = []
-        for seed in range(1, args.seeds + 1):
-            log = os.path.join(args.work, f"{drivetrain}-{seed}")
-            made = run("simulate", "--scenario", scenario, "--out", log, "--seed", str(seed),
-                       "--trajectory-seed", str(seed))
-            assert made.returncode == 0, made.stderr
-            logs.append(log)
-        for model in ("none", "extended"):
-            rows = [calibrate(log, model, args.work) for log in logs]
-            errors = [abs(e) for r in rows for e in r["errors"]]
-            inside = [abs(e) <= 3 * s for r in rows for e, s in zip(r["errors"], r["sigmas"])
-                      if s is not None]
-            sigmas = [s for r in rows for s in r["sigmas"] if s is not None]
-            drifts = [r["drift_percent"] for r in rows if "drift_percent" in r]
-            nominal = [r["nominal_drift_percent"] for r in rows if "nominal_drift_percent" in r]
-            mean = lambda xs: sum(xs) / len(xs) if xs else float("nan")
-            print(f"{drivetrain:<11}{model:<10}{1e3 * mean(errors):>14.2f}"
-                  f"{f'{sum(inside)}/{len(inside)}':>12}{1e3 * mean(sigmas):>15.2f}"
-                  f"{mean(drifts):>9.3f}{mean(nominal):>11.3f}"
-                  f"{mean([r['seconds'] for r in rows]):>8.2f}", flush=True)
+    print("| drive | drivetrain | car | tyre_model | mean \\|error\\| [mm] | inside 3σ | mean σ [mm] "
+          "| held-out drift [%] (nominal) | time [s] |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    table = []
+    for drive in args.drives:
+        for drivetrain in args.drivetrains:
+            for car in args.cars:
+                scenario = scenario_file(args.work, drive, drivetrain, car)
+                logs = []
+                for seed in range(1, args.seeds + 1):
+                    log = os.path.join(args.work, f"{drive}-{drivetrain}-{car}-{seed}")
+                    made = run("simulate", "--scenario", scenario, "--out", log, "--seed",
+                               str(seed), "--trajectory-seed", str(seed))
+                    assert made.returncode == 0, made.stderr
+                    logs.append(log)
+                for model in args.models:
+                    rows = [calibrate(log, model, args.work) for log in logs]
+                    errors = [abs(e) for r in rows for e in r["errors"]]
+                    inside = [abs(e) <= 3 * s for r in rows
+                              for e, s in zip(r["errors"], r["sigmas"]) if s is not None]
+                    sigmas = [s for r in rows for s in r["sigmas"] if s is not None]
+                    drifts = [r["drift_percent"] for r in rows if "drift_percent" in r]
+                    nominal = [r["nominal_drift_percent"] for r in rows
+                               if "nominal_drift_percent" in r]
+                    figures = {"drive": drive, "drivetrain": drivetrain, "car": car,
+                               "model": model, "mean_abs_error_mm": 1e3 * mean(errors),
+                               "inside_3_sigma": sum(inside), "scored": len(inside),
+                               "mean_sigma_mm": 1e3 * mean(sigmas),
+                               "drift_percent": mean(drifts), "nominal_percent": mean(nominal),
+                               "seconds": mean([r["seconds"] for r in rows]), "runs": rows}
+                    table.append(figures)
+                    print(f"| {drive} | {drivetrain} | {car} | {model} | "
+                          f"{figures['mean_abs_error_mm']:.2f} | {sum(inside)}/{len(inside)} | "
+                          f"{figures['mean_sigma_mm']:.2f} | {figures['drift_percent']:.3f} "
+                          f"({figures['nominal_percent']:.3f}) | {figures['seconds']:.2f} |",
+                          flush=True)
+    if args.json:
+        json.dump(table, open(args.json, "w"), indent=1)
 
 
 if __name__ == "__main__":

@@ -67,8 +67,8 @@ void bind_calibration(py::module_& m) {
           [](const CalibrationResult& r) {
             const TyreModel& t = r.core().tyre_model;
             py::dict out;
-            for (const TyreCoefficientName& name : kTyreCoefficientNames)
-              out[name.key] = t.*(name.member);
+            for (const TyreCoefficient& coefficient : kTyreCoefficients)
+              out[coefficient.key] = t.*(coefficient.member);
             return out;
           },
           "the condition-dependent circumference's coefficients (all zero: plain model; "

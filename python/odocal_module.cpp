@@ -70,8 +70,8 @@ TyreModel tyre_of(const Log& log, const py::object& params) {
   if (!py::hasattr(params, "tyre_model")) return {};
   const auto k = params.attr("tyre_model").cast<py::dict>();
   TyreModel model;
-  for (const TyreCoefficientName& name : kTyreCoefficientNames)
-    model.*(name.member) = k[name.key].cast<double>();
+  for (const TyreCoefficient& coefficient : kTyreCoefficients)
+    model.*(coefficient.member) = k[coefficient.key].cast<double>();
   return model;
 }
 

@@ -8,9 +8,12 @@ For each window of W wheel samples the ground distance of each rear wheel comes 
 revolutions from wheels.csv (written with `--wheel-output rad`), so that its factor is
 f_i = distance_i / (revolutions_i c_i) with c_i the static circumference of truth.yaml. The driving
 state (speed, a_x, a_y, yaw rate) is the truth's too. The factors of both wheels are fitted by
-least squares with an intercept to the regressors of the plain 5-coefficient model and of the
-7-coefficient model (the slip's load terms added); printed: what is left of the factors'
-differential (heading) and mean (distance) parts.
+least squares with an intercept (per wheel: the error of the circumference at rest that the
+terms' extrapolation leaves) to the regression terms of tyre_model: extended (the first five,
+and all seven) and to the three physical terms of tyre_model: physical, these computed with
+vehicle.yaml's default body from the accelerometer's specific force in imu.csv (window means)
+as the batch computes them; printed: what is left of the factors' differential (heading) and
+mean (distance) parts, and the intercepts in millimetres.
 
     odocal simulate --out LOG --track TRACK.csv --laps 3 --wheel-output rad [--scenario S.yaml]
     /usr/bin/python3 tools/tyre_truth_regression.py LOG [--window 25]
@@ -37,6 +40,44 @@ def regressors(side, a_x, a_y, v, w, load_terms):
     if load_terms:
         columns += [drive * turn, brake * turn]
     return np.column_stack(columns)
+
+
+# vehicle.yaml's default body (odocal/model/tyre_model.hpp's VehicleBody).
+BODY = {"wheelbase_m": 2.7, "rear_axle_load_share": 0.463, "cg_height_m": 0.55,
+        "rear_roll_share": 0.45, "mass_kg": 1500.0, "drag_area_m2": 0.7,
+        "rolling_resistance": 0.012}
+
+
+def physical_regressors(side, f_x, f_y, v, w, track):
+    """The physical terms: minus the wheel's load change, minus its force over load (driving,
+    braking), per vehicle mass, as tyre_regressors computes them."""
+    g, b = 9.81, BODY
+    length, h = b["wheelbase_m"], b["cg_height_m"]
+    static = 0.5 * g * b["rear_axle_load_share"]
+    load_change = h * f_x / (2 * length) - side * b["rear_roll_share"] * h * f_y / track
+    tractive = (f_x + 0.6 * b["drag_area_m2"] / b["mass_kg"] * v * v
+                + b["rolling_resistance"] * g + (1 - b["rear_axle_load_share"]) * length * w * w)
+    force_over_load = 0.5 * tractive / np.maximum(static + load_change, 0.1 * static)
+    return np.column_stack([np.ones_like(v), -load_change,
+                            np.where(tractive > 0, -force_over_load, 0.0),
+                            np.where(tractive < 0, -force_over_load, 0.0)])
+
+
+def report(name, A_left, A_right, f_left, f_right, circumferences, names):
+    A = np.vstack([A_left, A_right])
+    b = np.concatenate([f_left, f_right])
+    # One intercept per wheel: each circumference's own error.
+    count = len(f_left)
+    A = np.column_stack([np.r_[np.ones(count), np.zeros(count)],
+                         np.r_[np.zeros(count), np.ones(count)], A[:, 1:]])
+    coefficients, *_ = np.linalg.lstsq(A, b, rcond=None)
+    residual = b - A @ coefficients
+    left, right = residual[:count], residual[count:]
+    print(f"{name}: left of the differential {np.std(left - right):.3e}, of the mean part "
+          f"{np.std(0.5 * (left + right)):.3e}; circumference at rest "
+          f"{1e3 * coefficients[0] * circumferences[0]:+.2f} / "
+          f"{1e3 * coefficients[1] * circumferences[1]:+.2f} mm")
+    print("   " + ", ".join(f"{n} {value:.3g}" for n, value in zip(names, coefficients[2:])))
 
 
 def main():
@@ -67,18 +108,21 @@ def main():
     state = (a_x[moving], a_y[moving], v[moving], w[moving])
     print(f"{moving.sum()} windows of {args.window} samples; factor differential RMS "
           f"{np.std(f_left - f_right):.3e}, mean part RMS {np.std(0.5 * (f_left + f_right)):.3e}")
+    names = "k_speed k_lateral k_drive k_brake k_turn k_drive_lateral k_brake_lateral".split()
     for load_terms in (False, True):
-        A = np.vstack([regressors(1.0, *state, load_terms), regressors(-1.0, *state, load_terms)])
-        b = np.concatenate([f_left, f_right])
-        coefficients, *_ = np.linalg.lstsq(A, b, rcond=None)
-        residual = b - A @ coefficients
-        left, right = residual[:moving.sum()], residual[moving.sum():]
-        names = "k_speed k_lateral k_drive k_brake k_turn".split()
-        names += ["k_drive_lateral", "k_brake_lateral"] if load_terms else []
-        print(f"{len(names)} coefficients: left of the differential {np.std(left - right):.3e}, "
-              f"of the mean part {np.std(0.5 * (left + right)):.3e}; intercept "
-              f"{coefficients[0]:+.2e}")
-        print("   " + ", ".join(f"{name} {value:.3g}" for name, value in zip(names, coefficients[1:])))
+        count = 7 if load_terms else 5
+        report(f"{count} regression terms", regressors(1.0, *state, load_terms),
+               regressors(-1.0, *state, load_terms), f_left, f_right, (c_left, c_right),
+               names[:count])
+    imu = np.loadtxt(f"{args.log}/imu.csv", delimiter=",", skiprows=1)
+    if imu.shape[0] != truth.shape[0] or not np.allclose(imu[:, 0], truth[:, 0]):
+        raise SystemExit("imu.csv must share truth.csv's times")
+    window_mean = lambda column: np.array([imu[a:b, column].mean() for a, b in zip(k, n)])
+    f_x, f_y, gyro = window_mean(1), window_mean(2), window_mean(3)
+    physical = (f_x[moving], f_y[moving], v[moving], gyro[moving], track)
+    report("3 physical terms", physical_regressors(1.0, *physical),
+           physical_regressors(-1.0, *physical), f_left, f_right, (c_left, c_right),
+           ["k_load", "k_drive_slip", "k_brake_slip"])
 
 
 if __name__ == "__main__":

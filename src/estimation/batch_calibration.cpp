@@ -72,7 +72,11 @@ class BatchProblem {
  public:
   BatchProblem(const Log& log, const ReferenceTrajectory& reference, const BatchOptions& options,
                const CalibrationOptions& common, const OdometryParams& nominal)
-      : log_(log), sensors_(common.reference), batch_(options), nominal_(nominal) {
+      : log_(log),
+        sensors_(common.reference),
+        batch_(options),
+        body_(log.vehicle.body_geometry()),
+        nominal_(nominal) {
     keyframes_ =
         keyframe_samples(log.wheels, reference.first_wheel_index, batch_.keyframe_interval_s);
     if (keyframes_.size() < 3) {
@@ -91,7 +95,7 @@ class BatchProblem {
       states_ = driving_states(log, nominal);
       TyreModel::Vector sum = TyreModel::Vector::Zero();
       for (std::size_t k = reference.first_wheel_index; k < states_.size(); ++k) {
-        sum += tyre_regressors(states_[k], RearWheel::kLeft).cwiseAbs2();
+        sum += tyre_regressors(states_[k], RearWheel::kLeft, body_).cwiseAbs2();
       }
       const double n = static_cast<double>(states_.size() - reference.first_wheel_index);
       regressor_rms_ = (sum / std::max(n, 1.0)).cwiseSqrt();
@@ -117,14 +121,18 @@ class BatchProblem {
 
   bool gauss_markov() const { return gm_sigma_m_ > 0.0; }
 
-  // Fits the extended tyre model from here on (true), or the plain one with its coefficients
-  // back at zero.
-  void set_tyre_model(bool extended) {
-    tyre_extended_ = extended;
+  // Fits the tyre model's terms of one family from here on (none: the plain model), every
+  // coefficient back at zero.
+  void set_tyre_terms(std::optional<TyreTerms> terms) {
+    tyre_terms_ = terms;
     tyre_held_sigma_.fill(0.0);
-    if (!extended) std::fill(params_.begin() + kTyreOffset, params_.end(), 0.0);
+    std::fill(params_.begin() + kTyreOffset, params_.end(), 0.0);
   }
-  bool tyre_extended() const { return tyre_extended_; }
+  bool tyre_fitted() const { return tyre_terms_.has_value(); }
+  // Whether coefficient j belongs to the family being fitted (held at zero or free).
+  bool tyre_in_fit(int j) const {
+    return tyre_terms_ && kTyreCoefficients[static_cast<std::size_t>(j)].terms == *tyre_terms_;
+  }
   // Holds coefficient j at zero from the next solve on: the log cannot identify it (its sigma
   // when it was free is kept for the report).
   void hold_tyre_coefficient(int j, double sigma) {
@@ -149,9 +157,8 @@ class BatchProblem {
   bool tyre_held(int j) const { return tyre_held_sigma_[static_cast<std::size_t>(j)] > 0.0; }
   double tyre_held_sigma(int j) const { return tyre_held_sigma_[static_cast<std::size_t>(j)]; }
   int free_tyre_coefficients() const {
-    if (!tyre_extended_) return 0;
     int free = 0;
-    for (int j = 0; j < TyreModel::kCoefficients; ++j) free += tyre_held(j) ? 0 : 1;
+    for (int j = 0; j < TyreModel::kCoefficients; ++j) free += tyre_in_fit(j) && !tyre_held(j);
     return free;
   }
   TyreModel tyre_model() const {
@@ -254,13 +261,13 @@ class BatchProblem {
     folded_headings_ = 0;
     const OdometryParams at{params_[0], params_[1], params_[2]};
     problem_.reset();  // its blocks point to the folds replaced here; freed before the states
-    if (remeasure_states && tyre_extended_ && !tyre_model().plain()) {
+    if (remeasure_states && tyre_fitted() && !tyre_model().plain()) {
       // The driving state from the wheels as the current model counts them: a slipping wheel
       // overstates speed and acceleration by its slip.
-      states_ =
-          driving_states(log_.wheels, log_.imu ? &*log_.imu : nullptr, at, states_, tyre_model());
+      states_ = driving_states(log_.wheels, log_.imu ? &*log_.imu : nullptr, at, states_,
+                               tyre_model(), body_);
     }
-    const TyreConditions tyre{states_, tyre_model()};
+    const TyreConditions tyre{states_, tyre_model(), body_};
     const WheelNoise noise{std::max(noise_.slip_sigma_m_per_sqrt_m, slip_floor),
                            noise_.quantisation_sigma_rev,
                            std::max(noise_.lateral_sigma_m_per_sqrt_m, slip_floor)};
@@ -275,7 +282,7 @@ class BatchProblem {
     for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
       const PreintegratedSegment segment =
           preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise,
-                       tyre_extended_ ? &tyre : nullptr);
+                       tyre_fitted() ? &tyre : nullptr);
       const std::size_t last = segment.delta.size() - 1;
       ends_.push_back({segment.delta[last], params_jacobian(segment, last),
                        segment.J_delta_first_increment[last], segment.J_end_last_increment,
@@ -460,12 +467,12 @@ class BatchProblem {
   void for_each_fix(Visit&& visit) const {
     const OdometryParams at{params_lin_(0), params_lin_(1), params_lin_(2)};
     const TyreConditions tyre{states_,
-                              TyreModel::from(params_lin_.tail<TyreModel::kCoefficients>())};
+                              TyreModel::from(params_lin_.tail<TyreModel::kCoefficients>()), body_};
     std::size_t next = 0;
     for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
       if (gap_segment(i)) continue;
       const PreintegratedSegment seg = preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1],
-                                                    at, noise_, tyre_extended_ ? &tyre : nullptr);
+                                                    at, noise_, tyre_fitted() ? &tyre : nullptr);
       visit_fixes(i, seg, log_.gnss.t_s, next, [&](std::size_t j, const MotionAt& motion) {
         visit(j, i, whitened_fix(j, i, motion));
       });
@@ -479,7 +486,7 @@ class BatchProblem {
   bool param_free(int p) const {
     if (p < 2) return true;
     if (p == 2) return batch_.estimate_track_width;
-    return tyre_extended_ && !tyre_held(p - kTyreOffset);
+    return tyre_in_fit(p - kTyreOffset) && !tyre_held(p - kTyreOffset);
   }
 
   // The entries of a GNSS fold's phi (batch_folded_residuals.hpp) that this solve can move.
@@ -714,6 +721,7 @@ class BatchProblem {
   const Log& log_;
   const ReferenceOptions& sensors_;  // the sensors' noise
   const BatchOptions& batch_;
+  VehicleBody body_;  // what the tyre model's physical terms are computed with
   std::vector<std::size_t> keyframes_;
   // What the odometry residual needs of each segment's pre-integration (the per-sample motion
   // lives only while its fixes are folded).
@@ -742,7 +750,7 @@ class BatchProblem {
   std::vector<DrivingState> states_;  // per wheel sample; empty without tyre model and limits
   std::vector<std::uint8_t> rough_segment_;  // per interval: outside the gentle limits
   TyreModel::Vector regressor_rms_ = TyreModel::Vector::Zero();
-  bool tyre_extended_ = false;
+  std::optional<TyreTerms> tyre_terms_;  // the family of tyre coefficients fitted (none: plain)
   std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};  // > 0: held at zero
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
@@ -813,13 +821,13 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
     const double sigma_j =
         batch.tyre_held(j) ? batch.tyre_held_sigma(j) : sigma(u.params(p_index, p_index));
     summary.parameters.push_back(
-        {tyre_parameter_name(kTyreCoefficientNames[static_cast<std::size_t>(j)]), p[p_index],
-         sigma_j, batch.tyre_extended(), true, ""});
+        {tyre_parameter_name(kTyreCoefficients[static_cast<std::size_t>(j)]), p[p_index], sigma_j,
+         batch.tyre_in_fit(j), true, ""});
     const double rms = batch.regressor_rms()(j);
     thresholds.push_back(rms > 0.0 ? b.max_sigma_tyre_effect / rms : 0.0);
     block_used.push_back(rms > 0.0);
   }
-  if (batch.tyre_extended()) summary.tyre_model = batch.tyre_model();
+  if (batch.tyre_fitted()) summary.tyre_model = batch.tyre_model();
   std::vector<std::string> problems;
   for (std::size_t i = 0; i < summary.parameters.size(); ++i) {
     EstimatedParameter& parameter = summary.parameters[i];
@@ -857,10 +865,10 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                                 ? "every requested parameter identified"
                                 : fmt::format("not identified: {}", fmt::join(problems, "; "));
   summary.model_adequacy = assess_model_adequacy(batch.odometry_errors());
-  if (!summary.model_adequacy.explains && !batch.tyre_extended()) {
+  if (!summary.model_adequacy.explains && !batch.tyre_fitted()) {
     summary.model_adequacy.verdict +=
-        "; batch tyre_model: extended fits a circumference that follows the driving state "
-        "(docs/tyre-model.md)";
+        "; batch tyre_model: physical (or extended) fits a circumference that follows the driving "
+        "state (docs/tyre-model.md)";
   }
   summary.solver_report = solver.BriefReport();
   summary.gentle_limits = b.gentle_max_speed_mps > 0.0 || b.gentle_max_longitudinal_mps2 > 0.0 ||
@@ -1026,18 +1034,19 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
 // held at zero the others would bend to stand in for it.
 constexpr double kTyreSignificance = 3.0;
 
-// The extended model with what this log can identify: a coefficient whose sigma exceeds its
-// threshold is held at zero and the rest solved again (a drive at one speed cannot tell k_speed
-// from the circumference; left free, it would carry the circumference's sigma away with it).
-ceres::Solver::Summary solve_extended(BatchProblem& batch, const BatchOptions& options,
-                                      BatchSummary& summary) {
-  batch.set_tyre_model(true);
+// A tyre model's family of terms with what this log can identify: a coefficient whose sigma
+// exceeds its threshold is held at zero and the rest solved again (a drive at one speed cannot
+// tell k_speed from the circumference; left free, it would carry the circumference's sigma away
+// with it).
+ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions& options,
+                                        BatchSummary& summary, TyreTerms terms) {
+  batch.set_tyre_terms(terms);
   ceres::Solver::Summary solver = solve_relinearised(batch, options, summary);
   for (int round = 0; round < TyreModel::kCoefficients && solver.IsSolutionUsable(); ++round) {
     const auto uncertainty = batch.uncertainty();
     bool held = false;
     for (int j = 0; j < TyreModel::kCoefficients; ++j) {
-      if (batch.tyre_held(j)) continue;
+      if (!batch.tyre_in_fit(j) || batch.tyre_held(j)) continue;
       const double variance =
           uncertainty ? uncertainty->params(kTyreOffset + j, kTyreOffset + j) : -1.0;
       const double sigma = variance >= 0.0 ? std::sqrt(variance) : 0.0;
@@ -1073,13 +1082,15 @@ struct FitFacts {
 
 using FitDecision = std::function<bool(const FitFacts&)>;
 
-// Fits one model; unless `finish` (when given) declines the solved fit, adapts its GNSS noise
-// and fills the summary. Returns whether it did. The problem is freed on return.
+// Fits one model (the plain one, or a tyre model's family of terms); unless `finish` (when
+// given) declines the solved fit, adapts its GNSS noise and fills the summary. Returns whether it
+// did. The problem is freed on return.
 bool fit_model(const CalibrationRun& run, const BatchOptions& options,
-               const CalibrationOptions& common, bool extended, BatchSummary& summary,
-               const FitDecision& finish = {}) {
+               const CalibrationOptions& common, std::optional<TyreTerms> terms,
+               BatchSummary& summary, const FitDecision& finish = {}) {
   BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
-  ceres::Solver::Summary solver = extended ? solve_extended(batch, options, summary)
+  const bool extended = terms.has_value();
+  ceres::Solver::Summary solver = extended ? solve_tyre_model(batch, options, summary, *terms)
                                            : solve_relinearised(batch, options, summary);
   if (finish) {
     FitFacts facts;
@@ -1112,7 +1123,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
               BatchSummary& summary) {
   const BatchSummary unfitted = summary;
   FitFacts plain;
-  fit_model(run, options, common, false, summary, [&](const FitFacts& facts) {
+  fit_model(run, options, common, std::nullopt, summary, [&](const FitFacts& facts) {
     plain = facts;
     return true;
   });
@@ -1148,7 +1159,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
     return better && selection.identified;
   };
   BatchSummary candidate = unfitted;
-  const bool chosen = fit_model(run, options, common, true, candidate, choose);
+  const bool chosen = fit_model(run, options, common, TyreTerms::kRegression, candidate, choose);
   selection.other_solves = candidate.solves;
   if (chosen) {
     // A lower BIC is not enough: with a million samples it prefers effects of a few 1e-5 (an
@@ -1177,7 +1188,11 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   if (options.tyre_model == TyreModelChoice::kAuto) {
     finished = fit_auto(run, options, common, summary);
   } else {
-    fit_model(run, options, common, options.tyre_model == TyreModelChoice::kExtended, summary);
+    const std::optional<TyreTerms> terms =
+        options.tyre_model == TyreModelChoice::kExtended   ? std::optional(TyreTerms::kRegression)
+        : options.tyre_model == TyreModelChoice::kPhysical ? std::optional(TyreTerms::kPhysical)
+                                                           : std::nullopt;
+    fit_model(run, options, common, terms, summary);
   }
   if (!finished) run.finish(summary);
   return summary;

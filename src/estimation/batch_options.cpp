@@ -49,7 +49,8 @@ OptionTable<BatchOptions> BatchOptions::fields() {
        &O::gentle_max_lateral_mps2},
       {"tyre_model", "", 0, 0,
        "rolling circumference: plain (none), following speed, lateral and longitudinal "
-       "acceleration (extended), or chosen by BIC (auto)",
+       "acceleration (extended), the wheel's load and slip from vehicle.yaml's body and the "
+       "accelerometer (physical), or chosen by BIC (auto)",
        enum_member<&O::tyre_model>()},
       {"max_solver_iterations", "1", 1.0, 1e5, "Ceres iterations per solve",
        &O::max_solver_iterations},

@@ -29,14 +29,14 @@ struct Cumulative {
   }
 };
 
-// The gyro's turn integrated on its own time base (trapezoids); empty without samples.
-Cumulative gyro_turn(const ImuStream& imu) {
-  Cumulative turn{imu.t_s, std::vector<double>(imu.size(), 0.0)};
+// One IMU channel integrated on the IMU's time base (trapezoids); empty without samples.
+Cumulative integrated(const ImuStream& imu, const std::vector<double>& channel) {
+  Cumulative sum{imu.t_s, std::vector<double>(imu.size(), 0.0)};
   for (std::size_t k = 1; k < imu.size(); ++k) {
-    turn.value[k] = turn.value[k - 1] +
-                    0.5 * (imu.wz_radps[k] + imu.wz_radps[k - 1]) * (imu.t_s[k] - imu.t_s[k - 1]);
+    sum.value[k] =
+        sum.value[k - 1] + 0.5 * (channel[k] + channel[k - 1]) * (imu.t_s[k] - imu.t_s[k - 1]);
   }
-  return turn;
+  return sum;
 }
 
 // The states from the wheels' increments, each scaled by `factor(k, wheel)`.
@@ -57,17 +57,24 @@ std::vector<DrivingState> states_of(const WheelStream& wheels, const ImuStream* 
   }
   const bool gyro = imu != nullptr && imu->size() >= 2;
   static const ImuStream kNoImu;
-  const Cumulative gyro_path = gyro_turn(gyro ? *imu : kNoImu);
+  const ImuStream& measured = gyro ? *imu : kNoImu;
+  const Cumulative gyro_path = integrated(measured, measured.wz_radps);
+  const Cumulative forward = integrated(measured, measured.ax_mps2);
+  const Cumulative left = integrated(measured, measured.ay_mps2);
   const double h = half_window_s;
   for (std::size_t k = 0; k < wheels.size(); ++k) {
     const double t = wheels.t_s[k];
     DrivingState& state = states[k];
-    state.speed_mps = path.rate(t, h);
-    const bool gyro_here = gyro && t >= imu->t_s.front() && t <= imu->t_s.back();
-    const double yaw_rate = gyro_here ? gyro_path.rate(t, h) : wheel_turn.rate(t, h);
-    state.yaw_rate_radps = yaw_rate;
-    state.lateral_mps2 = state.speed_mps * yaw_rate;
-    state.longitudinal_mps2 = (path.rate(t + h, h) - path.rate(t - h, h)) / (2.0 * h);
+    const double speed = path.rate(t, h);
+    const bool imu_here = gyro && t >= imu->t_s.front() && t <= imu->t_s.back();
+    const double yaw_rate = imu_here ? gyro_path.rate(t, h) : wheel_turn.rate(t, h);
+    const double longitudinal = (path.rate(t + h, h) - path.rate(t - h, h)) / (2.0 * h);
+    state.speed_mps = static_cast<float>(speed);
+    state.yaw_rate_radps = static_cast<float>(yaw_rate);
+    state.lateral_mps2 = static_cast<float>(speed * yaw_rate);
+    state.longitudinal_mps2 = static_cast<float>(longitudinal);
+    state.specific_force_x_mps2 = static_cast<float>(imu_here ? forward.rate(t, h) : longitudinal);
+    state.specific_force_y_mps2 = static_cast<float>(imu_here ? left.rate(t, h) : speed * yaw_rate);
   }
   return states;
 }
@@ -87,24 +94,25 @@ std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStr
 std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
                                          const OdometryParams& params,
                                          const std::vector<DrivingState>& counted_at,
-                                         const TyreModel& model, double half_window_s) {
+                                         const TyreModel& model, const VehicleBody& body,
+                                         double half_window_s) {
   if (counted_at.size() != wheels.size())
     throw std::invalid_argument("driving_states: one driving state per wheel sample");
   if (model.plain()) return driving_states(wheels, imu, params, half_window_s);
   return states_of(wheels, imu, params, half_window_s, [&](std::size_t k, RearWheel wheel) {
-    return tyre_factor(model, counted_at[k], wheel);
+    return tyre_factor(model, counted_at[k], wheel, body);
   });
 }
 
 WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<DrivingState>& states,
-                            const TyreModel& model) {
+                            const TyreModel& model, const VehicleBody& body) {
   if (states.size() != wheels.size())
     throw std::invalid_argument("with_tyre_model: one driving state per wheel sample");
   WheelStream corrected = wheels;
   if (model.plain()) return corrected;
   for (std::size_t k = 0; k < wheels.size(); ++k) {
-    corrected.rev_rl[k] *= tyre_factor(model, states[k], RearWheel::kLeft);
-    corrected.rev_rr[k] *= tyre_factor(model, states[k], RearWheel::kRight);
+    corrected.rev_rl[k] *= tyre_factor(model, states[k], RearWheel::kLeft, body);
+    corrected.rev_rr[k] *= tyre_factor(model, states[k], RearWheel::kRight, body);
   }
   return corrected;
 }
@@ -113,9 +121,10 @@ WheelStream with_tyre_model(const Log& log, const OdometryParams& params, const 
   if (model.plain()) return log.wheels;
   // Once more with the state the corrected wheels show, as the batch measures it.
   const ImuStream* imu = log.imu ? &*log.imu : nullptr;
+  const VehicleBody body = log.vehicle.body_geometry();
   const std::vector<DrivingState> counted =
-      driving_states(log.wheels, imu, params, driving_states(log, params), model);
-  return with_tyre_model(log.wheels, counted, model);
+      driving_states(log.wheels, imu, params, driving_states(log, params), model, body);
+  return with_tyre_model(log.wheels, counted, model, body);
 }
 
 }  // namespace odocal

@@ -18,6 +18,7 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
   segment.J_delta_first_increment.resize(count, OdometryJacobianWheels::Zero());
   using TyreJacobian = Eigen::Matrix<double, 3, TyreModel::kCoefficients>;
   if (tyre != nullptr) segment.J_delta_tyre.resize(count, TyreJacobian::Zero());
+  const TyreModel::Vector k = tyre != nullptr ? tyre->model.coefficients() : TyreModel::Vector();
   OdometryJacobianPose F;
   OdometryJacobianWheels G = OdometryJacobianWheels::Zero();
   OdometryJacobianWheels G_previous = OdometryJacobianWheels::Zero();
@@ -31,10 +32,10 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
     TyreModel::Vector regressors_rl, regressors_rr;
     if (tyre != nullptr) {
       const DrivingState& state = tyre->states[first_sample + s];
-      regressors_rl = tyre_regressors(state, RearWheel::kLeft);
-      regressors_rr = tyre_regressors(state, RearWheel::kRight);
-      n.rev_rl *= 1.0 + tyre->model.coefficients().dot(regressors_rl);
-      n.rev_rr *= 1.0 + tyre->model.coefficients().dot(regressors_rr);
+      regressors_rl = tyre_regressors(state, RearWheel::kLeft, tyre->body);
+      regressors_rr = tyre_regressors(state, RearWheel::kRight, tyre->body);
+      n.rev_rl *= 1.0 + k.dot(regressors_rl);
+      n.rev_rr *= 1.0 + k.dot(regressors_rr);
     }
     segment.delta[s] =
         predict_pose(segment.delta[s - 1], n, params, 0.0,

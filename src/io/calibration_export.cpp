@@ -45,9 +45,9 @@ void write_ros2_diff_drive_parameters(const VehicleConfig& nominal,
         "    right_wheel_radius_multiplier: {:.8f}\n",
         tyre.plain() ? ""
                      : "# The calibration's tyre model (a circumference that follows speed, "
-                       "acceleration and\n# turns: vehicle.yaml tyre_model) cannot be carried by "
-                       "diff_drive_controller,\n# whose radii are constant: these are the "
-                       "circumferences at rest.\n",
+                       "acceleration, turns\n# and load: vehicle.yaml tyre_model) cannot be "
+                       "carried by diff_drive_controller,\n# whose radii are constant: these are "
+                       "the circumferences at rest.\n",
         nominal.track_width_m, radius_m, calibrated.track_width_m / nominal.track_width_m,
         calibrated.circumference_rl_m / nominal_circumference,
         calibrated.circumference_rr_m / nominal_circumference);
@@ -96,17 +96,16 @@ TyreModel read_calibrated_tyre_model(const std::filesystem::path& json_path) {
   for (const nlohmann::json& p : json["parameters"]) {
     if (!p.is_object() || !p.contains("name") || !p["name"].is_string()) continue;
     if (!p.value("estimated", false)) continue;
-    for (int j = 0; j < TyreModel::kCoefficients; ++j) {
-      const TyreCoefficientName& field = kTyreCoefficientNames[static_cast<std::size_t>(j)];
-      const std::string name = tyre_parameter_name(field);
+    for (const TyreCoefficient& coefficient : kTyreCoefficients) {
+      const std::string name = tyre_parameter_name(coefficient);
       if (p["name"] != name) continue;
-      const PhysicalRange range = kTyreCoefficientRanges[j];
+      const PhysicalRange range{coefficient.min, coefficient.max};
       if (!p.contains("value") || !p["value"].is_number() ||
           !range.contains(p["value"].get<double>())) {
         throw InputError({json_path.string(), 0, "parameters." + name},
                          fmt::format("expected a number from {} to {}", range.min, range.max));
       }
-      model.*(field.member) = p["value"].get<double>();
+      model.*(coefficient.member) = p["value"].get<double>();
     }
   }
   return model;

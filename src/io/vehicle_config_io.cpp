@@ -17,6 +17,25 @@
 #include "vehicle_config_parse.hpp"
 
 namespace odocal {
+namespace {
+
+// vehicle.yaml's body: what the tyre model's physical terms need beyond wheelbase and track.
+struct BodyField {
+  const char* key;
+  double VehicleBody::*member;
+  PhysicalRange range;
+};
+constexpr std::array<BodyField, 6> kBodyFields{{
+    {"rear_axle_load_share", &VehicleBody::rear_axle_load_share, kAxleLoadShare},
+    {"cg_height_m", &VehicleBody::cg_height_m, kCgHeightM},
+    {"rear_roll_share", &VehicleBody::rear_roll_share, kRollShare},
+    {"mass_kg", &VehicleBody::mass_kg, kVehicleMassKg},
+    {"drag_area_m2", &VehicleBody::drag_area_m2, kDragAreaM2},
+    {"rolling_resistance", &VehicleBody::rolling_resistance, kRollingResistance},
+}};
+
+}  // namespace
+
 namespace detail {
 
 VehicleConfig parse_vehicle_config(YamlMap& map) {
@@ -64,13 +83,15 @@ VehicleConfig parse_vehicle_config(YamlMap& map) {
   optional("circumference_fr_m", vehicle.circumference_fr_m, kCircumferenceM);
   if (auto tyre = map.map("tyre_model")) {
     TyreModel model;
-    for (int j = 0; j < TyreModel::kCoefficients; ++j) {
-      const TyreCoefficientName& name = kTyreCoefficientNames[static_cast<std::size_t>(j)];
-      tyre->read(name.key, model.*(name.member), kTyreCoefficientRanges[j].min,
-                 kTyreCoefficientRanges[j].max);
-    }
+    for (const TyreCoefficient& coefficient : kTyreCoefficients)
+      tyre->read(coefficient.key, model.*(coefficient.member), coefficient.min, coefficient.max);
     tyre->reject_unknown_keys();
     vehicle.tyre_model = model;
+  }
+  if (auto body = map.map("body")) {
+    for (const BodyField& field : kBodyFields)
+      body->read(field.key, vehicle.body.*(field.member), field.range.min, field.range.max);
+    body->reject_unknown_keys();
   }
   map.reject_unknown_keys();
   return vehicle;
@@ -106,8 +127,20 @@ void write_vehicle_config(const VehicleConfig& vehicle, const std::filesystem::p
   if (vehicle.tyre_model) {
     const TyreModel& m = *vehicle.tyre_model;
     out << YAML::Key << "tyre_model" << YAML::Value << YAML::BeginMap;
-    for (const TyreCoefficientName& name : kTyreCoefficientNames)
-      out << YAML::Key << name.key << YAML::Value << m.*(name.member);
+    for (const TyreCoefficient& coefficient : kTyreCoefficients) {
+      if (m.*(coefficient.member) != 0.0)
+        out << YAML::Key << coefficient.key << YAML::Value << m.*(coefficient.member);
+    }
+    out << YAML::EndMap;
+  }
+  const VehicleBody defaults;
+  const bool stated_body = std::any_of(kBodyFields.begin(), kBodyFields.end(), [&](const auto& f) {
+    return vehicle.body.*(f.member) != defaults.*(f.member);
+  });
+  if (stated_body) {
+    out << YAML::Key << "body" << YAML::Value << YAML::BeginMap;
+    for (const BodyField& field : kBodyFields)
+      out << YAML::Key << field.key << YAML::Value << vehicle.body.*(field.member);
     out << YAML::EndMap;
   }
   out << YAML::EndMap;

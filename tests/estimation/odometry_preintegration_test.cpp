@@ -54,13 +54,18 @@ TEST(OdometryPreintegration, ParameterJacobianMatchesNumerical) {
 }
 
 // Driving states that exercise every regressor: speed, both turn directions, acceleration
-// and braking.
+// and braking (the accelerometer's specific force a little off the wheels' acceleration).
 std::vector<DrivingState> varied_states(std::size_t count) {
   std::vector<DrivingState> states(count);
   for (std::size_t k = 0; k < count; ++k) {
     const double phase = 0.1 * static_cast<double>(k);
-    states[k] = {10.0 + 3.0 * std::sin(phase), 4.0 * std::cos(0.7 * phase),
-                 2.5 * std::sin(1.3 * phase), 0.4 * std::cos(0.7 * phase)};
+    const double a_x = 2.5 * std::sin(1.3 * phase), a_y = 4.0 * std::cos(0.7 * phase);
+    states[k].speed_mps = static_cast<float>(10.0 + 3.0 * std::sin(phase));
+    states[k].lateral_mps2 = static_cast<float>(a_y);
+    states[k].longitudinal_mps2 = static_cast<float>(a_x);
+    states[k].yaw_rate_radps = static_cast<float>(0.4 * std::cos(0.7 * phase));
+    states[k].specific_force_x_mps2 = static_cast<float>(a_x + 0.3);
+    states[k].specific_force_y_mps2 = static_cast<float>(0.9 * a_y);
   }
   return states;
 }
@@ -69,14 +74,16 @@ TEST(OdometryPreintegration, TyreJacobianMatchesNumerical) {
   const WheelStream wheels = curving_wheels();
   const std::vector<DrivingState> states = varied_states(wheels.size());
   const OdometryParams params{1.95, 1.96, 1.6};
-  const TyreModel::Vector at = TyreModel{2e-6, 3e-4, 8e-3, -2e-3, -5e-3, 6e-4, 4e-4}.coefficients();
-  const TyreConditions tyre{states, TyreModel::from(at)};
+  const TyreModel::Vector at =
+      TyreModel{2e-6, 3e-4, 8e-3, -2e-3, -5e-3, 6e-4, 4e-4, 2e-3, 0.05, 0.02}.coefficients();
+  const VehicleBody body;
+  const TyreConditions tyre{states, TyreModel::from(at), body};
   const PreintegratedSegment segment = preintegrate(wheels, 0, 120, params, {}, &tyre);
   ASSERT_EQ(segment.J_delta_tyre.size(), segment.delta.size());
   for (const std::size_t s : {1ul, 37ul, 120ul}) {
     const auto numerical = testing::numerical_jacobian<3, TyreModel::kCoefficients>(
         [&](const TyreModel::Vector& k) -> Eigen::Vector3d {
-          const TyreConditions moved{states, TyreModel::from(k)};
+          const TyreConditions moved{states, TyreModel::from(k), body};
           return preintegrate(wheels, 0, 120, params, {}, &moved).delta[s];
         },
         at);
@@ -91,7 +98,7 @@ TEST(OdometryPreintegration, TyreModelIsDeadReckoningOfTheScaledIncrements) {
   const std::vector<DrivingState> states = varied_states(wheels.size());
   const OdometryParams params{1.95, 1.96, 1.6};
   const TyreModel model{2e-6, 3e-4, 8e-3, 2e-3, -5e-3};
-  const TyreConditions tyre{states, model};
+  const TyreConditions tyre{states, model, VehicleBody{}};
   const PreintegratedSegment segment = preintegrate(wheels, 0, 120, params, {}, &tyre);
   // Independent: each increment scaled by hand with the formula of tyre_model.hpp.
   WheelStream scaled = wheels;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <numbers>
 
 #include "../support/temp_log_dir.hpp"
@@ -349,6 +350,9 @@ TEST(VehicleConfigIo, WriteThenReadRoundTrips) {
   vehicle.wheelbase_m = 2.7;
   vehicle.vehicle_id = "van-07.b";
   vehicle.tyre_model = TyreModel{-3e-6, 5e-5, 0.0114, 0.0067, -0.04};
+  vehicle.tyre_model->k_drive_slip = 0.05;
+  vehicle.body.cg_height_m = 0.62;
+  vehicle.body.rear_axle_load_share = 0.41;
   write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
   const VehicleConfig read = read_vehicle_config(dir.file("vehicle.yaml"));
   EXPECT_EQ(read.vehicle_id, "van-07.b");
@@ -360,6 +364,36 @@ TEST(VehicleConfigIo, WriteThenReadRoundTrips) {
   EXPECT_FALSE(read.circumference_fl_m.has_value());
   ASSERT_TRUE(read.tyre_model.has_value());
   EXPECT_EQ(read.tyre_model->coefficients(), vehicle.tyre_model->coefficients());
+  EXPECT_EQ(read.body.cg_height_m, 0.62);
+  EXPECT_EQ(read.body.rear_axle_load_share, 0.41);
+  EXPECT_EQ(read.body.mass_kg, VehicleBody{}.mass_kg);
+  // The physical terms' geometry: the vehicle's own wheelbase and rear track.
+  EXPECT_EQ(read.body_geometry().wheelbase_m, 2.7);
+  EXPECT_EQ(read.body_geometry().track_width_m, 1.58);
+}
+
+TEST(VehicleConfigIo, NoBodyKeyWhenTheBodyIsTheDefault) {
+  const TempLogDir dir;
+  VehicleConfig vehicle;
+  vehicle.track_width_m = 1.6;
+  vehicle.circumference_rl_m = vehicle.circumference_rr_m = 2.0;
+  write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
+  std::ifstream written(dir.file("vehicle.yaml"));
+  const std::string text((std::istreambuf_iterator<char>(written)), {});
+  EXPECT_NE(text.find("track_width_m"), std::string::npos);
+  EXPECT_EQ(text.find("body"), std::string::npos);
+}
+
+TEST(LogReaderRejects, BodyBeyondAnyVehicle) {
+  const TempLogDir dir;
+  dir.write("vehicle.yaml",
+            "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\n"
+            "body:\n  mass_kg: 1400\n  rear_axle_load_share: 1.4\n");
+  expect_input_error(dir, {"vehicle.yaml", 6, "body.rear_axle_load_share", "0.95"});
+  dir.write("vehicle.yaml",
+            "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\n"
+            "body:\n  wheelbase_m: 2.7\n");
+  expect_input_error(dir, {"vehicle.yaml", 5, "body.wheelbase_m", "unknown"});
 }
 
 TEST(LogReaderRejects, TyreCoefficientBeyondAnyTyre) {

@@ -65,17 +65,25 @@ def test_options_are_the_config_files_keys(worn):
 
 def test_tyre_model_options_and_coefficients(worn):
     plain = odocal.calibrate(worn, method="batch")
-    assert set(plain.tyre_model) == {"k_speed_s2pm2", "k_lateral_s2pm", "k_drive_s2pm",
-                                     "k_brake_s2pm", "k_turn_s2prad2", "k_drive_lateral_s4pm2",
-                                     "k_brake_lateral_s4pm2"}
+    regression = {"k_speed_s2pm2", "k_lateral_s2pm", "k_drive_s2pm", "k_brake_s2pm",
+                  "k_turn_s2prad2", "k_drive_lateral_s4pm2", "k_brake_lateral_s4pm2"}
+    physical = {"k_load_s2pm", "k_drive_slip", "k_brake_slip"}
+    assert set(plain.tyre_model) == regression | physical
     assert all(k == 0.0 for k in plain.tyre_model.values())
-    extended = odocal.calibrate(worn, method="batch", options={"batch": {"tyre_model": "extended"}})
-    tyre = {p["name"]: p for p in extended.to_dict()["parameters"] if p["name"].startswith("tyre_")}
-    assert len(tyre) == 7 and all(p["estimated"] for p in tyre.values())
-    # Every coefficient is either identified or held at zero with a verdict that says why.
-    for name, p in tyre.items():
-        assert p["identified"] or (p["value"] == 0.0 and "held at zero" in p["verdict"]), p
-        assert extended.tyre_model["k" + name[4:]] == p["value"]
+    for choice, family in (("extended", regression), ("physical", physical)):
+        fitted = odocal.calibrate(worn, method="batch", options={"batch": {"tyre_model": choice}})
+        tyre = {p["name"]: p for p in fitted.to_dict()["parameters"] if p["name"].startswith("tyre_")}
+        assert len(tyre) == 10
+        assert {"k" + name[4:] for name, p in tyre.items() if p["estimated"]} == family
+        for name, p in tyre.items():
+            assert fitted.tyre_model["k" + name[4:]] == p["value"]
+            if not p["estimated"]:
+                assert p["value"] == 0.0
+        if choice == "extended":
+            # Every coefficient is either identified or held at zero with a verdict that says why.
+            for p in tyre.values():
+                assert not p["estimated"] or p["identified"] or (
+                    p["value"] == 0.0 and "held at zero" in p["verdict"]), p
     with pytest.raises(odocal.InputError, match="tyre_model"):
         odocal.calibrate(worn, method="batch", options={"batch": {"tyre_model": "magic"}})
 

@@ -31,9 +31,19 @@ struct VehicleConfig {
   // A calibrated condition-dependent circumference (docs/tyre-model.md); dead reckoning applies
   // it. Absent: the plain model.
   std::optional<TyreModel> tyre_model;
+  // What the tyre model's physical terms are computed with (vehicle.yaml's body); its wheelbase
+  // and track are wheelbase_m (when given) and track_width_m, set by body_geometry().
+  VehicleBody body;
 
   OdometryParams nominal_params() const {
     return {circumference_rl_m, circumference_rr_m, track_width_m};
+  }
+  // The body with this vehicle's wheelbase (when stated) and rear track.
+  VehicleBody body_geometry() const {
+    VehicleBody geometry = body;
+    geometry.wheelbase_m = wheelbase_m.value_or(body.wheelbase_m);
+    geometry.track_width_m = track_width_m;
+    return geometry;
   }
 };
 

@@ -16,17 +16,14 @@ inline constexpr PhysicalRange kWheelbaseM{0.05, 20.0};
 inline constexpr PhysicalRange kCircumferenceM{0.05, 10.0};  // wheel radius 8 mm to 1.6 m
 inline constexpr PhysicalRange kTyrePressure{0.3, 1.5};      // relative to the nominal inflation
 inline constexpr PhysicalRange kTyreWearMm{-50.0, 50.0};     // radius lost (negative: grown)
-// Tyre model coefficients (odocal/model/tyre_model.hpp), far beyond any tyre (docs/tyre-model.md
-// has the physical sizes), so that a typo cannot turn a circumference negative when driving.
-inline constexpr PhysicalRange kTyreSpeedCoefficient{-1e-4, 1e-4};    // per (m/s)^2
-inline constexpr PhysicalRange kTyreLateralCoefficient{-0.01, 0.01};  // per m/s^2
-inline constexpr PhysicalRange kTyreSlipCoefficient{-0.1, 0.1};       // per m/s^2 (drive, brake)
-inline constexpr PhysicalRange kTyreTurnCoefficient{-1.0, 1.0};       // per (rad/s)^2
-inline constexpr PhysicalRange kTyreSlipLoadCoefficient{-0.1, 0.1};   // per (m/s^2)^2
-// In the order of TyreModel's coefficients.
-inline constexpr PhysicalRange kTyreCoefficientRanges[] = {
-    kTyreSpeedCoefficient, kTyreLateralCoefficient,  kTyreSlipCoefficient,    kTyreSlipCoefficient,
-    kTyreTurnCoefficient,  kTyreSlipLoadCoefficient, kTyreSlipLoadCoefficient};
+// Tyre model coefficients: odocal/model/tyre_model.hpp's kTyreCoefficients has their bounds.
+// The vehicle's body (tyre_model.hpp's VehicleBody): any road vehicle.
+inline constexpr PhysicalRange kAxleLoadShare{0.05, 0.95};
+inline constexpr PhysicalRange kCgHeightM{0.05, 5.0};
+inline constexpr PhysicalRange kRollShare{0.0, 1.0};
+inline constexpr PhysicalRange kVehicleMassKg{1.0, 1e5};
+inline constexpr PhysicalRange kDragAreaM2{0.0, 50.0};
+inline constexpr PhysicalRange kRollingResistance{0.0, 0.2};
 
 // Log streams. Times are seconds on any clock up to 300 years from its zero (Unix time fits);
 // positions are local metres (UTM northings fit); accelerations reach 50 g and rates 50 rad/s

@@ -19,15 +19,17 @@ struct EnumNames<RobustLoss> {
                                                                {RobustLoss::kCauchy, "cauchy"}}};
 };
 
-// Which rolling circumference the batch fits: the plain model of eqs. 1-2, the extended one
-// whose circumference follows the driving state (odocal/model/tyre_model.hpp), or whichever the
-// log supports by the Bayesian information criterion.
-enum class TyreModelChoice { kNone, kExtended, kAuto };
+// Which rolling circumference the batch fits (odocal/model/tyre_model.hpp): the plain model of
+// eqs. 1-2, one that follows the driving state through regression terms (extended) or through
+// the wheel's load and slip from the vehicle's body and the accelerometer (physical), or whichever
+// the log supports by the Bayesian information criterion.
+enum class TyreModelChoice { kNone, kExtended, kPhysical, kAuto };
 template <>
 struct EnumNames<TyreModelChoice> {
-  static constexpr std::array<EnumName<TyreModelChoice>, 3> kTable{
+  static constexpr std::array<EnumName<TyreModelChoice>, 4> kTable{
       {{TyreModelChoice::kNone, "none"},
        {TyreModelChoice::kExtended, "extended"},
+       {TyreModelChoice::kPhysical, "physical"},
        {TyreModelChoice::kAuto, "auto"}}};
 };
 

@@ -27,15 +27,17 @@ std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStr
 std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
                                          const OdometryParams& params,
                                          const std::vector<DrivingState>& counted_at,
-                                         const TyreModel& model, double half_window_s = 0.25);
+                                         const TyreModel& model, const VehicleBody& body,
+                                         double half_window_s = 0.25);
 
 // The wheel stream whose rear increments carry the model's factors (c_i,eff / c_i): dead
 // reckoning it with c_i is dead reckoning with the condition-dependent circumference.
 WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<DrivingState>& states,
-                            const TyreModel& model);
+                            const TyreModel& model, const VehicleBody& body);
 
-// Both at once, for a log and a calibrated vehicle: the states at the given parameters, from the
-// wheels as the model counts them (a slipping wheel overstates its speed by its slip).
+// Both at once, for a log and a calibrated vehicle (the log's body): the states at the given
+// parameters, from the wheels as the model counts them (a slipping wheel overstates its speed by
+// its slip).
 WheelStream with_tyre_model(const Log& log, const OdometryParams& params, const TyreModel& model);
 
 }  // namespace odocal

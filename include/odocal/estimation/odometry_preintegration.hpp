@@ -42,11 +42,12 @@ struct PreintegratedSegment {
   std::vector<Eigen::Matrix<double, 3, TyreModel::kCoefficients>> J_delta_tyre;
 };
 
-// The tyre model to integrate with: its coefficients and the driving state at every wheel
-// sample of the stream (driving_state.hpp).
+// The tyre model to integrate with: its coefficients, the driving state at every wheel sample of
+// the stream (driving_state.hpp) and the body its physical terms need.
 struct TyreConditions {
   const std::vector<DrivingState>& states;
   TyreModel model;
+  VehicleBody body;
 };
 
 // Requires first_sample < last_sample < wheels.size(). With a tyre model, every increment

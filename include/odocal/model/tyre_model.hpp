@@ -1,20 +1,44 @@
 #pragma once
 // The condition-dependent rolling circumference of a rear wheel (docs/tyre-model.md has the
-// derivation): what one revolution carries the wheel over the ground depends on the driving
+// derivations): what one revolution carries the wheel over the ground depends on the driving
 // state through a few coefficients,
-//   c_i,eff = c_i (1 + k_speed v^2 + s_i k_lateral a_y - k_drive a_x+ - k_brake a_x-
-//                  + k_turn w^2 - s_i k_drive_lateral a_x+ a_y - s_i k_brake_lateral a_x- a_y),
-// a_x+ = max(a_x, 0), a_x- = min(a_x, 0), s_RL = +1, s_RR = -1. v is the speed, a_y the lateral
-// acceleration (left positive, v times the yaw rate w), a_x the longitudinal acceleration. c_i is
-// the circumference at rest and at zero acceleration (what the plain model of eqs. 1-2 calls
-// c_i). Applied as a factor on the wheel's revolution increment, so that eqs. 1-2 hold unchanged
-// with c_i.
+//   c_i,eff = c_i (1 + sum_j k_j x_j,i(state)),
+// applied as a factor on the wheel's revolution increment, so that eqs. 1-2 hold unchanged with
+// c_i, the circumference at rest (what the plain model of eqs. 1-2 calls c_i). Two families of
+// regressors x_j,i, for rear wheel i (s_RL = +1, s_RR = -1):
+// - the regression terms (tyre_model: extended), from the speed v, the lateral acceleration a_y
+//   (left positive), the longitudinal acceleration a_x (a_x+ = max(a_x, 0), a_x- = min(a_x, 0))
+//   and the yaw rate w:
+//     v^2, s_i a_y, -a_x+, -a_x-, w^2, -s_i a_x+ a_y, -s_i a_x- a_y;
+// - the physical terms (tyre_model: physical), from the vehicle's body (VehicleBody) and the
+//   accelerometer: the wheel's vertical load change and the force over load that its slip
+//   follows,
+//     -dz_i, -rho_i (driving), -rho_i (braking),
+//   with dz_i = h a_x / (2 L) - s_i r h a_y / t (per vehicle mass), the tractive acceleration
+//   T = a_x + rho_air c_d A v^2 / (2 m) + f_r g + b w^2 and rho_i = (T / 2) / (z_0 + dz_i), z_0 the
+//   wheel's static load per vehicle mass.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <string>
 
 namespace odocal {
+
+// What the physical terms need of the vehicle: vehicle.yaml's `body`, with its wheelbase_m and
+// track_width_m. The defaults are a mid-size passenger car.
+struct VehicleBody {
+  double wheelbase_m = 2.7;             // L
+  double track_width_m = 1.6;           // t: the rear track (vehicle.yaml's track_width_m)
+  double rear_axle_load_share = 0.463;  // of the weight at rest (b = (1 - share) L from the CG)
+  double cg_height_m = 0.55;            // h
+  double rear_roll_share = 0.45;        // r: the rear axle's share of the lateral load transfer
+  double mass_kg = 1500.0;              // m
+  double drag_area_m2 = 0.7;            // c_d A
+  double rolling_resistance = 0.012;    // f_r
+};
+
+enum class TyreTerms { kRegression, kPhysical };
 
 // Coefficients, all zero for the plain model.
 struct TyreModel {
@@ -27,60 +51,108 @@ struct TyreModel {
   // (slip is force over load, and a turn moves load to the outer wheel).
   double k_drive_lateral_s4pm2 = 0.0;
   double k_brake_lateral_s4pm2 = 0.0;
+  // Physical: the radius's load sensitivity (radius per newton times mass over radius), per
+  // m/s^2 of load change per vehicle mass; and the slip per unit of force over load, driving and
+  // braking (the rear axle's share of the force over the tyre's slip stiffness).
+  double k_load_s2pm = 0.0;
+  double k_drive_slip = 0.0;
+  double k_brake_slip = 0.0;
 
-  static constexpr int kCoefficients = 7;
+  static constexpr int kCoefficients = 10;
   using Vector = Eigen::Matrix<double, kCoefficients, 1>;
-  Vector coefficients() const {
-    return (Vector() << k_speed_s2pm2, k_lateral_s2pm, k_drive_s2pm, k_brake_s2pm, k_turn_s2prad2,
-            k_drive_lateral_s4pm2, k_brake_lateral_s4pm2)
-        .finished();
-  }
-  static TyreModel from(const Vector& k) { return {k(0), k(1), k(2), k(3), k(4), k(5), k(6)}; }
+  Vector coefficients() const;
+  static TyreModel from(const Vector& k);
   bool plain() const { return coefficients().isZero(0.0); }
 };
 
-// Every coefficient's key (vehicle.yaml's tyre_model, Python's tyre_model dict; a calibration's
-// parameter is "tyre_" and the key without its "k_"), in the order of TyreModel::Vector.
-struct TyreCoefficientName {
+// Every coefficient: its key (vehicle.yaml's tyre_model, Python's tyre_model dict; a
+// calibration's parameter is "tyre_" and the key without its "k_"), its bounds (far beyond any
+// tyre, so that a typo cannot turn a circumference negative when driving) and its family; in the
+// order of TyreModel::Vector.
+struct TyreCoefficient {
   const char* key;
   double TyreModel::*member;
+  double min, max;
+  TyreTerms terms;
 };
-inline constexpr std::array<TyreCoefficientName, TyreModel::kCoefficients> kTyreCoefficientNames{
-    {{"k_speed_s2pm2", &TyreModel::k_speed_s2pm2},
-     {"k_lateral_s2pm", &TyreModel::k_lateral_s2pm},
-     {"k_drive_s2pm", &TyreModel::k_drive_s2pm},
-     {"k_brake_s2pm", &TyreModel::k_brake_s2pm},
-     {"k_turn_s2prad2", &TyreModel::k_turn_s2prad2},
-     {"k_drive_lateral_s4pm2", &TyreModel::k_drive_lateral_s4pm2},
-     {"k_brake_lateral_s4pm2", &TyreModel::k_brake_lateral_s4pm2}}};
-inline std::string tyre_parameter_name(const TyreCoefficientName& name) {
-  return std::string("tyre_") + (name.key + 2);
+inline constexpr std::array<TyreCoefficient, TyreModel::kCoefficients> kTyreCoefficients{{
+    {"k_speed_s2pm2", &TyreModel::k_speed_s2pm2, -1e-4, 1e-4, TyreTerms::kRegression},
+    {"k_lateral_s2pm", &TyreModel::k_lateral_s2pm, -0.01, 0.01, TyreTerms::kRegression},
+    {"k_drive_s2pm", &TyreModel::k_drive_s2pm, -0.1, 0.1, TyreTerms::kRegression},
+    {"k_brake_s2pm", &TyreModel::k_brake_s2pm, -0.1, 0.1, TyreTerms::kRegression},
+    {"k_turn_s2prad2", &TyreModel::k_turn_s2prad2, -1.0, 1.0, TyreTerms::kRegression},
+    {"k_drive_lateral_s4pm2", &TyreModel::k_drive_lateral_s4pm2, -0.1, 0.1, TyreTerms::kRegression},
+    {"k_brake_lateral_s4pm2", &TyreModel::k_brake_lateral_s4pm2, -0.1, 0.1, TyreTerms::kRegression},
+    {"k_load_s2pm", &TyreModel::k_load_s2pm, -0.05, 0.05, TyreTerms::kPhysical},
+    {"k_drive_slip", &TyreModel::k_drive_slip, -1.0, 1.0, TyreTerms::kPhysical},
+    {"k_brake_slip", &TyreModel::k_brake_slip, -1.0, 1.0, TyreTerms::kPhysical},
+}};
+inline std::string tyre_parameter_name(const TyreCoefficient& coefficient) {
+  return std::string("tyre_") + (coefficient.key + 2);
 }
 
-// The driving state at one wheel sample (tyre_model's regressors come from it).
+inline TyreModel::Vector TyreModel::coefficients() const {
+  Vector k;
+  for (std::size_t j = 0; j < kTyreCoefficients.size(); ++j)
+    k(static_cast<int>(j)) = this->*(kTyreCoefficients[j].member);
+  return k;
+}
+inline TyreModel TyreModel::from(const Vector& k) {
+  TyreModel model;
+  for (std::size_t j = 0; j < kTyreCoefficients.size(); ++j)
+    model.*(kTyreCoefficients[j].member) = k(static_cast<int>(j));
+  return model;
+}
+
+// The driving state at one wheel sample (tyre_model's regressors come from it), in single
+// precision: a long drive keeps one per wheel sample, and a state measured over half a second is
+// not known to seven digits.
 struct DrivingState {
-  double speed_mps{};
-  double lateral_mps2{};       // a_y, left positive
-  double longitudinal_mps2{};  // a_x, forward positive
-  double yaw_rate_radps{};     // w, counter-clockwise positive
+  float speed_mps{};
+  float lateral_mps2{};       // a_y = v w, left positive
+  float longitudinal_mps2{};  // a_x from the wheels' speed, forward positive
+  float yaw_rate_radps{};     // w, counter-clockwise positive
+  // The accelerometer's specific force, forward and left (what the tyres push the body with; on
+  // a slope it includes gravity's share, as the drive force does); without an accelerometer the
+  // wheels' a_x and v w.
+  float specific_force_x_mps2{};
+  float specific_force_y_mps2{};
 };
 
 enum class RearWheel { kLeft, kRight };
 
 // d(c_i,eff / c_i) / d coefficients at this state, for one wheel.
-inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wheel) {
+inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wheel,
+                                         const VehicleBody& body) {
+  constexpr double kGravity = 9.81, kAirDensity = 1.2;
   const double side = wheel == RearWheel::kLeft ? 1.0 : -1.0;
+  const double v = state.speed_mps, w = state.yaw_rate_radps;
   const double a_x = state.longitudinal_mps2;
   const double drive = a_x > 0.0 ? -a_x : 0.0, brake = a_x < 0.0 ? -a_x : 0.0;
   const double turn = side * state.lateral_mps2;
-  return (TyreModel::Vector() << state.speed_mps * state.speed_mps, turn, drive, brake,
-          state.yaw_rate_radps * state.yaw_rate_radps, drive * turn, brake * turn)
+  // Physical: per vehicle mass, the wheel's load and the force its axle transmits.
+  const double f_x = state.specific_force_x_mps2, f_y = state.specific_force_y_mps2;
+  const double L = body.wheelbase_m, h = body.cg_height_m;
+  const double static_load = 0.5 * kGravity * body.rear_axle_load_share;
+  const double load_change =
+      h * f_x / (2.0 * L) - side * body.rear_roll_share * h * f_y / body.track_width_m;
+  const double tractive = f_x + 0.5 * kAirDensity * body.drag_area_m2 / body.mass_kg * v * v +
+                          body.rolling_resistance * kGravity +
+                          (1.0 - body.rear_axle_load_share) * L * w * w;
+  // A wheel that the turn lifts keeps a tenth of its load: beyond, nothing is linear anyway.
+  const double force_over_load =
+      0.5 * tractive / std::max(static_load + load_change, 0.1 * static_load);
+  const double driving = tractive > 0.0 ? -force_over_load : 0.0;
+  const double braking = tractive < 0.0 ? -force_over_load : 0.0;
+  return (TyreModel::Vector() << v * v, turn, drive, brake, w * w, drive * turn, brake * turn,
+          -load_change, driving, braking)
       .finished();
 }
 
 // c_i,eff / c_i.
-inline double tyre_factor(const TyreModel& model, const DrivingState& state, RearWheel wheel) {
-  return 1.0 + model.coefficients().dot(tyre_regressors(state, wheel));
+inline double tyre_factor(const TyreModel& model, const DrivingState& state, RearWheel wheel,
+                          const VehicleBody& body) {
+  return 1.0 + model.coefficients().dot(tyre_regressors(state, wheel, body));
 }
 
 }  // namespace odocal
