@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "batch_covariance.hpp"
+#include "batch_fit.hpp"
 #include "batch_folded_residuals.hpp"
 #include "batch_observability.hpp"
 #include "batch_residuals.hpp"
@@ -932,10 +933,6 @@ ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOption
   return solver;
 }
 
-// Tyre coefficients that change the circumference by more than this at the log's typical driving
-// state (RMS of each regressor) are not a tyre: they are the model explaining something else.
-constexpr double kMaxTyreEffect = 0.03;
-
 double max_tyre_effect(const BatchProblem& batch) {
   return batch.tyre_model()
       .coefficients()
@@ -1019,7 +1016,7 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
            common.max_relative_change;
   };
   const bool tyre_ran_away =
-      max_tyre_effect(batch) > kMaxTyreEffect && first_tyre_effect <= kMaxTyreEffect;
+      max_tyre_effect(batch) > batch::kMaxTyreEffect && first_tyre_effect <= batch::kMaxTyreEffect;
   if ((implausible(batch.params()[0], batch.params()[1]) &&
        !implausible(first_params[0], first_params[1])) ||
       tyre_ran_away) {
@@ -1069,31 +1066,17 @@ ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions&
   return solver;
 }
 
-// What tyre_model auto compares of a solved fit, taken before the GNSS noise adaptation (the
-// information criteria are comparable only under one noise model).
-struct FitFacts {
-  bool usable = false;
-  double bic = std::numeric_limits<double>::infinity();
-  int free_tyre_coefficients = 0;
-  double max_tyre_effect = 0.0;
-  std::array<double, 2> circumference{};
-  double max_circumference_variance = std::numeric_limits<double>::infinity();
-};
+}  // namespace
 
-using FitDecision = std::function<bool(const FitFacts&)>;
-
-// Fits one model (the plain one, or a tyre model's family of terms); unless `finish` (when
-// given) declines the solved fit, adapts its GNSS noise and fills the summary. Returns whether it
-// did. The problem is freed on return.
-bool fit_model(const CalibrationRun& run, const BatchOptions& options,
-               const CalibrationOptions& common, std::optional<TyreTerms> terms,
-               BatchSummary& summary, const FitDecision& finish = {}) {
+bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
+                      const CalibrationOptions& common, std::optional<TyreTerms> terms,
+                      BatchSummary& summary, const FitDecision& finish) {
   BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
   const bool extended = terms.has_value();
   ceres::Solver::Summary solver = extended ? solve_tyre_model(batch, options, summary, *terms)
                                            : solve_relinearised(batch, options, summary);
   if (finish) {
-    FitFacts facts;
+    batch::FitFacts facts;
     if (solver.IsSolutionUsable()) {
       facts.usable = true;
       facts.bic = batch.information_criterion(solver);
@@ -1102,7 +1085,7 @@ bool fit_model(const CalibrationRun& run, const BatchOptions& options,
       facts.circumference = {batch.params()[0], batch.params()[1]};
       if (extended) {
         if (const auto u = batch.uncertainty())
-          facts.max_circumference_variance = std::max(u->params(0, 0), u->params(1, 1));
+          facts.circumference_variance = {u->params(0, 0), u->params(1, 1)};
       }
     }
     if (!finish(facts)) return false;
@@ -1112,73 +1095,6 @@ bool fit_model(const CalibrationRun& run, const BatchOptions& options,
   return true;
 }
 
-// tyre_model auto: the plain fit stands unless the extended model, fitted on its own exactly as
-// `extended` fits it, has the lower information criterion and is a tyre. The result is one of
-// the two fits, never a blend (so that a log the plain model explains calibrates as under none).
-// The plain fit is finished and its problem freed before the extended one is built, so that one
-// problem lives at a time (a long log's memory is its problem's), and the extended fit is
-// finished (noise adaptation, covariance) only when it is chosen. Returns whether it has scored
-// the result (run.finish) itself.
-bool fit_auto(CalibrationRun& run, const BatchOptions& options, const CalibrationOptions& common,
-              BatchSummary& summary) {
-  const BatchSummary unfitted = summary;
-  FitFacts plain;
-  fit_model(run, options, common, std::nullopt, summary, [&](const FitFacts& facts) {
-    plain = facts;
-    return true;
-  });
-  if (!plain.usable) return false;
-  TyreModelSelection selection;
-  selection.compared = true;
-  selection.plain_bic = plain.bic;
-  const double max_change = common.max_relative_change;
-  const double max_variance = options.max_sigma_circumference_m * options.max_sigma_circumference_m;
-  // As reported: after the plain fit's noise adaptation.
-  const bool plain_identified = summary.parameters.size() >= 2 &&
-                                summary.parameters[0].identified &&
-                                summary.parameters[1].identified;
-  const auto choose = [&](const FitFacts& extended) {
-    selection.extended_bic = extended.bic;
-    if (!extended.usable) return false;
-    // Coefficients that change the circumference by percents at the log's typical driving state
-    // are not a tyre: they are the model explaining something else (a skid-steer robot, a wrong
-    // input), and so is a circumference that leaves the plausible band.
-    selection.physical =
-        extended.max_tyre_effect <= kMaxTyreEffect &&
-        std::abs(extended.circumference[0] / summary.nominal.circumference_rl_m - 1.0) <=
-            max_change &&
-        std::abs(extended.circumference[1] / summary.nominal.circumference_rr_m - 1.0) <=
-            max_change;
-    // An extended fit whose circumferences at rest the log cannot pin down (an extrapolation
-    // from the states driven: on a 10-hour drive the BIC prefers effects of a few 1e-4) is no
-    // better answer than an identified plain one.
-    const bool better = selection.physical && extended.free_tyre_coefficients > 0 &&
-                        selection.extended_bic < selection.plain_bic;
-    selection.identified =
-        !better || extended.max_circumference_variance <= max_variance || !plain_identified;
-    return better && selection.identified;
-  };
-  BatchSummary candidate = unfitted;
-  const bool chosen = fit_model(run, options, common, TyreTerms::kRegression, candidate, choose);
-  selection.other_solves = candidate.solves;
-  if (chosen) {
-    // A lower BIC is not enough: with a million samples it prefers effects of a few 1e-5 (an
-    // ideal 100-lap circuit), whose whole-log dead reckoning can be worse than the nominal
-    // parameters' where the plain fit's is not. Scored both ways, the usable one stands.
-    run.finish(candidate);
-    run.finish(summary);
-    selection.dead_reckons = candidate.usable() || !summary.usable();
-    if (selection.dead_reckons) {
-      selection.other_solves = summary.solves;
-      summary = std::move(candidate);
-    }
-  }
-  summary.tyre_selection = selection;
-  return chosen;
-}
-
-}  // namespace
-
 BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
                              const CalibrationOptions& common) {
   require_valid("batch", options.validate());
@@ -1186,13 +1102,13 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
   bool finished = false;  // auto scores its candidates itself
   if (options.tyre_model == TyreModelChoice::kAuto) {
-    finished = fit_auto(run, options, common, summary);
+    finished = batch::fit_auto(run, options, common, summary);
   } else {
     const std::optional<TyreTerms> terms =
         options.tyre_model == TyreModelChoice::kExtended   ? std::optional(TyreTerms::kRegression)
         : options.tyre_model == TyreModelChoice::kPhysical ? std::optional(TyreTerms::kPhysical)
                                                            : std::nullopt;
-    fit_model(run, options, common, terms, summary);
+    batch::fit_model(run, options, common, terms, summary);
   }
   if (!finished) run.finish(summary);
   return summary;
@@ -1242,22 +1158,7 @@ std::string BatchSummary::full_report() const {
         100.0 * static_cast<double>(odometry_intervals_used) /
             static_cast<double>(std::max<std::size_t>(odometry_intervals, 1)));
   }
-  if (tyre_selection.compared) {
-    const bool extended = !tyre_model.plain();
-    text += fmt::format(
-        "{:<13}{}: BIC {:.1f} with the condition-dependent circumference, {:.1f} without\n",
-        "tyre model",
-        extended                     ? "extended (the log supports it)"
-        : !tyre_selection.physical   ? "plain (the extended fit was not physical: coefficients of "
-                                       "percents, or a circumference out of its band)"
-        : !tyre_selection.identified ? "plain (the extended fit's circumferences at rest were not "
-                                       "identified, the plain fit's were)"
-        : !tyre_selection.dead_reckons
-            ? "plain (with the extended fit the log dead-reckons worse than with the nominal "
-              "parameters, with the plain fit it does not)"
-            : "plain (the log does not need more)",
-        tyre_selection.extended_bic, tyre_selection.plain_bic);
-  }
+  text += batch::tyre_selection_report(*this);
   if (!model_adequacy.verdict.empty())
     text += fmt::format("{:<13}{}\n", "model", model_adequacy.verdict);
   text += fmt::format("{:<13}{}\n", "solver", usable() ? message : solver_report);

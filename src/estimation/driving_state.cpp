@@ -29,6 +29,13 @@ struct Cumulative {
   }
 };
 
+// Single precision for storage; clamped, since a float cannot hold what a corrupt log's
+// increments over a vanishing time step could make of a speed.
+float stored(double value) {
+  constexpr double kLargest = 1e30;
+  return static_cast<float>(std::clamp(value, -kLargest, kLargest));
+}
+
 // One IMU channel integrated on the IMU's time base (trapezoids); empty without samples.
 Cumulative integrated(const ImuStream& imu, const std::vector<double>& channel) {
   Cumulative sum{imu.t_s, std::vector<double>(imu.size(), 0.0)};
@@ -69,12 +76,12 @@ std::vector<DrivingState> states_of(const WheelStream& wheels, const ImuStream* 
     const bool imu_here = gyro && t >= imu->t_s.front() && t <= imu->t_s.back();
     const double yaw_rate = imu_here ? gyro_path.rate(t, h) : wheel_turn.rate(t, h);
     const double longitudinal = (path.rate(t + h, h) - path.rate(t - h, h)) / (2.0 * h);
-    state.speed_mps = static_cast<float>(speed);
-    state.yaw_rate_radps = static_cast<float>(yaw_rate);
-    state.lateral_mps2 = static_cast<float>(speed * yaw_rate);
-    state.longitudinal_mps2 = static_cast<float>(longitudinal);
-    state.specific_force_x_mps2 = static_cast<float>(imu_here ? forward.rate(t, h) : longitudinal);
-    state.specific_force_y_mps2 = static_cast<float>(imu_here ? left.rate(t, h) : speed * yaw_rate);
+    state.speed_mps = stored(speed);
+    state.yaw_rate_radps = stored(yaw_rate);
+    state.lateral_mps2 = stored(speed * yaw_rate);
+    state.longitudinal_mps2 = stored(longitudinal);
+    state.specific_force_x_mps2 = stored(imu_here ? forward.rate(t, h) : longitudinal);
+    state.specific_force_y_mps2 = stored(imu_here ? left.rate(t, h) : speed * yaw_rate);
   }
   return states;
 }

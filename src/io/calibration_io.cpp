@@ -139,13 +139,19 @@ void add_details(json& out, const BatchSummary& s) {
                            {"explains", m.explains},
                            {"verdict", m.verdict}};
   if (s.tyre_selection.compared) {
+    nlohmann::json candidates = nlohmann::json::array();
+    for (const TyreCandidate& c : s.tyre_selection.candidates) {
+      candidates.push_back({{"model", c.model},
+                            {"bic", number_or_null(c.bic)},
+                            {"solves", c.solves},
+                            {"tyre", c.tyre},
+                            {"needed", c.needed},
+                            {"dead_reckons", c.dead_reckons}});
+    }
     out["tyre_selection"] = {{"plain_bic", number_or_null(s.tyre_selection.plain_bic)},
-                             {"extended_bic", number_or_null(s.tyre_selection.extended_bic)},
-                             {"extended_physical", s.tyre_selection.physical},
-                             {"extended_identified", s.tyre_selection.identified},
-                             {"extended_dead_reckons", s.tyre_selection.dead_reckons},
+                             {"candidates", candidates},
                              {"other_solves", s.tyre_selection.other_solves},
-                             {"chosen", s.tyre_model.plain() ? "none" : "extended"}};
+                             {"chosen", s.tyre_selection.chosen}};
   }
   if (s.gentle_limits) {
     out["gentle_segments"] = {{"odometry_intervals_used", s.odometry_intervals_used},

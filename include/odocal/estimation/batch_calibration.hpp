@@ -3,6 +3,7 @@
 // parameters fitted by Ceres to all wheel, GNSS, heading and gyro data at once, with the
 // covariance of every parameter and an observability verdict in words.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -46,19 +47,30 @@ struct GnssNoiseReport {
   double covariance_scale = 1.0;
 };
 
-// tyre_model auto: the information criteria of both models (lower is better).
+// tyre_model auto: a tyre model fitted beside the plain one.
+struct TyreCandidate {
+  std::string model;                                     // "physical" or "extended"
+  double bic = std::numeric_limits<double>::infinity();  // lower is better
+  int solves{};
+  // false: refused: coefficients that move a circumference by percents at the log's typical
+  // state, or circumferences out of their plausible band (the model explains something else).
+  bool tyre = true;
+  // false: refused: its circumferences at rest were not identified (sigma above
+  // max_sigma_circumference_m) and agree with the identified plain fit's within 3 of its sigma.
+  // (Where they do not, the candidate stands: the plain fit's sigma leaves out what moves it.)
+  bool needed = true;
+  // false: refused: it won the BIC, but its whole-log dead reckoning is worse than the nominal
+  // parameters' (implausible) where the best fit before it was not.
+  bool dead_reckons = true;
+};
+
+// tyre_model auto: the information criteria of every model fitted and which one stands.
 struct TyreModelSelection {
   bool compared = false;
   double plain_bic{};
-  double extended_bic{};
-  bool physical = true;  // false: the extended fit was refused (coefficients, circumferences)
-  // false: the extended fit's circumferences at rest were not identified where the plain fit's
-  // were (their sigma above max_sigma_circumference_m), so it was refused.
-  bool identified = true;
-  // false: the extended fit won the BIC but dead-reckoned the log worse than the nominal
-  // parameters (not usable) where the plain fit did not, so it was refused.
-  bool dead_reckons = true;
-  int other_solves{};  // the solves of the fit not chosen (BatchSummary::solves counts the other)
+  std::vector<TyreCandidate> candidates;  // in the order fitted
+  std::string chosen = "none";
+  int other_solves{};  // the solves of the fits not chosen (BatchSummary::solves: the chosen's)
 };
 
 struct BatchSummary : CalibrationSummary {
