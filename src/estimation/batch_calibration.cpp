@@ -29,6 +29,27 @@ namespace odocal {
 namespace {
 
 using Block3 = std::array<double, 3>;
+
+// What vehicle.yaml's body is taken to be uncertain by (1 sigma): a data sheet's numbers for a
+// car as it is loaded and tyred on the day (docs/tyre-model.md).
+struct BodyUncertainty {
+  const char* key;  // vehicle.yaml's
+  double VehicleBody::*member;
+  double absolute;  // sigma = absolute + relative * value
+  double relative;
+  double sigma(const VehicleBody& body) const { return absolute + relative * (body.*member); }
+  std::string text() const {
+    return absolute > 0.0 ? fmt::format("{} +-{:g}", key, absolute)
+                          : fmt::format("{} +-{:g} %", key, 100.0 * relative);
+  }
+};
+constexpr BodyUncertainty kBodyUncertainties[] = {
+    {"rear_axle_load_share", &VehicleBody::rear_axle_load_share, 0.04, 0.0},
+    {"cg_height_m", &VehicleBody::cg_height_m, 0.1, 0.0},
+    {"rear_roll_share", &VehicleBody::rear_roll_share, 0.1, 0.0},
+    {"drag_area_m2", &VehicleBody::drag_area_m2, 0.0, 0.3},
+    {"rolling_resistance", &VehicleBody::rolling_resistance, 0.004, 0.0},
+};
 using Block2 = std::array<double, 2>;
 using ParamsBlock = std::array<double, batch::kParams>;  // [c_RL, c_RR, t_R, tyre coefficients]
 constexpr int kTyreOffset = 3;
@@ -140,6 +161,31 @@ class BatchProblem {
     tyre_held_sigma_[static_cast<std::size_t>(j)] = sigma;
     params_[static_cast<std::size_t>(kTyreOffset + j)] = 0.0;
   }
+  // Every unknown, and the robust loss's weights, to be put back.
+  struct Unknowns {
+    std::vector<Block3> poses;
+    ParamsBlock params;
+    Block2 lever;
+    double latency, heading_bias, gyro_bias;
+    std::vector<Block2> gnss_bias, count_error;
+    std::vector<float> gnss_weights;
+  };
+  Unknowns unknowns() const {
+    return {poses_,     params_,    lever_,       latency_,     heading_bias_,
+            gyro_bias_, gnss_bias_, count_error_, gnss_weights_};
+  }
+  void set_unknowns(const Unknowns& u) {
+    poses_ = u.poses;
+    params_ = u.params;
+    lever_ = u.lever;
+    latency_ = u.latency;
+    heading_bias_ = u.heading_bias;
+    gyro_bias_ = u.gyro_bias;
+    gnss_bias_ = u.gnss_bias;
+    count_error_ = u.count_error;
+    gnss_weights_ = u.gnss_weights;
+  }
+
   // Every unknown back to where the first solve started (the layer-1 reference's poses, the
   // nominal parameters, the log's own driving state), held coefficients kept at zero: after
   // coefficients are held, the rest is solved from where a plain fit starts, not from where a
@@ -265,8 +311,8 @@ class BatchProblem {
     if (remeasure_states && tyre_fitted() && !tyre_model().plain()) {
       // The driving state from the wheels as the current model counts them: a slipping wheel
       // overstates speed and acceleration by its slip.
-      states_ = driving_states(log_.wheels, log_.imu ? &*log_.imu : nullptr, at, states_,
-                               tyre_model(), body_);
+      measure_driving_states_again(log_.wheels, log_.imu ? &*log_.imu : nullptr, at, tyre_model(),
+                                   body_, states_);
     }
     const TyreConditions tyre{states_, tyre_model(), body_};
     const WheelNoise noise{std::max(noise_.slip_sigma_m_per_sqrt_m, slip_floor),
@@ -294,7 +340,8 @@ class BatchProblem {
     }
   }
 
-  ceres::Solver::Summary solve() {
+  // max_iterations: 0 for the configured limit.
+  ceres::Solver::Summary solve(int max_iterations = 0) {
     problem_ = std::make_unique<ceres::Problem>();
     folded_rows_ = 0;
     measurement_rows_ = 0;
@@ -309,7 +356,7 @@ class BatchProblem {
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
     solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
-    solver.max_num_iterations = batch_.max_solver_iterations;
+    solver.max_num_iterations = max_iterations > 0 ? max_iterations : batch_.max_solver_iterations;
     solver.num_threads = 1;
     solver.logging_type = ceres::SILENT;
     // Started from the layer-1 reference, the problem is nearly linear: Gauss-Newton steps are
@@ -360,6 +407,37 @@ class BatchProblem {
   }
 
   const ParamsBlock& params() const { return params_; }
+
+  // How far the estimate moves with the body's uncertainty (the physical terms' geometry, which
+  // the log cannot identify, docs/tyre-model.md): per body parameter, one Gauss-Newton step from
+  // the solution with the parameter moved by a quarter of its uncertainty, scaled to the whole
+  // (the linear sensitivity, without solving again); the outer products summed, as for
+  // independent errors. The solution and its problem are restored after.
+  void add_body_uncertainty() {
+    body_covariance_.setZero();
+    if (!tyre_terms_ || *tyre_terms_ != TyreTerms::kPhysical || tyre_model().plain()) return;
+    const Unknowns solution = unknowns();
+    const VehicleBody stated = body_;
+    const batch::ParamsVector at = Eigen::Map<const batch::ParamsVector>(params_.data());
+    for (const BodyUncertainty& uncertainty : kBodyUncertainties) {
+      const double sigma = uncertainty.sigma(stated);
+      constexpr double kStep = 0.25;
+      body_ = stated;
+      body_.*(uncertainty.member) += kStep * sigma;
+      preintegrate_all(0.0, false);
+      solve(1);
+      const batch::ParamsVector moved =
+          (Eigen::Map<const batch::ParamsVector>(params_.data()) - at) / kStep;
+      body_covariance_ += moved * moved.transpose();
+      set_unknowns(solution);
+    }
+    body_ = stated;
+    preintegrate_all(0.0, false);
+    solve();  // the solution's own problem again, for the summary (it starts converged)
+  }
+  const Eigen::Matrix<double, batch::kParams, batch::kParams>& body_covariance() const {
+    return body_covariance_;
+  }
   const Block2& lever() const { return lever_; }
   double gyro_bias() const { return gyro_bias_; }
   double heading_bias() const { return heading_bias_; }
@@ -752,6 +830,9 @@ class BatchProblem {
   std::vector<std::uint8_t> rough_segment_;  // per interval: outside the gentle limits
   TyreModel::Vector regressor_rms_ = TyreModel::Vector::Zero();
   std::optional<TyreTerms> tyre_terms_;  // the family of tyre coefficients fitted (none: plain)
+  // Of the parameters, from the body's uncertainty (add_body_uncertainty).
+  Eigen::Matrix<double, batch::kParams, batch::kParams> body_covariance_ =
+      Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
   std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};  // > 0: held at zero
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
@@ -799,6 +880,9 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   u.gyro_bias *= scale;
   u.heading_bias *= scale;
   u.latency *= scale;
+  u.params += batch.body_covariance();
+  summary.body_sigma_m = {std::sqrt(batch.body_covariance()(0, 0)),
+                          std::sqrt(batch.body_covariance()(1, 1))};
   summary.parameters = {
       {"circumference_rl_m", p[0], sigma(u.params(0, 0)), true, true, ""},
       {"circumference_rr_m", p[1], sigma(u.params(1, 1)), true, true, ""},
@@ -1091,6 +1175,7 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
     if (!finish(facts)) return false;
   }
   adapt_gnss_noise(batch, options, common, summary, solver);
+  batch.add_body_uncertainty();
   summarise(run.log(), options, batch, solver, summary);
   return true;
 }
@@ -1159,6 +1244,14 @@ std::string BatchSummary::full_report() const {
             static_cast<double>(std::max<std::size_t>(odometry_intervals, 1)));
   }
   text += batch::tyre_selection_report(*this);
+  if (body_sigma_m[0] > 0.0 || body_sigma_m[1] > 0.0) {
+    std::vector<std::string> assumed;
+    for (const BodyUncertainty& u : kBodyUncertainties) assumed.push_back(u.text());
+    text += fmt::format(
+        "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the body's uncertainty "
+        "(vehicle.yaml body: {})\n",
+        "body", 1e3 * body_sigma_m[0], 1e3 * body_sigma_m[1], fmt::join(assumed, ", "));
+  }
   if (!model_adequacy.verdict.empty())
     text += fmt::format("{:<13}{}\n", "model", model_adequacy.verdict);
   text += fmt::format("{:<13}{}\n", "solver", usable() ? message : solver_report);

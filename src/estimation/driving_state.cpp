@@ -36,23 +36,60 @@ float stored(double value) {
   return static_cast<float>(std::clamp(value, -kLargest, kLargest));
 }
 
-// One IMU channel integrated on the IMU's time base (trapezoids); empty without samples.
-Cumulative integrated(const ImuStream& imu, const std::vector<double>& channel) {
-  Cumulative sum{imu.t_s, std::vector<double>(imu.size(), 0.0)};
-  for (std::size_t k = 1; k < imu.size(); ++k) {
-    sum.value[k] =
-        sum.value[k - 1] + 0.5 * (channel[k] + channel[k - 1]) * (imu.t_s[k] - imu.t_s[k - 1]);
+// One IMU channel's integral (trapezoids) at non-decreasing times, without storing it (a long
+// drive's IMU would take 8 bytes per sample and channel): the same values, in the same order of
+// additions, as a stored cumulative interpolated linearly and clamped to the span.
+class RunningIntegral {
+ public:
+  RunningIntegral(const std::vector<double>& t_s, const std::vector<double>& channel)
+      : t_s_(t_s), channel_(channel) {}
+  double at(double t) {
+    while (k_ + 1 < t_s_.size() && t_s_[k_ + 1] <= t) {
+      sum_ += segment(k_);
+      ++k_;
+    }
+    if (t <= t_s_[k_] || k_ + 1 == t_s_.size()) return sum_;
+    const double w = (t - t_s_[k_]) / (t_s_[k_ + 1] - t_s_[k_]);
+    return (1.0 - w) * sum_ + w * (sum_ + segment(k_));
   }
-  return sum;
-}
 
-// The states from the wheels' increments, each scaled by `factor(k, wheel)`.
+ private:
+  double segment(std::size_t k) const {
+    return 0.5 * (channel_[k + 1] + channel_[k]) * (t_s_[k + 1] - t_s_[k]);
+  }
+  const std::vector<double>& t_s_;
+  const std::vector<double>& channel_;
+  std::size_t k_ = 0;
+  double sum_ = 0.0;
+};
+
+// The mean of one IMU channel over [t - h, t + h] clipped to its span, at non-decreasing t.
+class RunningMean {
+ public:
+  RunningMean(const ImuStream& imu, const std::vector<double>& channel)
+      : t_s_(imu.t_s), from_(imu.t_s, channel), to_(imu.t_s, channel) {}
+  double at(double t, double h) {
+    const double from = std::max(t - h, t_s_.front()), to = std::min(t + h, t_s_.back());
+    const double begin = from_.at(from), end = to_.at(to);
+    return to > from ? (end - begin) / (to - from) : 0.0;
+  }
+
+ private:
+  const std::vector<double>& t_s_;
+  RunningIntegral from_, to_;
+};
+
+// Fills `states` (one per wheel sample) from the wheels' increments, each scaled by
+// `factor(k, wheel)`, which may read `states` as they were: every factor is taken before any
+// state is written (the batch measures the state again in place).
 template <class Factor>
-std::vector<DrivingState> states_of(const WheelStream& wheels, const ImuStream* imu,
-                                    const OdometryParams& params, double half_window_s,
-                                    const Factor& factor) {
-  std::vector<DrivingState> states(wheels.size());
-  if (wheels.size() < 2) return states;
+void fill_states(const WheelStream& wheels, const ImuStream* imu, const OdometryParams& params,
+                 double half_window_s, const Factor& factor, std::vector<DrivingState>& states) {
+  states.resize(wheels.size());
+  if (wheels.size() < 2) {
+    std::fill(states.begin(), states.end(), DrivingState{});
+    return;
+  }
   Cumulative path{wheels.t_s, std::vector<double>(wheels.size(), 0.0)};
   Cumulative wheel_turn{wheels.t_s, std::vector<double>(wheels.size(), 0.0)};
   for (std::size_t k = 1; k < wheels.size(); ++k) {
@@ -62,28 +99,26 @@ std::vector<DrivingState> states_of(const WheelStream& wheels, const ImuStream* 
     path.value[k] = path.value[k - 1] + step.distance_m;
     wheel_turn.value[k] = wheel_turn.value[k - 1] + step.yaw_rad;
   }
-  const bool gyro = imu != nullptr && imu->size() >= 2;
-  static const ImuStream kNoImu;
-  const ImuStream& measured = gyro ? *imu : kNoImu;
-  const Cumulative gyro_path = integrated(measured, measured.wz_radps);
-  const Cumulative forward = integrated(measured, measured.ax_mps2);
-  const Cumulative left = integrated(measured, measured.ay_mps2);
+  const bool measured = imu != nullptr && imu->size() >= 2;
+  static const ImuStream kNoImu{{0.0, 1.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+  const ImuStream& source = measured ? *imu : kNoImu;
+  RunningMean gyro(source, source.wz_radps), forward(source, source.ax_mps2),
+      left(source, source.ay_mps2);
   const double h = half_window_s;
   for (std::size_t k = 0; k < wheels.size(); ++k) {
     const double t = wheels.t_s[k];
     DrivingState& state = states[k];
     const double speed = path.rate(t, h);
-    const bool imu_here = gyro && t >= imu->t_s.front() && t <= imu->t_s.back();
-    const double yaw_rate = imu_here ? gyro_path.rate(t, h) : wheel_turn.rate(t, h);
+    const bool imu_here = measured && t >= imu->t_s.front() && t <= imu->t_s.back();
+    const double yaw_rate = imu_here ? gyro.at(t, h) : wheel_turn.rate(t, h);
     const double longitudinal = (path.rate(t + h, h) - path.rate(t - h, h)) / (2.0 * h);
     state.speed_mps = stored(speed);
     state.yaw_rate_radps = stored(yaw_rate);
     state.lateral_mps2 = stored(speed * yaw_rate);
     state.longitudinal_mps2 = stored(longitudinal);
-    state.specific_force_x_mps2 = stored(imu_here ? forward.rate(t, h) : longitudinal);
-    state.specific_force_y_mps2 = stored(imu_here ? left.rate(t, h) : speed * yaw_rate);
+    state.specific_force_x_mps2 = stored(imu_here ? forward.at(t, h) : longitudinal);
+    state.specific_force_y_mps2 = stored(imu_here ? left.at(t, h) : speed * yaw_rate);
   }
-  return states;
 }
 
 }  // namespace
@@ -95,7 +130,10 @@ std::vector<DrivingState> driving_states(const Log& log, const OdometryParams& p
 
 std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
                                          const OdometryParams& params, double half_window_s) {
-  return states_of(wheels, imu, params, half_window_s, [](std::size_t, RearWheel) { return 1.0; });
+  std::vector<DrivingState> states;
+  fill_states(
+      wheels, imu, params, half_window_s, [](std::size_t, RearWheel) { return 1.0; }, states);
+  return states;
 }
 
 std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
@@ -103,12 +141,24 @@ std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStr
                                          const std::vector<DrivingState>& counted_at,
                                          const TyreModel& model, const VehicleBody& body,
                                          double half_window_s) {
-  if (counted_at.size() != wheels.size())
+  std::vector<DrivingState> states = counted_at;
+  measure_driving_states_again(wheels, imu, params, model, body, states, half_window_s);
+  return states;
+}
+
+void measure_driving_states_again(const WheelStream& wheels, const ImuStream* imu,
+                                  const OdometryParams& params, const TyreModel& model,
+                                  const VehicleBody& body, std::vector<DrivingState>& states,
+                                  double half_window_s) {
+  if (states.size() != wheels.size())
     throw std::invalid_argument("driving_states: one driving state per wheel sample");
-  if (model.plain()) return driving_states(wheels, imu, params, half_window_s);
-  return states_of(wheels, imu, params, half_window_s, [&](std::size_t k, RearWheel wheel) {
-    return tyre_factor(model, counted_at[k], wheel, body);
-  });
+  const TyreModel::Vector k = model.coefficients();
+  fill_states(
+      wheels, imu, params, half_window_s,
+      [&](std::size_t sample, RearWheel wheel) {
+        return 1.0 + k.dot(tyre_regressors(states[sample], wheel, body));
+      },
+      states);
 }
 
 WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<DrivingState>& states,

@@ -138,6 +138,8 @@ void add_details(json& out, const BatchSummary& s) {
                            {"dependences", dependences},
                            {"explains", m.explains},
                            {"verdict", m.verdict}};
+  if (s.body_sigma_m[0] > 0.0 || s.body_sigma_m[1] > 0.0)
+    out["body_sigma_m"] = {s.body_sigma_m[0], s.body_sigma_m[1]};
   if (s.tyre_selection.compared) {
     nlohmann::json candidates = nlohmann::json::array();
     for (const TyreCandidate& c : s.tyre_selection.candidates) {

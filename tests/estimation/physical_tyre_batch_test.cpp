@@ -97,5 +97,30 @@ TEST(PhysicalTyreBatch, CalibratesARealisticUrbanDriveToTheCircumferenceAtRest) 
   }
 }
 
+TEST(PhysicalTyreBatch, SigmaCoversTheBodyThatVehicleYamlGetsWrong) {
+  // The realistic circuit, rear-driven, with the low and heavy car of the urban test above: at
+  // the circuit's speeds and accelerations the body's numbers move the circumference at rest by
+  // millimetres (the drag's slip, the load transfer), which the log cannot tell from it. The
+  // sigma says so; the regression terms and the plain model carry no body.
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.dynamics.cg_height_m = 0.45;
+  scenario.dynamics.mass_kg = 1800.0;
+  scenario.dynamics.slip_stiffness_per_load = 14.0;
+  scenario.dynamics.radius_load_sensitivity_m_per_n = 6e-7;
+  scenario.dynamics.rolling_resistance = 0.009;
+  scenario.dynamics.front_roll_share = 0.6;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log log = simulated_log(drive);
+  const BatchSummary physical = calibrate(log, TyreModelChoice::kPhysical);
+  const double error = physical.estimate.circumference_rl_m - drive.true_params.circumference_rl_m;
+  EXPECT_GT(std::abs(error), 0.002) << physical.full_report();  // the wrong body shows
+  EXPECT_LT(std::abs(error), 3.0 * physical.sigma_rl_m()) << physical.full_report();
+  EXPECT_GT(physical.body_sigma_m[0], 0.5 * physical.sigma_rl_m());
+  EXPECT_LT(physical.body_sigma_m[0], physical.sigma_rl_m());
+  EXPECT_NE(physical.full_report().find("from the body's uncertainty"), std::string::npos);
+  const BatchSummary extended = calibrate(log, TyreModelChoice::kExtended);
+  EXPECT_EQ(extended.body_sigma_m[0], 0.0);
+}
+
 }  // namespace
 }  // namespace odocal

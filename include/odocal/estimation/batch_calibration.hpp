@@ -3,6 +3,7 @@
 // parameters fitted by Ceres to all wheel, GNSS, heading and gyro data at once, with the
 // covariance of every parameter and an observability verdict in words.
 
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -91,6 +92,9 @@ struct BatchSummary : CalibrationSummary {
   // driving state).
   ModelAdequacy model_adequacy;
   TyreModelSelection tyre_selection;
+  // The physical terms' share of the circumferences' sigma: what the body's uncertainty moves
+  // them by (zero for any other model; it is in sigma and covariance too).
+  std::array<double, 2> body_sigma_m{};
   // Gentle segments (BatchOptions::gentle_max_*): keyframe intervals whose odometry is in the fit,
   // of all; equal without limits (gaps aside).
   bool gentle_limits{};

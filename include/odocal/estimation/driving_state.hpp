@@ -30,6 +30,13 @@ std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStr
                                          const TyreModel& model, const VehicleBody& body,
                                          double half_window_s = 0.25);
 
+// The same in place: `states` (one per wheel sample, as the model counted them) become the
+// states of the wheels as `model` counts them there, without a second copy of the states.
+void measure_driving_states_again(const WheelStream& wheels, const ImuStream* imu,
+                                  const OdometryParams& params, const TyreModel& model,
+                                  const VehicleBody& body, std::vector<DrivingState>& states,
+                                  double half_window_s = 0.25);
+
 // The wheel stream whose rear increments carry the model's factors (c_i,eff / c_i): dead
 // reckoning it with c_i is dead reckoning with the condition-dependent circumference.
 WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<DrivingState>& states,
