@@ -324,7 +324,7 @@ def reading(report):
             f"cost metres, not kilometres. The paper's CarMaker runs did not show this, so "
             f"its tyre model's radius must depend far less on load than ours (0.4 mm/kN). A "
             f"calibration for fast driving needs a circumference that follows the driving "
-            f"state: the batch's `tyre_model: extended` (docs/tyre-model.md), measured on these "
+            f"state: the batch's `tyre_model: physical` or `extended` (docs/tyre-model.md), measured on these "
             f"runs in the tyre model section above.")
     report.write()
 
@@ -379,14 +379,17 @@ def tyre_models(report):
     if summary is None:
         return
     report.write("The batch estimator with the plain two-wheel model (`tyre_model: none`), the "
-                 "extended tyre model (`extended`: the rear circumferences grow or shrink with "
-                 "speed, lateral and longitudinal acceleration and yaw rate, docs/tyre-model.md) "
-                 "and `auto` (whichever has the lower BIC, if the extended fit is physical) on the "
+                 "regression terms (`extended`: the rear circumferences grow or shrink with "
+                 "speed, lateral and longitudinal acceleration and yaw rate), the physical terms "
+                 "(`physical`: each wheel's load change and force over load from vehicle.yaml's "
+                 "body and the accelerometer, with the body's uncertainty in the σ; "
+                 "docs/tyre-model.md) and `auto` (the physical terms if they beat the plain "
+                 "model's BIC and are a tyre, else the regression terms if they do) on the "
                  "section 5 runs above, realistic mode, driven once by the scenario's "
                  "rear-wheel-drive car and once with `drivetrain: front` (the rear wheels roll "
                  "free and slip only under the brakes' rear share); and on the ideal runs, where "
                  "`auto` must keep the plain model. Every estimate is scored "
-                 "(`max_sigma_circumference_m: 0.01`, since the extended model's σ is above the "
+                 "(`max_sigma_circumference_m: 0.01`, since the tyre models' σ is above the "
                  "default 1 mm refusal threshold). DR: the whole log dead-reckoned from the true "
                  "start pose with the estimate and its tyre model, against the truth. Time: one "
                  "whole calibration on this machine.")
@@ -429,7 +432,9 @@ def tyre_models(report):
                      f"{'yes' if t['met'] else '**no**'} |")
     report.write()
     report.write("docs/tyre-model.md says why the slip of the wheels under braking and drive "
-                 "defeats the linear coefficients on this circuit, effect by effect.")
+                 "defeats the linear coefficients on this circuit, effect by effect, and why no "
+                 "rolling circumference, however exact, dead-reckons these runs within 3× the "
+                 "ideal mode (the rear axle's side slip alone exceeds it).")
     report.write()
 
 

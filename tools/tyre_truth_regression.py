@@ -13,7 +13,10 @@ terms' extrapolation leaves) to the regression terms of tyre_model: extended (th
 and all seven) and to the three physical terms of tyre_model: physical, these computed with
 vehicle.yaml's default body from the accelerometer's specific force in imu.csv (window means)
 as the batch computes them; printed: what is left of the factors' differential (heading) and
-mean (distance) parts, and the intercepts in millimetres.
+mean (distance) parts, and the intercepts in millimetres. Last, the best that any rolling
+circumference can dead-reckon the log: each sample's ground distance along the true heading (the
+true factors exactly), without the rear axle's sideways motion (its side slip), which no
+circumference carries; the mean position error over the log.
 
     odocal simulate --out LOG --track TRACK.csv --laps 3 --wheel-output rad [--scenario S.yaml]
     /usr/bin/python3 tools/tyre_truth_regression.py LOG [--window 25]
@@ -123,6 +126,14 @@ def main():
     report("3 physical terms", physical_regressors(1.0, *physical),
            physical_regressors(-1.0, *physical), f_left, f_right, (c_left, c_right),
            ["k_load", "k_drive_slip", "k_brake_slip"])
+    course = 0.5 * (heading[1:] + heading[:-1])
+    step_x, step_y = np.diff(x), np.diff(y)
+    along_step = step_x * np.cos(course) + step_y * np.sin(course)
+    reckoned_x = x[0] + np.concatenate([[0.0], np.cumsum(along_step * np.cos(course))])
+    reckoned_y = y[0] + np.concatenate([[0.0], np.cumsum(along_step * np.sin(course))])
+    print(f"dead reckoning with the true factors, without the side slip: mean position error "
+          f"{np.mean(np.hypot(reckoned_x - x, reckoned_y - y)):.1f} m over "
+          f"{np.sum(np.abs(along_step)) / 1e3:.1f} km")
 
 
 if __name__ == "__main__":

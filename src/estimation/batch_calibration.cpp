@@ -924,6 +924,21 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
         std::isfinite(parameter.sigma) && parameter.sigma <= thresholds[i] && block_used[i];
     if (!parameter.identified) {
       parameter.verdict = unidentified_reason(parameter.name, coverage, block_used[i]);
+      if (i < 2 && batch.tyre_fitted() && !batch.tyre_model().plain()) {
+        // Beside a tyre model the circumference at rest is an extrapolation from the states
+        // driven, and with the physical terms its sigma carries the body's uncertainty too.
+        const double body_mm = 1e3 * std::sqrt(batch.body_covariance()(i, i));
+        parameter.verdict =
+            body_mm > 0.0
+                ? fmt::format(
+                      "with the tyre model the circumference at rest is an extrapolation "
+                      "from this drive's slip and load ({:.2g} mm of the sigma from the "
+                      "body's uncertainty: state vehicle.yaml's body, or drive longer "
+                      "and more gently)",
+                      body_mm)
+                : "with the tyre model the circumference at rest is an extrapolation from this "
+                  "drive's slip and load (drive longer and more gently)";
+      }
       const bool held_tyre = i >= 8 && batch.tyre_held(static_cast<int>(i) - 8);
       if (held_tyre) parameter.verdict = "held at zero: " + parameter.verdict;
       problems.push_back(parameter.name + ": " + parameter.verdict);

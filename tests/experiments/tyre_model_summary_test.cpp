@@ -15,11 +15,12 @@ nlohmann::json run(double error_mm, double sigma_mm, double dr_m, bool with_mode
           {"milliseconds", 1e3 * seconds},    {"tyre_model_used", with_model}};
 }
 
-// Both drivetrains alike: none 10 mm off, extended 0.5 mm inside its sigma, auto as extended;
-// ideal: none and auto 0.2 mm off with 4 m of dead reckoning.
+// Both drivetrains alike: none 10 mm off, extended 0.5 mm inside its sigma, physical 3 mm
+// outside its, auto as extended; ideal: none and auto 0.2 mm off with 4 m of dead reckoning.
 nlohmann::json seed(int n, double extended_dr_m) {
   nlohmann::json drive{{"none", run(10.0, 1.0, 500.0, false)},
                        {"extended", run(0.5, 1.0, extended_dr_m, true, 2.0 + n)},
+                       {"physical", run(3.0, 0.5, 50.0, true, 1.5)},
                        {"auto", run(0.5, 1.0, extended_dr_m, true)}};
   return {{"seed", n},
           {"realistic", {{"rear", drive}, {"front", drive}}},
@@ -44,7 +45,7 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
   // Dead reckoning 10 and 14 m with extended/auto (mean 12 m, 3x the ideal 4 m: on the limit).
   const nlohmann::json summary = summarise_tyre_models(
       {seed(1, 10.0), seed(2, 14.0)}, {urban(1, 0.2), urban(2, 0.5), urban(3, 0.25)});
-  ASSERT_EQ(summary.at("rows").size(), 8u);
+  ASSERT_EQ(summary.at("rows").size(), 10u);
   const nlohmann::json& rear_none = summary["rows"][0];
   EXPECT_EQ(rear_none["tyre_model"], "none");
   EXPECT_DOUBLE_EQ(rear_none["mean_abs_error_mm"].get<double>(), 10.0);
@@ -54,6 +55,9 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
   EXPECT_DOUBLE_EQ(rear_extended["mean_dr_position_m"].get<double>(), 12.0);
   EXPECT_DOUBLE_EQ(rear_extended["max_seconds"].get<double>(), 4.0);
   EXPECT_EQ(rear_extended["runs_with_tyre_model"], 2);
+  const nlohmann::json& rear_physical = summary["rows"][2];
+  EXPECT_EQ(rear_physical["tyre_model"], "physical");
+  EXPECT_DOUBLE_EQ(rear_physical["within_3_reported_sigma"].get<double>(), 0.0);
 
   const nlohmann::json* error = find_target(summary, "rear-wheel drive, auto: mean abs error");
   ASSERT_NE(error, nullptr);
@@ -65,6 +69,9 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
   const nlohmann::json* time = find_target(summary, "rear-wheel drive, extended: slowest");
   ASSERT_NE(time, nullptr);
   EXPECT_FALSE((*time)["met"].get<bool>());  // 4 s against 3 s
+  const nlohmann::json* physical_time = find_target(summary, "rear-wheel drive, physical: slowest");
+  ASSERT_NE(physical_time, nullptr);
+  EXPECT_TRUE((*physical_time)["met"].get<bool>());
   const nlohmann::json* ideal = find_target(summary, "ideal, auto: change");
   ASSERT_NE(ideal, nullptr);
   EXPECT_TRUE((*ideal)["met"].get<bool>());
