@@ -10,10 +10,12 @@ so that the physical terms are tried with a wrong body: "low-heavy" (centre of g
 the front) and "high-light" (0.65 m, 1300 kg, stiffer tyres with another slip curve, more rolling
 resistance, the centre of gravity further forward, another brake split). Per drive, car and model:
 mean |error| of both rear circumferences against truth.yaml, the share inside 3 reported sigma,
-the mean sigma, the held-out median drift of 60 s windows (`odocal validate`, usable results
-only) and the mean time of a calibration. The same on 3 laps of Hockenheim, with `auto` and the
-issue's targets, is a section of docs/results.md (`make paper`). Run from the repository after
-`make build`:
+the mean sigma, the same for the circumference rolling straight at a steady 5 m/s (a tyre model's
+reference_circumference, the plain model's own circumference; truth.yaml's rolling_circumference:
+what a constant radius should be in gentle driving), the held-out median drift of 60 s windows
+(`odocal validate`, usable results only) and the mean time of a calibration. The same on 3 laps
+of Hockenheim, with `auto` and the issue's targets, is a section of docs/results.md
+(`make paper`). Run from the repository after `make build`:
 
     ODOCAL_CLI=build/apps/odocal/odocal /usr/bin/python3 bench/tyre_model_bench.py \\
         --seeds 10 --work /tmp/tyre-bench [--drives circuit urban] [--cars scenario low-heavy]
@@ -63,7 +65,7 @@ def truth_of(log):
     values = {}
     for line in open(os.path.join(log, "truth.yaml")):
         key, _, value = line.partition(":")
-        if key.startswith("circumference_r"):
+        if key.startswith("circumference_r") or key.startswith("rolling_circumference_r"):
             values[key] = float(value)
     return values
 
@@ -77,12 +79,18 @@ def calibrate(log, model, work):
     calibrated = run("calibrate", log, "--method", "batch", "--config", config, "--json", result)
     seconds = time.perf_counter() - start
     summary = json.load(open(result))
-    row = {"seconds": seconds, "usable": calibrated.returncode == 0, "errors": [], "sigmas": []}
+    row = {"seconds": seconds, "usable": calibrated.returncode == 0, "errors": [], "sigmas": [],
+           "rolling_errors": [], "rolling_sigmas": []}
     truth = truth_of(log)
     sigma = {p["name"]: p.get("sigma") for p in summary["parameters"]}
     for wheel in ("circumference_rl_m", "circumference_rr_m"):
         row["errors"].append(summary[wheel] - truth[wheel])
         row["sigmas"].append(sigma[wheel])
+        side = wheel[-4:-2]
+        rolling = summary.get("reference_circumference")
+        value = rolling[f"circumference_{side}_m"] if rolling else summary[wheel]
+        row["rolling_errors"].append(value - truth[f"rolling_{wheel}"])
+        row["rolling_sigmas"].append(rolling[f"sigma_{side}_m"] if rolling else sigma[wheel])
     if row["usable"]:
         drift = os.path.join(log, f"drift-{model}.json")
         run("validate", log, "--params", result, "--json", drift)
@@ -108,8 +116,9 @@ def main():
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     print("| drive | drivetrain | car | tyre_model | mean \\|error\\| [mm] | inside 3σ | mean σ [mm] "
+          "| at 5 m/s: mean \\|error\\| [mm] | inside 3σ "
           "| held-out drift [%] (nominal) | time [s] |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     table = []
     for drive in args.drives:
         for drivetrain in args.drivetrains:
@@ -128,6 +137,10 @@ def main():
                     inside = [abs(e) <= 3 * s for r in rows
                               for e, s in zip(r["errors"], r["sigmas"]) if s is not None]
                     sigmas = [s for r in rows for s in r["sigmas"] if s is not None]
+                    rolling = [abs(e) for r in rows for e in r["rolling_errors"]]
+                    rolling_inside = [abs(e) <= 3 * s for r in rows for e, s in
+                                      zip(r["rolling_errors"], r["rolling_sigmas"])
+                                      if s is not None]
                     drifts = [r["drift_percent"] for r in rows if "drift_percent" in r]
                     nominal = [r["nominal_drift_percent"] for r in rows
                                if "nominal_drift_percent" in r]
@@ -135,12 +148,17 @@ def main():
                                "model": model, "mean_abs_error_mm": 1e3 * mean(errors),
                                "inside_3_sigma": sum(inside), "scored": len(inside),
                                "mean_sigma_mm": 1e3 * mean(sigmas),
+                               "rolling_mean_abs_error_mm": 1e3 * mean(rolling),
+                               "rolling_inside_3_sigma": sum(rolling_inside),
                                "drift_percent": mean(drifts), "nominal_percent": mean(nominal),
                                "seconds": mean([r["seconds"] for r in rows]), "runs": rows}
                     table.append(figures)
                     print(f"| {drive} | {drivetrain} | {car} | {model} | "
                           f"{figures['mean_abs_error_mm']:.2f} | {sum(inside)}/{len(inside)} | "
-                          f"{figures['mean_sigma_mm']:.2f} | {figures['drift_percent']:.3f} "
+                          f"{figures['mean_sigma_mm']:.2f} | "
+                          f"{figures['rolling_mean_abs_error_mm']:.2f} | "
+                          f"{sum(rolling_inside)}/{len(rolling_inside)} | "
+                          f"{figures['drift_percent']:.3f} "
                           f"({figures['nominal_percent']:.3f}) | {figures['seconds']:.2f} |",
                           flush=True)
     if args.json:

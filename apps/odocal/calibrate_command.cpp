@@ -94,8 +94,9 @@ void run_calibrate(const CalibrateArgs& args) {
   if (!args.vehicle_out.empty())
     write_calibrated_vehicle(log.vehicle, result.estimate, args.vehicle_out, result.tyre_model);
   if (!args.ros2_out.empty()) {
-    write_ros2_diff_drive_parameters(log.vehicle, result.estimate, args.ros2_out,
-                                     result.tyre_model);
+    const auto* batch = std::get_if<BatchSummary>(&summary);
+    write_ros2_diff_drive_parameters(log.vehicle, result.estimate, args.ros2_out, result.tyre_model,
+                                     batch ? batch->reference_circumference : std::nullopt);
   }
 }
 

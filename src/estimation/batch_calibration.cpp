@@ -415,6 +415,7 @@ class BatchProblem {
   // independent errors. The solution and its problem are restored after.
   void add_body_uncertainty() {
     body_covariance_.setZero();
+    body_responses_.clear();
     if (!tyre_terms_ || *tyre_terms_ != TyreTerms::kPhysical || tyre_model().plain()) return;
     const Unknowns solution = unknowns();
     const VehicleBody stated = body_;
@@ -429,6 +430,7 @@ class BatchProblem {
       const batch::ParamsVector moved =
           (Eigen::Map<const batch::ParamsVector>(params_.data()) - at) / kStep;
       body_covariance_ += moved * moved.transpose();
+      body_responses_.push_back({body_, kStep * moved, kStep});
       set_unknowns(solution);
     }
     body_ = stated;
@@ -438,6 +440,14 @@ class BatchProblem {
   const Eigen::Matrix<double, batch::kParams, batch::kParams>& body_covariance() const {
     return body_covariance_;
   }
+  // One body number moved by `step` of its uncertainty, and what that moved the parameters by.
+  struct BodyResponse {
+    VehicleBody body;
+    batch::ParamsVector moved;
+    double step;
+  };
+  const std::vector<BodyResponse>& body_responses() const { return body_responses_; }
+  const VehicleBody& body() const { return body_; }
   const Block2& lever() const { return lever_; }
   double gyro_bias() const { return gyro_bias_; }
   double heading_bias() const { return heading_bias_; }
@@ -833,6 +843,7 @@ class BatchProblem {
   // Of the parameters, from the body's uncertainty (add_body_uncertainty).
   Eigen::Matrix<double, batch::kParams, batch::kParams> body_covariance_ =
       Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
+  std::vector<BodyResponse> body_responses_;
   std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};  // > 0: held at zero
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
@@ -863,6 +874,49 @@ class BatchProblem {
   std::vector<Block2> count_error_;
   Block2 zero_bias_{0.0, 0.0};  // stands in for the GNSS bias when it is not modelled
 };
+
+// Each rear wheel's effective circumference rolling straight at a steady `speed`: c_i times the
+// tyre model's factor there, its sigma from the data's covariance (`covariance`, the parameters')
+// and from the body's responses, each the parameters' move and the factor's own change with the
+// body number (the rolling resistance's slip at constant speed is in the factor, so a body number
+// moves both c_i and the factor).
+ReferenceCircumference reference_circumference(
+    const BatchProblem& batch, const ParamsBlock& p,
+    const Eigen::Matrix<double, batch::kParams, batch::kParams>& covariance, double speed,
+    double max_sigma) {
+  DrivingState steady;
+  steady.speed_mps = static_cast<float>(speed);
+  const batch::ParamsVector at = Eigen::Map<const batch::ParamsVector>(p.data());
+  const auto rolling = [&](const batch::ParamsVector& params, const VehicleBody& body, int wheel) {
+    const TyreModel model = TyreModel::from(params.tail<TyreModel::kCoefficients>());
+    return params(wheel) *
+           tyre_factor(model, steady, wheel == 0 ? RearWheel::kLeft : RearWheel::kRight, body);
+  };
+  ReferenceCircumference r;
+  r.speed_mps = speed;
+  r.identified = true;
+  for (int wheel = 0; wheel < 2; ++wheel) {
+    const double value = rolling(at, batch.body(), wheel);
+    batch::ParamsVector gradient = batch::ParamsVector::Zero();
+    for (int j = 0; j < batch::kParams; ++j) {
+      batch::ParamsVector moved = at;
+      const double step = 1e-7 * std::max(1.0, std::abs(at(j)));
+      moved(j) += step;
+      gradient(j) = (rolling(moved, batch.body(), wheel) - value) / step;
+    }
+    double variance = gradient.dot(covariance * gradient);
+    for (const BatchProblem::BodyResponse& response : batch.body_responses()) {
+      const double change =
+          (rolling(at + response.moved, response.body, wheel) - value) / response.step;
+      variance += change * change;
+    }
+    const double sigma = std::sqrt(std::max(variance, 0.0));
+    (wheel == 0 ? r.circumference_rl_m : r.circumference_rr_m) = value;
+    (wheel == 0 ? r.sigma_rl_m : r.sigma_rr_m) = sigma;
+    r.identified = r.identified && std::isfinite(sigma) && sigma <= max_sigma;
+  }
+  return r;
+}
 
 // Fills the summary from the solved problem: every parameter with its sigma and verdict, and
 // the termination (a circumference that is not identified makes the result unusable).
@@ -981,6 +1035,11 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
       fmt::format("batch maximum likelihood over {} keyframes and {} GNSS fixes; {} solve(s); {}",
                   summary.keyframes, summary.gnss_fixes, summary.solves,
                   ceres::TerminationTypeToString(solver.termination_type));
+  if (batch.tyre_fitted() && !batch.tyre_model().plain() && uncertainty) {
+    summary.reference_circumference =
+        reference_circumference(batch, p, u.params - batch.body_covariance(), b.reference_speed_mps,
+                                b.max_sigma_circumference_m);
+  }
   const bool circumferences_identified =
       uncertainty && summary.parameters[0].identified && summary.parameters[1].identified;
   if (solver.termination_type == ceres::NO_CONVERGENCE) {
@@ -1259,6 +1318,14 @@ std::string BatchSummary::full_report() const {
             static_cast<double>(std::max<std::size_t>(odometry_intervals, 1)));
   }
   text += batch::tyre_selection_report(*this);
+  if (reference_circumference) {
+    const ReferenceCircumference& r = *reference_circumference;
+    text += fmt::format(
+        "{:<13}c_RL {:.6f} m (1-sigma {:.3f} mm), c_RR {:.6f} m (1-sigma {:.3f} mm) rolling "
+        "straight at a steady {:g} m/s, slip and load included{}\n",
+        "rolling", r.circumference_rl_m, 1e3 * r.sigma_rl_m, r.circumference_rr_m,
+        1e3 * r.sigma_rr_m, r.speed_mps, r.identified ? "" : ": not identified");
+  }
   if (body_sigma_m[0] > 0.0 || body_sigma_m[1] > 0.0) {
     std::vector<std::string> assumed;
     for (const BodyUncertainty& u : kBodyUncertainties) assumed.push_back(u.text());

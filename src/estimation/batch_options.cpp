@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 30> kFields{{
+  static const std::array<OptionField<O>, 31> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -52,6 +52,10 @@ OptionTable<BatchOptions> BatchOptions::fields() {
        "acceleration (extended), the wheel's load and slip from vehicle.yaml's body and the "
        "accelerometer (physical), or chosen by BIC (auto)",
        enum_member<&O::tyre_model>()},
+      {"reference_speed_mps", "m/s", 0.0, 100.0,
+       "beside a tyre model: the steady straight speed whose effective circumference is "
+       "reported and exported to ROS 2 (whose radii are constant)",
+       &O::reference_speed_mps},
       {"max_solver_iterations", "1", 1.0, 1e5, "Ceres iterations per solve",
        &O::max_solver_iterations},
       {"relinearise_relative_change", "1", 1e-12, 1.0,

@@ -27,10 +27,29 @@ void write_calibrated_vehicle(const VehicleConfig& nominal, const OdometryParams
 
 void write_ros2_diff_drive_parameters(const VehicleConfig& nominal,
                                       const OdometryParams& calibrated,
-                                      const std::filesystem::path& path, const TyreModel& tyre) {
+                                      const std::filesystem::path& path, const TyreModel& tyre,
+                                      const std::optional<ReferenceCircumference>& rolling) {
   const double radius_m =
       (nominal.circumference_rl_m + nominal.circumference_rr_m) / (4.0 * std::numbers::pi);
   const double nominal_circumference = 2.0 * std::numbers::pi * radius_m;
+  const bool constant = tyre.plain();
+  const bool at_speed = !constant && rolling.has_value();
+  const std::string note =
+      constant ? ""
+      : at_speed
+          ? fmt::format(
+                "# The calibration's tyre model (a circumference that follows speed, "
+                "acceleration, turns\n# and load: vehicle.yaml tyre_model) cannot be "
+                "carried by diff_drive_controller,\n# whose radii are constant: these "
+                "are the circumferences rolling straight at a steady\n# {:g} m/s, slip "
+                "and load included.\n",
+                rolling->speed_mps)
+          : "# The calibration's tyre model (a circumference that follows speed, acceleration, "
+            "turns\n# and load: vehicle.yaml tyre_model) cannot be carried by "
+            "diff_drive_controller,\n# whose radii are constant: these are the circumferences "
+            "at rest.\n";
+  const double left = at_speed ? rolling->circumference_rl_m : calibrated.circumference_rl_m;
+  const double right = at_speed ? rolling->circumference_rr_m : calibrated.circumference_rr_m;
   write_text_file(path, [&](TextBuffer& out) {
     out.print(
         "# ROS 2 diff_drive_controller parameters from odocal's calibration: the nominal geometry\n"
@@ -43,14 +62,8 @@ void write_ros2_diff_drive_parameters(const VehicleConfig& nominal,
         "    wheel_separation_multiplier: {:.8f}\n"
         "    left_wheel_radius_multiplier: {:.8f}\n"
         "    right_wheel_radius_multiplier: {:.8f}\n",
-        tyre.plain() ? ""
-                     : "# The calibration's tyre model (a circumference that follows speed, "
-                       "acceleration, turns\n# and load: vehicle.yaml tyre_model) cannot be "
-                       "carried by diff_drive_controller,\n# whose radii are constant: these are "
-                       "the circumferences at rest.\n",
-        nominal.track_width_m, radius_m, calibrated.track_width_m / nominal.track_width_m,
-        calibrated.circumference_rl_m / nominal_circumference,
-        calibrated.circumference_rr_m / nominal_circumference);
+        note, nominal.track_width_m, radius_m, calibrated.track_width_m / nominal.track_width_m,
+        left / nominal_circumference, right / nominal_circumference);
   });
 }
 

@@ -138,6 +138,15 @@ void add_details(json& out, const BatchSummary& s) {
                            {"dependences", dependences},
                            {"explains", m.explains},
                            {"verdict", m.verdict}};
+  if (s.reference_circumference) {
+    const ReferenceCircumference& r = *s.reference_circumference;
+    out["reference_circumference"] = {{"speed_mps", r.speed_mps},
+                                      {"circumference_rl_m", r.circumference_rl_m},
+                                      {"circumference_rr_m", r.circumference_rr_m},
+                                      {"sigma_rl_m", number_or_null(r.sigma_rl_m)},
+                                      {"sigma_rr_m", number_or_null(r.sigma_rr_m)},
+                                      {"identified", r.identified}};
+  }
   if (s.body_sigma_m[0] > 0.0 || s.body_sigma_m[1] > 0.0)
     out["body_sigma_m"] = {s.body_sigma_m[0], s.body_sigma_m[1]};
   if (s.tyre_selection.compared) {

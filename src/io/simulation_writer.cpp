@@ -69,6 +69,12 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
     out.print("circumference_rl_m: {:.9f}\ncircumference_rr_m: {:.9f}\ntrack_width_m: {:.9f}\n",
               drive.true_params.circumference_rl_m, drive.true_params.circumference_rr_m,
               drive.true_params.track_width_m);
+    out.print(
+        "# rolling straight at a steady speed, drive slip against drag and rolling resistance "
+        "included\nrolling_speed_mps: {:g}\nrolling_circumference_rl_m: {:.9f}\n"
+        "rolling_circumference_rr_m: {:.9f}\n",
+        drive.steady_rolling_speed_mps, drive.steady_rolling_circumference_m[0],
+        drive.steady_rolling_circumference_m[1]);
     out.print("distance_m: {:.3f}\nduration_s: {:.3f}\nideal: {}\n", drive.distance_m,
               drive.wheel_t_s.empty() ? 0.0 : drive.wheel_t_s.back(), scenario.ideal);
     out.print("seeds: {{trajectory: {}, noise: {}}}\n", scenario.seeds.trajectory,

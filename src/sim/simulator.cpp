@@ -252,14 +252,21 @@ SimulatedDrive simulate(const Scenario& scenario) {
   std::array<std::uint64_t, 4> sensor_seeds{};
   seeds.generate(sensor_seeds.begin(), sensor_seeds.end());
   std::mt19937_64 wheel_rng(sensor_seeds[0]), gnss_rng(sensor_seeds[1]), imu_rng(sensor_seeds[2]);
+  out.steady_rolling_circumference_m = {out.true_params.circumference_rl_m,
+                                        out.true_params.circumference_rr_m};
   std::unique_ptr<MotionTruth> truth;
   if (scenario.ideal) {
     truth = std::make_unique<IdealMotion>(path, profile, track_m, out.true_params);
   } else {
-    truth = simulate_vehicle_dynamics(
-        path, profile, scenario.dynamics, scenario.vehicle.wheelbase_m, track_m,
-        {out.true_params.circumference_rl_m / kTwoPi, out.true_params.circumference_rr_m / kTwoPi,
-         scenario.vehicle.pressure_rl, scenario.vehicle.pressure_rr});
+    const StaticRearRadii radii{out.true_params.circumference_rl_m / kTwoPi,
+                                out.true_params.circumference_rr_m / kTwoPi,
+                                scenario.vehicle.pressure_rl, scenario.vehicle.pressure_rr};
+    truth = simulate_vehicle_dynamics(path, profile, scenario.dynamics,
+                                      scenario.vehicle.wheelbase_m, track_m, radii);
+    const std::array<double, 2> rolling =
+        steady_rolling_radii_m(scenario.dynamics, scenario.vehicle.wheelbase_m, track_m, radii,
+                               out.steady_rolling_speed_mps);
+    out.steady_rolling_circumference_m = {kTwoPi * rolling[0], kTwoPi * rolling[1]};
   }
   if (scenario.route.terrain.max_grade > 0.0) {
     const double lap_length_m = path.length_m() / scenario.route.laps;

@@ -120,6 +120,16 @@ class Vehicle {
     return 0.0;
   }
 
+  // A rear wheel's ground distance per radian rolling straight at a steady speed: the drive
+  // balances the resistance, the load is static.
+  double steady_rolling_radius_m(double speed_mps, bool left) const {
+    const double drive_n = (1.0 - drive_front_share()) * resistance_n(speed_mps);
+    const double load_n = static_rear_wheel_load_n(c_, L_);
+    return speed_mps / wheel_rate(speed_mps, 0.5 * drive_n, load_n, load_n,
+                                  left ? radii_.rl_m : radii_.rr_m,
+                                  left ? radii_.pressure_rl : radii_.pressure_rr);
+  }
+
   double wheel_radius(double load_n, double static_load_n, double static_radius_m,
                       double pressure) const {
     return c_.load_dependent_radius ? static_radius_m - c_.radius_load_sensitivity_m_per_n /
@@ -187,6 +197,14 @@ class RecordedMotion : public MotionTruth {
 
 double static_rear_wheel_load_n(const VehicleDynamicsConfig& config, double wheelbase_m) {
   return config.mass_kg * kGravity * config.cg_to_front_axle_m / wheelbase_m / 2.0;
+}
+
+std::array<double, 2> steady_rolling_radii_m(const VehicleDynamicsConfig& config,
+                                             double wheelbase_m, double track_width_m,
+                                             const StaticRearRadii& radii, double speed_mps) {
+  const Vehicle vehicle(config, wheelbase_m, track_width_m, radii);
+  return {vehicle.steady_rolling_radius_m(speed_mps, true),
+          vehicle.steady_rolling_radius_m(speed_mps, false)};
 }
 
 std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,

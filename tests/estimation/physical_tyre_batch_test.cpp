@@ -65,6 +65,20 @@ TEST(PhysicalTyreBatch, RecoversKnownLoadAndSlipWhereThePlainModelIsBiased) {
     EXPECT_TRUE(p.estimated) << name;
     EXPECT_LT(std::abs(p.value - value), 3.0 * p.sigma) << name << " " << p.value;
   }
+  // Rolling at 5 m/s the drive slip of the rolling resistance and drag is in the circumference.
+  ASSERT_TRUE(physical.reference_circumference.has_value());
+  const ReferenceCircumference& rolling = *physical.reference_circumference;
+  DrivingState steady;
+  steady.speed_mps = 5.0F;
+  const double rolling_truth = truth_m * tyre_factor(truth, steady, RearWheel::kLeft, body);
+  EXPECT_NEAR(rolling.circumference_rl_m,
+              physical.estimate.circumference_rl_m *
+                  tyre_factor(physical.tyre_model, steady, RearWheel::kLeft, body),
+              1e-9);
+  EXPECT_LT(std::abs(rolling.circumference_rl_m - rolling_truth), 3.0 * rolling.sigma_rl_m)
+      << physical.full_report();
+  EXPECT_LT(std::abs(rolling.circumference_rr_m - rolling_truth), 3.0 * rolling.sigma_rr_m)
+      << physical.full_report();
   EXPECT_FALSE(parameter(physical, "tyre_speed_s2pm2").estimated);  // the regression terms
   EXPECT_EQ(physical.tyre_model.k_speed_s2pm2, 0.0);
   EXPECT_LT(physical.after.mean_position_m, plain.after.mean_position_m);
@@ -118,8 +132,23 @@ TEST(PhysicalTyreBatch, SigmaCoversTheBodyThatVehicleYamlGetsWrong) {
   EXPECT_GT(physical.body_sigma_m[0], 0.5 * physical.sigma_rl_m());
   EXPECT_LT(physical.body_sigma_m[0], physical.sigma_rl_m());
   EXPECT_NE(physical.full_report().find("from the body's uncertainty"), std::string::npos);
+  // Rolling at 5 m/s the drive slip of the rolling resistance and drag (~1.5e-3, 3 mm) is in the
+  // circumference; its sigma carries the body too.
+  ASSERT_TRUE(physical.reference_circumference.has_value());
+  const ReferenceCircumference& rolling = *physical.reference_circumference;
+  EXPECT_EQ(rolling.speed_mps, 5.0);
+  const double rolling_truth = drive.steady_rolling_circumference_m[0];
+  EXPECT_GT(drive.true_params.circumference_rl_m - rolling_truth, 0.002);
+  for (const auto& [value, sigma] : {std::pair{rolling.circumference_rl_m, rolling.sigma_rl_m},
+                                     std::pair{rolling.circumference_rr_m, rolling.sigma_rr_m}}) {
+    EXPECT_LT(std::abs(value - rolling_truth), 3.0 * sigma) << physical.full_report();
+    EXPECT_GT(sigma, 0.5 * physical.sigma_rl_m());
+  }
+  EXPECT_NE(physical.full_report().find("rolling straight at a steady 5 m/s"), std::string::npos);
   const BatchSummary extended = calibrate(log, TyreModelChoice::kExtended);
   EXPECT_EQ(extended.body_sigma_m[0], 0.0);
+  EXPECT_TRUE(extended.reference_circumference.has_value());
+  EXPECT_FALSE(calibrate(log, TyreModelChoice::kNone).reference_circumference.has_value());
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include "odocal/io/calibration_export.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -69,6 +70,31 @@ TEST(CalibrationExport, TyreModelGoesToVehicleYamlAndIsSaidMissingInRos2) {
   EXPECT_NE(text.find("cannot be carried by diff_drive_controller"), std::string::npos) << text;
   write_ros2_diff_drive_parameters(nominal, calibrated, dir.file("ros2-plain.yaml"));
   EXPECT_EQ(testing::read_text_file(dir.file("ros2-plain.yaml")).find("cannot be carried"),
+            std::string::npos);
+}
+
+TEST(CalibrationExport, Ros2GetsTheCircumferencesRollingAtTheReferenceSpeed) {
+  // Constant radii stand for the tyre model in gentle driving: the circumferences rolling at
+  // the calibration's reference speed, not the extrapolation to rest.
+  testing::TempLogDir dir;
+  const VehicleConfig nominal = nominal_vehicle();
+  const OdometryParams calibrated{1.9546, 1.9578, 1.6};
+  TyreModel tyre;
+  tyre.k_drive_slip = 0.05;
+  ReferenceCircumference rolling;
+  rolling.speed_mps = 5.0;
+  rolling.circumference_rl_m = 0.99 * nominal.circumference_rl_m;
+  rolling.circumference_rr_m = 0.98 * nominal.circumference_rr_m;
+  write_ros2_diff_drive_parameters(nominal, calibrated, dir.file("ros2.yaml"), tyre, rolling);
+  const std::string text = testing::read_text_file(dir.file("ros2.yaml"));
+  EXPECT_NE(text.find("left_wheel_radius_multiplier: 0.99000000\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("right_wheel_radius_multiplier: 0.98000000\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("rolling straight at a steady\n# 5 m/s"), std::string::npos) << text;
+  // Without a tyre model the circumferences are constant: any rolling figure is not used.
+  write_ros2_diff_drive_parameters(nominal, calibrated, dir.file("ros2-plain.yaml"), {}, rolling);
+  EXPECT_NE(testing::read_text_file(dir.file("ros2-plain.yaml"))
+                .find(fmt::format("left_wheel_radius_multiplier: {:.8f}\n",
+                                  calibrated.circumference_rl_m / nominal.circumference_rl_m)),
             std::string::npos);
 }
 

@@ -17,6 +17,7 @@
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/sim/vehicle_dynamics.hpp"
 
 namespace odocal::sim {
 namespace {
@@ -291,6 +292,34 @@ TEST(RealisticSimulator, FreeRollingRearWheelsDoNotSlip) {
       realistic_errors("circuit", false, true, false, false, drivetrain(Drivetrain::kRear, 0.65));
   EXPECT_GT(braking.max_heading_rad, 1e-6);
   EXPECT_LT(braking.max_heading_rad, rear.max_heading_rad);
+}
+
+TEST(RealisticSimulator, SteadyRollingCircumferenceHasTheDriveSlipOfTheResistance) {
+  // Straight at a steady speed a rear-driven car's rear wheels push the drag and rolling
+  // resistance: each slips by the inverse magic formula of half that force on its static load,
+  // kappa = tan(asin(F / (mu F_z)) / C) / B with B = C_kappa / (C mu); free-rolling wheels do not.
+  VehicleDynamicsConfig c;
+  const double wheelbase = 2.7, speed = 5.0;
+  const StaticRearRadii radii{0.31, 0.312};
+  const double resistance = 0.5 * c.air_density_kgpm3 * c.drag_area_m2 * speed * speed +
+                            c.rolling_resistance * c.mass_kg * 9.81 * std::tanh(speed / 0.2);
+  const double load = c.mass_kg * 9.81 * c.cg_to_front_axle_m / wheelbase / 2.0;
+  const double b = c.slip_stiffness_per_load / (c.longitudinal_shape * c.friction);
+  const double slip =
+      std::tan(std::asin(0.5 * resistance / (c.friction * load)) / c.longitudinal_shape) / b;
+  EXPECT_NEAR(slip, 1.37e-3, 2e-5);  // ~2.7 mm of circumference
+  const auto rear = steady_rolling_radii_m(c, wheelbase, 1.6, radii, speed);
+  EXPECT_NEAR(rear[0], radii.rl_m / (1.0 + slip), 1e-12);
+  EXPECT_NEAR(rear[1], radii.rr_m / (1.0 + slip), 1e-12);
+  c.drivetrain = Drivetrain::kFront;
+  EXPECT_NEAR(steady_rolling_radii_m(c, wheelbase, 1.6, radii, speed)[0], radii.rl_m, 1e-12);
+
+  Scenario scenario = load_scenario("urban");
+  const SimulatedDrive drive = simulate(scenario);
+  EXPECT_LT(drive.steady_rolling_circumference_m[0], drive.true_params.circumference_rl_m - 2e-3);
+  scenario.ideal = true;
+  const SimulatedDrive ideal = simulate(scenario);
+  EXPECT_EQ(ideal.steady_rolling_circumference_m[1], ideal.true_params.circumference_rr_m);
 }
 
 TEST(ScenarioYaml, DrivetrainIsReadAndChecked) {

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,18 @@ struct TyreModelSelection {
   int other_solves{};  // the solves of the fits not chosen (BatchSummary::solves: the chosen's)
 };
 
+// Beside a tyre model: each rear wheel's effective circumference rolling straight at a steady
+// reference speed, slip and load included: the one constant that stands for the tyre model in
+// gentle driving (garages, urban canyons: where dead reckoning is needed), and what a consumer of
+// constant radii (the ROS 2 export) is given. Its sigma is the circumference's at rest, nearly:
+// the body numbers that the log cannot separate from c_i move both alike.
+struct ReferenceCircumference {
+  double speed_mps{};
+  double circumference_rl_m{}, circumference_rr_m{};
+  double sigma_rl_m{}, sigma_rr_m{};
+  bool identified{};  // both sigmas within max_sigma_circumference_m (reported, not judged)
+};
+
 struct BatchSummary : CalibrationSummary {
   std::vector<EstimatedParameter> parameters;  // every unknown besides the poses
   std::string solver_report;                   // Ceres' brief report of the last solve
@@ -95,6 +108,7 @@ struct BatchSummary : CalibrationSummary {
   // The physical terms' share of the circumferences' sigma: what the body's uncertainty moves
   // them by (zero for any other model; it is in sigma and covariance too).
   std::array<double, 2> body_sigma_m{};
+  std::optional<ReferenceCircumference> reference_circumference;
   // Gentle segments (BatchOptions::gentle_max_*): keyframe intervals whose odometry is in the fit,
   // of all; equal without limits (gaps aside).
   bool gentle_limits{};

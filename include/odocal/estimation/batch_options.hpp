@@ -70,6 +70,9 @@ struct BatchOptions {
   // and its peak memory is the extended fit's (the 10-hour drive: 1.2 GB against 0.89 GB, past
   // the 1 GB that docs/batch-calibration.md promises; docs/tyre-model.md).
   TyreModelChoice tyre_model = TyreModelChoice::kNone;
+  // Beside a tyre model, the steady straight speed whose effective circumference is reported
+  // (BatchSummary::reference_circumference) and exported to ROS 2: gentle driving's.
+  double reference_speed_mps = 5.0;
   int max_solver_iterations = 100;
   // The odometry is pre-integrated at the current parameters and used to first order; when the
   // solution moves them by more than this fraction, it is integrated again and re-solved.

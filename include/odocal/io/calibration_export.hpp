@@ -3,8 +3,10 @@
 // diff_drive_controller parameters, and back from `odocal calibrate --json`.
 
 #include <filesystem>
+#include <optional>
 
 #include "odocal/data/log.hpp"
+#include "odocal/estimation/batch_calibration.hpp"
 
 namespace odocal {
 
@@ -18,11 +20,12 @@ void write_calibrated_vehicle(const VehicleConfig& nominal, const OdometryParams
 // vehicle (the mean of the rear radii), and the multipliers that turn them into the calibrated
 // values: left/right_wheel_radius_multiplier, wheel_separation_multiplier. The controller has
 // constant radii: a tyre model that is not plain is said in a comment and left out (the
-// multipliers are then the circumferences at rest).
+// multipliers are then the circumferences rolling at the reference speed where the calibration
+// gives them, else those at rest).
 void write_ros2_diff_drive_parameters(const VehicleConfig& nominal,
                                       const OdometryParams& calibrated,
-                                      const std::filesystem::path& path,
-                                      const TyreModel& tyre = {});
+                                      const std::filesystem::path& path, const TyreModel& tyre = {},
+                                      const std::optional<ReferenceCircumference>& rolling = {});
 
 // circumference_rl_m, circumference_rr_m and track_width_m of a calibration result JSON; throws
 // InputError naming the file and field when one is missing or not a positive number, or when the

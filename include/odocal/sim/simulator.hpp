@@ -2,6 +2,7 @@
 // Simulates a drive and its sensors. Returns raw sensor columns as a logger would write them
 // (cumulative ticks, lat/lon, ...) plus the truth.
 
+#include <array>
 #include <vector>
 
 #include "odocal/data/log.hpp"
@@ -12,6 +13,10 @@ namespace odocal::sim {
 struct SimulatedDrive {
   VehicleConfig nominal_vehicle;  // what vehicle.yaml says (unworn tyres)
   OdometryParams true_params;     // circumferences after wear, true track width
+  // Each rear wheel's effective circumference driving straight at a steady speed (the static
+  // one in ideal mode): a tyre model's reference circumference (BatchOptions::reference_speed_mps).
+  double steady_rolling_speed_mps = 5.0;
+  std::array<double, 2> steady_rolling_circumference_m{};
   // wheels.csv: raw values in `wheel_unit` (ticks cumulative and wrapped, rad cumulative, ...)
   std::vector<double> wheel_t_s, wheel_rl, wheel_rr;
   WheelUnit wheel_unit{WheelUnit::kTicks};

@@ -7,6 +7,7 @@
 // contact-point speed (vx -+ r t_R / 2) times (1 + longitudinal slip) over an effective rolling
 // radius that depends on its vertical load. docs/simulator.md has the equations and defaults.
 
+#include <array>
 #include <memory>
 
 #include "odocal/sim/motion_truth.hpp"
@@ -64,6 +65,12 @@ struct StaticRearRadii {
 
 // Static load on one rear wheel, N.
 double static_rear_wheel_load_n(const VehicleDynamicsConfig& config, double wheelbase_m);
+
+// Each rear wheel's effective rolling radius driving straight at a steady speed (its drive slip
+// against drag and rolling resistance in it): what a constant radius should be in gentle driving.
+std::array<double, 2> steady_rolling_radii_m(const VehicleDynamicsConfig& config,
+                                             double wheelbase_m, double track_width_m,
+                                             const StaticRearRadii& radii, double speed_mps);
 
 // Simulates the drive; the wheel radii at static load are given (nominal minus wear).
 std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
