@@ -38,7 +38,7 @@ def yaml_configs():
     write("yaml_configs", "vehicle-physical-tyre",
           b"\x01track_width_m: 1.6\ncircumference_rl_m: 1.96\ncircumference_rr_m: 1.96\n"
           b"wheelbase_m: 2.7\ntyre_model: {k_load_s2pm: 0.002, k_drive_slip: 0.05, "
-          b"k_brake_slip: 0.018}\nbody: {rear_axle_load_share: 0.45, cg_height_m: 0.55, "
+          b"k_brake_slip: 0.018, k_side_slip_s2pm: -0.005}\nbody: {rear_axle_load_share: 0.45, cg_height_m: 0.55, "
           b"rear_roll_share: 0.45, mass_kg: 1500, drag_area_m2: 0.7, rolling_resistance: 0.012}\n")
     for scenario in sorted((ROOT / "config" / "scenarios").glob("*.yaml")):
         write("yaml_configs", f"scenario-{scenario.stem}", b"\x02" + scenario.read_bytes())

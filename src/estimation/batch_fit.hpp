@@ -30,6 +30,9 @@ using FitDecision = std::function<bool(const FitFacts&)>;
 // Tyre coefficients that change the circumference by more than this at the log's typical driving
 // state (RMS of each regressor) are not a tyre: they are the model explaining something else.
 inline constexpr double kMaxTyreEffect = 0.03;
+// Nor is a side slip of more than this at the log's RMS lateral acceleration: a rear axle past
+// 6 degrees of slip angle is sliding (a car's rear tyres reach ~0.03 rad at 5 m/s^2).
+inline constexpr double kMaxSideSlipRad = 0.1;
 
 // Fits one model (the plain one, or a tyre model's family of terms); unless `finish` (when
 // given) declines the solved fit, adapts its GNSS noise and fills the summary. Returns whether it

@@ -105,9 +105,9 @@ class RowFold {
 
 // The GNSS fixes of one keyframe interval. Blocks: pose, params, lever, latency, bias, count.
 struct FoldedGnssResidual {
-  Eigen::Vector2d origin;  // world position the fixes were taken relative to
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();  // the fixes are taken relative to it
   PackedFactor factor;
-  ParamsVector params_lin;
+  ParamsVector params_lin = ParamsVector::Zero();
 
   // Fix j's whitened row pair (x, y) with weight `weight` (a robust loss's, 1 without one).
   static void add_fix(RowFold<kFoldedGnssColumns>& fold, const RelativeMotion& motion,
@@ -147,7 +147,7 @@ struct FoldedGnssResidual {
 // The heading samples of one keyframe interval. Blocks: pose, params, heading_bias, count.
 struct FoldedHeadingResidual {
   PackedFactor factor;
-  ParamsVector params_lin;
+  ParamsVector params_lin = ParamsVector::Zero();
 
   // `measured_rad` is the sample unwrapped to within pi of its prediction.
   static void add_sample(RowFold<kFoldedHeadingColumns>& fold, const RelativeMotion& motion,

@@ -61,10 +61,11 @@ std::string unidentified_reason(const std::string& name, const LogCoverage& c, b
                              : name == "tyre_brake_s2pm"          ? "braking"
                              : name == "tyre_drive_lateral_s4pm2" ? "accelerating out of turns"
                              : name == "tyre_brake_lateral_s4pm2" ? "braking into turns"
-                             : name == "tyre_load_s2pm"  ? "turns and accelerations at speed"
-                             : name == "tyre_drive_slip" ? "driving force: accelerations, speed"
-                             : name == "tyre_brake_slip" ? "braking"
-                                                         : "turns";
+                             : name == "tyre_load_s2pm"      ? "turns and accelerations at speed"
+                             : name == "tyre_drive_slip"     ? "driving force: accelerations, speed"
+                             : name == "tyre_brake_slip"     ? "braking"
+                             : name == "tyre_side_slip_s2pm" ? "lateral acceleration"
+                                                             : "turns";
     return fmt::format(
         "the drive has too little of what shows it ({}); set tyre_model: none or drive more of "
         "it",

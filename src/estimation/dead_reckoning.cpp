@@ -43,7 +43,8 @@ ODOCAL_HOT_LOOP void dead_reckon_into(const WheelStream& wheels, std::size_t fir
   for (std::size_t i = begin; i < std::min(end, path.size()); ++i) {
     const WheelIncrement increment = wheels.increment(first_sample + i);
     const BodyIncrement step = body_increment(increment, params);
-    const CosSin course = course_cos_sin(path[i - 1].z() + 0.5 * step.yaw_rad);
+    const CosSin course =
+        course_cos_sin(path[i - 1].z() + 0.5 * step.yaw_rad + wheels.side_slip(first_sample + i));
     path[i] = predict_pose_on_course(path[i - 1], increment, step, course, params);
   }
 }

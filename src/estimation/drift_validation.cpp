@@ -47,8 +47,8 @@ WindowDrift window_drift(const WheelStream& wheels, const ReferenceTrajectory& r
   Pose2 pose = reference.poses.pose[first];
   double distance = 0.0;
   for (std::size_t i = first + 1; i <= last; ++i) {
-    const Pose2 next =
-        predict_pose(pose, wheels.increment(reference.first_wheel_index + i), params);
+    const std::size_t k = reference.first_wheel_index + i;
+    const Pose2 next = predict_pose(pose, wheels.increment(k), params, wheels.side_slip(k));
     distance += (next.head<2>() - pose.head<2>()).norm();
     pose = next;
   }

@@ -171,6 +171,11 @@ WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<Driving
     corrected.rev_rl[k] *= tyre_factor(model, states[k], RearWheel::kLeft, body);
     corrected.rev_rr[k] *= tyre_factor(model, states[k], RearWheel::kRight, body);
   }
+  if (model.k_side_slip_s2pm != 0.0) {
+    corrected.side_slip_rad.resize(wheels.size());
+    for (std::size_t k = 0; k < wheels.size(); ++k)
+      corrected.side_slip_rad[k] = static_cast<float>(side_slip_rad(model, states[k]));
+  }
   return corrected;
 }
 

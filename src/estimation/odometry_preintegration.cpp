@@ -30,22 +30,29 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
     const WheelIncrement raw = wheels.increment(first_sample + s);
     WheelIncrement n = raw;
     TyreModel::Vector regressors_rl, regressors_rr;
+    double side_slip = 0.0, side_slip_per_coefficient = 0.0;
     if (tyre != nullptr) {
       const DrivingState& state = tyre->states[first_sample + s];
       regressors_rl = tyre_regressors(state, RearWheel::kLeft, tyre->body);
       regressors_rr = tyre_regressors(state, RearWheel::kRight, tyre->body);
       n.rev_rl *= 1.0 + k.dot(regressors_rl);
       n.rev_rr *= 1.0 + k.dot(regressors_rr);
+      side_slip_per_coefficient = side_slip_regressor(state);
+      side_slip = k(kSideSlipCoefficient) * side_slip_per_coefficient;
     }
-    segment.delta[s] =
-        predict_pose(segment.delta[s - 1], n, params, 0.0,
-                     {.J_pose_pose = &F, .J_pose_wheels = &G, .J_pose_params = &J_params});
+    OdometryJacobianSideSlip J_side_slip;
+    segment.delta[s] = predict_pose(segment.delta[s - 1], n, params, side_slip,
+                                    {.J_pose_pose = &F,
+                                     .J_pose_wheels = &G,
+                                     .J_pose_params = &J_params,
+                                     .J_pose_side_slip = tyre != nullptr ? &J_side_slip : nullptr});
     segment.J_delta_params[s] = F * segment.J_delta_params[s - 1] + J_params;
     if (tyre != nullptr) {
       Eigen::Matrix<double, 2, TyreModel::kCoefficients> J_increment_tyre;
       J_increment_tyre.row(0) = raw.rev_rl * regressors_rl.transpose();
       J_increment_tyre.row(1) = raw.rev_rr * regressors_rr.transpose();
       segment.J_delta_tyre[s] = F * segment.J_delta_tyre[s - 1] + G * J_increment_tyre;
+      segment.J_delta_tyre[s].col(kSideSlipCoefficient) += J_side_slip * side_slip_per_coefficient;
       // The count errors are errors of the raw counts: they carry the factors too.
       if (raw.rev_rl != 0.0) G.col(0) *= n.rev_rl / raw.rev_rl;
       if (raw.rev_rr != 0.0) G.col(1) *= n.rev_rr / raw.rev_rr;

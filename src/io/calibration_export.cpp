@@ -34,20 +34,19 @@ void write_ros2_diff_drive_parameters(const VehicleConfig& nominal,
   const double nominal_circumference = 2.0 * std::numbers::pi * radius_m;
   const bool constant = tyre.plain();
   const bool at_speed = !constant && rolling.has_value();
+  const std::string what = at_speed ? fmt::format(
+                                          "the circumferences rolling straight at a "
+                                          "steady\n# {:g} m/s, slip and load included",
+                                          rolling->speed_mps)
+                                    : std::string("the circumferences at rest");
   const std::string note =
       constant ? ""
-      : at_speed
-          ? fmt::format(
-                "# The calibration's tyre model (a circumference that follows speed, "
-                "acceleration, turns\n# and load: vehicle.yaml tyre_model) cannot be "
-                "carried by diff_drive_controller,\n# whose radii are constant: these "
-                "are the circumferences rolling straight at a steady\n# {:g} m/s, slip "
-                "and load included.\n",
-                rolling->speed_mps)
-          : "# The calibration's tyre model (a circumference that follows speed, acceleration, "
-            "turns\n# and load: vehicle.yaml tyre_model) cannot be carried by "
-            "diff_drive_controller,\n# whose radii are constant: these are the circumferences "
-            "at rest.\n";
+               : fmt::format(
+                     "# The calibration's tyre model (vehicle.yaml tyre_model: a circumference "
+                     "that follows speed,\n# acceleration, turns, load; the rear axle's side "
+                     "slip) cannot be carried by diff_drive_controller,\n# whose radii are "
+                     "constant and whose axle does not slip sideways: these are\n# {}.\n",
+                     what);
   const double left = at_speed ? rolling->circumference_rl_m : calibrated.circumference_rl_m;
   const double right = at_speed ? rolling->circumference_rr_m : calibrated.circumference_rr_m;
   write_text_file(path, [&](TextBuffer& out) {

@@ -9,6 +9,7 @@
 
 #include "../support/numerical_jacobian.hpp"
 #include "odocal/estimation/dead_reckoning.hpp"
+#include "odocal/estimation/driving_state.hpp"
 
 namespace odocal {
 namespace {
@@ -75,7 +76,7 @@ TEST(OdometryPreintegration, TyreJacobianMatchesNumerical) {
   const std::vector<DrivingState> states = varied_states(wheels.size());
   const OdometryParams params{1.95, 1.96, 1.6};
   const TyreModel::Vector at =
-      TyreModel{2e-6, 3e-4, 8e-3, -2e-3, -5e-3, 6e-4, 4e-4, 2e-3, 0.05, 0.02}.coefficients();
+      TyreModel{2e-6, 3e-4, 8e-3, -2e-3, -5e-3, 6e-4, 4e-4, 2e-3, 0.05, 0.02, -5e-3}.coefficients();
   const VehicleBody body;
   const TyreConditions tyre{states, TyreModel::from(at), body};
   const PreintegratedSegment segment = preintegrate(wheels, 0, 120, params, {}, &tyre);
@@ -114,6 +115,32 @@ TEST(OdometryPreintegration, TyreModelIsDeadReckoningOfTheScaledIncrements) {
   EXPECT_LT((segment.delta.back() - path.pose.back()).norm(), 1e-12);
   EXPECT_GT((segment.delta.back() - dead_reckon(wheels, params, Pose2::Zero()).pose.back()).norm(),
             1e-3);
+}
+
+TEST(OdometryPreintegration, SideSlipIsDeadReckoningAlongTheSlippedCourse) {
+  // beta = k f_y turns every step's course (eq. 1's beta); dead reckoning a stream that carries
+  // the same side slip per sample (by hand here) lands on the same pose.
+  const WheelStream wheels = curving_wheels();
+  const std::vector<DrivingState> states = varied_states(wheels.size());
+  const OdometryParams params{1.95, 1.96, 1.6};
+  TyreModel model;
+  model.k_side_slip_s2pm = -5e-3;
+  EXPECT_DOUBLE_EQ(tyre_factor(model, states[3], RearWheel::kLeft, VehicleBody{}), 1.0);
+  const TyreConditions tyre{states, model, VehicleBody{}};
+  const PreintegratedSegment segment = preintegrate(wheels, 0, 120, params, {}, &tyre);
+  WheelStream slipping = wheels;
+  for (const DrivingState& x : states)
+    slipping.side_slip_rad.push_back(static_cast<float>(-5e-3 * x.specific_force_y_mps2));
+  const PoseStream path = dead_reckon(slipping, params, Pose2::Zero());
+  EXPECT_LT((segment.delta.back() - path.pose.back()).norm(), 1e-6);
+  EXPECT_GT((segment.delta.back() - dead_reckon(wheels, params, Pose2::Zero()).pose.back()).norm(),
+            1e-3);
+  EXPECT_EQ(segment.delta.back().z(), dead_reckon(wheels, params, Pose2::Zero()).pose.back().z());
+  // with_tyre_model carries it: the same stream.
+  const WheelStream counted = with_tyre_model(wheels, states, model, VehicleBody{});
+  ASSERT_EQ(counted.side_slip_rad.size(), wheels.size());
+  EXPECT_EQ(counted.side_slip_rad, slipping.side_slip_rad);
+  EXPECT_EQ(counted.rev_rl, wheels.rev_rl);
 }
 
 TEST(OdometryPreintegration, CovarianceMatchesMonteCarloOfNoisyWheels) {

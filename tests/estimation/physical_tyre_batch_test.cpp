@@ -111,6 +111,33 @@ TEST(PhysicalTyreBatch, CalibratesARealisticUrbanDriveToTheCircumferenceAtRest) 
   }
 }
 
+TEST(PhysicalTyreBatch, RecoversTheRearAxleSideSlip) {
+  // The realistic circuit with the tyres' side slip as its only effect (a front-driven car: the
+  // rear wheels roll free, no load transfer, a constant radius): the rear axle slides outwards
+  // by its slip angle, F_y,R / C_alpha,R = a_y / (g C_alpha/F_z) to first order, which eqs. 1-2
+  // cannot express and a plain fit dead-reckons as a heading and position error in every turn.
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.dynamics.drivetrain = sim::Drivetrain::kFront;
+  scenario.dynamics.longitudinal_slip = false;
+  scenario.dynamics.load_dependent_radius = false;
+  scenario.dynamics.load_transfer = false;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log log = simulated_log(drive);
+  const double first_order = -1.0 / (9.81 * scenario.dynamics.cornering_stiffness_per_load_rear);
+
+  const BatchSummary plain = calibrate(log, TyreModelChoice::kNone);
+  const BatchSummary physical = calibrate(log, TyreModelChoice::kPhysical);
+  ASSERT_TRUE(physical.usable()) << physical.full_report();
+  const EstimatedParameter& side_slip = parameter(physical, "tyre_side_slip_s2pm");
+  EXPECT_TRUE(side_slip.estimated);
+  EXPECT_LT(std::abs(side_slip.value - first_order), 3.0 * side_slip.sigma) << side_slip.value;
+  EXPECT_GT(std::abs(side_slip.value), 10.0 * side_slip.sigma);
+  EXPECT_LT(physical.after.mean_position_m, 0.3 * plain.after.mean_position_m)
+      << plain.after.mean_position_m << " m plain";
+  EXPECT_LT(std::abs(physical.estimate.circumference_rl_m - drive.true_params.circumference_rl_m),
+            3.0 * physical.sigma_rl_m());
+}
+
 TEST(PhysicalTyreBatch, SigmaCoversTheBodyThatVehicleYamlGetsWrong) {
   // The realistic circuit, rear-driven, with the low and heavy car of the urban test above: at
   // the circuit's speeds and accelerations the body's numbers move the circumference at rest by

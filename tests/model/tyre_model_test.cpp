@@ -99,6 +99,8 @@ TEST(TyreModel, CoefficientTableRoundTripsEveryMember) {
   EXPECT_EQ(model.coefficients(), k);
   EXPECT_EQ(model.k_speed_s2pm2, 0.001);
   EXPECT_EQ(model.k_brake_slip, 0.010);
+  EXPECT_EQ(model.k_side_slip_s2pm, 0.011);
+  EXPECT_EQ(kTyreCoefficients[kSideSlipCoefficient].member, &TyreModel::k_side_slip_s2pm);
   EXPECT_FALSE(model.plain());
   EXPECT_TRUE(TyreModel{}.plain());
   for (const TyreCoefficient& c : kTyreCoefficients) EXPECT_LT(c.min, c.max) << c.key;

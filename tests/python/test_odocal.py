@@ -67,13 +67,13 @@ def test_tyre_model_options_and_coefficients(worn):
     plain = odocal.calibrate(worn, method="batch")
     regression = {"k_speed_s2pm2", "k_lateral_s2pm", "k_drive_s2pm", "k_brake_s2pm",
                   "k_turn_s2prad2", "k_drive_lateral_s4pm2", "k_brake_lateral_s4pm2"}
-    physical = {"k_load_s2pm", "k_drive_slip", "k_brake_slip"}
+    physical = {"k_load_s2pm", "k_drive_slip", "k_brake_slip", "k_side_slip_s2pm"}
     assert set(plain.tyre_model) == regression | physical
     assert all(k == 0.0 for k in plain.tyre_model.values())
     for choice, family in (("extended", regression), ("physical", physical)):
         fitted = odocal.calibrate(worn, method="batch", options={"batch": {"tyre_model": choice}})
         tyre = {p["name"]: p for p in fitted.to_dict()["parameters"] if p["name"].startswith("tyre_")}
-        assert len(tyre) == 10
+        assert len(tyre) == 11
         assert {"k" + name[4:] for name, p in tyre.items() if p["estimated"]} == family
         for name, p in tyre.items():
             assert fitted.tyre_model["k" + name[4:]] == p["value"]

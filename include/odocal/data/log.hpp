@@ -72,9 +72,14 @@ struct WheelStream {
   // odometry chain breaks (its increment is zero). Empty: no break. Set by preprocessing
   // (odocal/estimation/wheel_gaps.hpp), never by the readers.
   std::vector<std::uint8_t> chain_break;
+  // The rear axle's side slip angle over sample k's increment (rad, left of the heading
+  // positive), from a tyre model (driving_state.hpp's with_tyre_model); empty: none, as in
+  // eqs. 1-2. Never read from a log file.
+  std::vector<float> side_slip_rad;
 
   std::size_t size() const { return t_s.size(); }
   WheelIncrement increment(std::size_t k) const { return {rev_rl[k], rev_rr[k]}; }
+  double side_slip(std::size_t k) const { return side_slip_rad.empty() ? 0.0 : side_slip_rad[k]; }
   bool breaks_at(std::size_t k) const { return !chain_break.empty() && chain_break[k] != 0; }
 };
 

@@ -20,6 +20,7 @@ void for_each_column(Visit&& visit, Streams&... s) {
     visit(s.rev_fl...);
     visit(s.rev_fr...);
     visit(s.chain_break...);
+    visit(s.side_slip_rad...);
   } else if constexpr (std::is_same_v<Stream, GnssStream>) {
     visit(s.t_s...);
     visit(s.x_m...);

@@ -37,8 +37,9 @@ void measure_driving_states_again(const WheelStream& wheels, const ImuStream* im
                                   const VehicleBody& body, std::vector<DrivingState>& states,
                                   double half_window_s = 0.25);
 
-// The wheel stream whose rear increments carry the model's factors (c_i,eff / c_i): dead
-// reckoning it with c_i is dead reckoning with the condition-dependent circumference.
+// The wheel stream whose rear increments carry the model's factors (c_i,eff / c_i), and its
+// side slip per sample where the model has one: dead reckoning it with c_i is dead reckoning
+// with the condition-dependent circumference and the axle's side slip.
 WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<DrivingState>& states,
                             const TyreModel& model, const VehicleBody& body);
 

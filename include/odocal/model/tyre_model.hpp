@@ -17,6 +17,9 @@
 //   with dz_i = h a_x / (2 L) - s_i r h a_y / t (per vehicle mass), the tractive acceleration
 //   T = a_x + rho_air c_d A v^2 / (2 m) + f_r g + b w^2 and rho_i = (T / 2) / (z_0 + dz_i), z_0 the
 //   wheel's static load per vehicle mass.
+// With the physical terms, beside the circumference: the rear axle's side slip angle, which
+// eqs. 1-2 take as zero, beta = k_side_slip f_y (the rear tyres' slip angle grows with the
+// lateral force they carry): the reference point moves at beta from its heading (eq. 1's beta).
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -57,8 +60,11 @@ struct TyreModel {
   double k_load_s2pm = 0.0;
   double k_drive_slip = 0.0;
   double k_brake_slip = 0.0;
+  // The rear axle's side slip angle per m/s^2 of lateral specific force (rad per m/s^2):
+  // negative, the axle slides outwards (about -1 / (g C_alpha/F_z), -5e-3 for C_alpha/F_z = 19).
+  double k_side_slip_s2pm = 0.0;
 
-  static constexpr int kCoefficients = 10;
+  static constexpr int kCoefficients = 11;
   using Vector = Eigen::Matrix<double, kCoefficients, 1>;
   Vector coefficients() const;
   static TyreModel from(const Vector& k);
@@ -86,7 +92,10 @@ inline constexpr std::array<TyreCoefficient, TyreModel::kCoefficients> kTyreCoef
     {"k_load_s2pm", &TyreModel::k_load_s2pm, -0.05, 0.05, TyreTerms::kPhysical},
     {"k_drive_slip", &TyreModel::k_drive_slip, -1.0, 1.0, TyreTerms::kPhysical},
     {"k_brake_slip", &TyreModel::k_brake_slip, -1.0, 1.0, TyreTerms::kPhysical},
+    {"k_side_slip_s2pm", &TyreModel::k_side_slip_s2pm, -0.05, 0.05, TyreTerms::kPhysical},
 }};
+// Its index in TyreModel::Vector: the one coefficient that turns the course, not the wheels.
+inline constexpr int kSideSlipCoefficient = 10;
 inline std::string tyre_parameter_name(const TyreCoefficient& coefficient) {
   return std::string("tyre_") + (coefficient.key + 2);
 }
@@ -121,7 +130,7 @@ struct DrivingState {
 
 enum class RearWheel { kLeft, kRight };
 
-// d(c_i,eff / c_i) / d coefficients at this state, for one wheel.
+// d(c_i,eff / c_i) / d coefficients at this state, for one wheel (zero for the side slip).
 inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wheel,
                                          const VehicleBody& body) {
   constexpr double kGravity = 9.81, kAirDensity = 1.2;
@@ -145,8 +154,16 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
   const double driving = tractive > 0.0 ? -force_over_load : 0.0;
   const double braking = tractive < 0.0 ? -force_over_load : 0.0;
   return (TyreModel::Vector() << v * v, turn, drive, brake, w * w, drive * turn, brake * turn,
-          -load_change, driving, braking)
+          -load_change, driving, braking, 0.0)
       .finished();
+}
+
+// d beta / d k_side_slip: the lateral specific force.
+inline double side_slip_regressor(const DrivingState& state) { return state.specific_force_y_mps2; }
+
+// The rear axle's side slip angle at this state, rad (left of the heading positive).
+inline double side_slip_rad(const TyreModel& model, const DrivingState& state) {
+  return model.k_side_slip_s2pm * side_slip_regressor(state);
 }
 
 // c_i,eff / c_i.
