@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 #include "batch_covariance.hpp"
 #include "batch_fit.hpp"
