@@ -167,13 +167,12 @@ WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<Driving
     throw std::invalid_argument("with_tyre_model: one driving state per wheel sample");
   WheelStream corrected = wheels;
   if (model.plain()) return corrected;
+  const bool side_slips = model.k_side_slip_s2pm != 0.0;
+  if (side_slips) corrected.side_slip_rad.resize(wheels.size());
   for (std::size_t k = 0; k < wheels.size(); ++k) {
     corrected.rev_rl[k] *= tyre_factor(model, states[k], RearWheel::kLeft, body);
     corrected.rev_rr[k] *= tyre_factor(model, states[k], RearWheel::kRight, body);
-  }
-  if (model.k_side_slip_s2pm != 0.0) {
-    corrected.side_slip_rad.resize(wheels.size());
-    for (std::size_t k = 0; k < wheels.size(); ++k)
+    if (side_slips)
       corrected.side_slip_rad[k] = static_cast<float>(side_slip_rad(model, states[k]));
   }
   return corrected;

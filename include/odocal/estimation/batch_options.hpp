@@ -7,6 +7,7 @@
 #include <array>
 #include <string>
 
+#include "odocal/model/tyre_model.hpp"
 #include "odocal/options/option_fields.hpp"
 
 namespace odocal {
@@ -72,7 +73,7 @@ struct BatchOptions {
   TyreModelChoice tyre_model = TyreModelChoice::kNone;
   // Beside a tyre model, the steady straight speed whose effective circumference is reported
   // (BatchSummary::reference_circumference) and exported to ROS 2: gentle driving's.
-  double reference_speed_mps = 5.0;
+  double reference_speed_mps = kDefaultReferenceSpeedMps;
   int max_solver_iterations = 100;
   // The odometry is pre-integrated at the current parameters and used to first order; when the
   // solution moves them by more than this fraction, it is integrated again and re-solved.

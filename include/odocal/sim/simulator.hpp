@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "odocal/data/log.hpp"
+#include "odocal/model/tyre_model.hpp"
 #include "odocal/sim/scenario.hpp"
 
 namespace odocal::sim {
@@ -15,7 +16,7 @@ struct SimulatedDrive {
   OdometryParams true_params;     // circumferences after wear, true track width
   // Each rear wheel's effective circumference driving straight at a steady speed (the static
   // one in ideal mode): a tyre model's reference circumference (BatchOptions::reference_speed_mps).
-  double steady_rolling_speed_mps = 5.0;
+  double steady_rolling_speed_mps = kDefaultReferenceSpeedMps;
   std::array<double, 2> steady_rolling_circumference_m{};
   // wheels.csv: raw values in `wheel_unit` (ticks cumulative and wrapped, rad cumulative, ...)
   std::vector<double> wheel_t_s, wheel_rl, wheel_rr;
