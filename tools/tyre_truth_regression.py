@@ -83,6 +83,31 @@ def report(name, A_left, A_right, f_left, f_right, circumferences, names):
     print("   " + ", ".join(f"{n} {value:.3g}" for n, value in zip(names, coefficients[2:])))
 
 
+def window_motion(truth, wheels, window):
+    """Per window of `window` samples: its first and last sample, its duration, the reference
+    point's ground distance along the heading, its turn, and each rear wheel's revolutions."""
+    k = np.arange(0, len(truth) - window, window)
+    n = k + window
+    t, x, y = truth[:, 0], truth[:, 1], truth[:, 2]
+    heading = np.unwrap(truth[:, 3])
+    # The path's length along the heading sample by sample: a window's chord is shorter than its
+    # arc by a quarter-per-mille per (0.1 rad of turn)^2, which on a fast circuit biased every
+    # factor (-8 mm at rest on Hockenheim, rear-driven, with 0.5 s windows).
+    course = 0.5 * (heading[1:] + heading[:-1])
+    along_step = np.diff(x) * np.cos(course) + np.diff(y) * np.sin(course)
+    travelled = np.concatenate([[0.0], np.cumsum(along_step)])
+    revs_left = (wheels[n, 1] - wheels[k, 1]) / (2 * np.pi)
+    revs_right = (wheels[n, 2] - wheels[k, 2]) / (2 * np.pi)
+    return (k, n, t[n] - t[k], travelled[n] - travelled[k], heading[n] - heading[k], revs_left,
+            revs_right)
+
+
+def true_factors(along, turn, revs_left, revs_right, circumferences, track):
+    """Each rear wheel's factor c_eff / c - 1: its ground distance over its revolutions."""
+    return ((along - 0.5 * track * turn) / (revs_left * circumferences[0]) - 1.0,
+            (along + 0.5 * track * turn) / (revs_right * circumferences[1]) - 1.0)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("log")
@@ -93,26 +118,12 @@ def main():
     wheels = np.loadtxt(f"{args.log}/wheels.csv", delimiter=",", skiprows=1)
     if truth.shape[0] != wheels.shape[0] or not np.allclose(truth[:, 0], wheels[:, 0]):
         raise SystemExit("truth.csv and wheels.csv must share their times")
-    k = np.arange(0, len(truth) - args.window, args.window)
-    n = k + args.window
-    t, x, y = truth[:, 0], truth[:, 1], truth[:, 2]
-    heading = np.unwrap(truth[:, 3])
-    dt = t[n] - t[k]
-    # The path's length along the heading sample by sample: a window's chord is shorter than its
-    # arc by a quarter-per-mille per (0.1 rad of turn)^2, which on a fast circuit biased every
-    # factor (-8 mm at rest on Hockenheim, rear-driven, with 0.5 s windows).
-    course = 0.5 * (heading[1:] + heading[:-1])
-    along_step = np.diff(x) * np.cos(course) + np.diff(y) * np.sin(course)
-    travelled = np.concatenate([[0.0], np.cumsum(along_step)])
-    along = travelled[n] - travelled[k]
-    turn = heading[n] - heading[k]
-    revs_left = (wheels[n, 1] - wheels[k, 1]) / (2 * np.pi)
-    revs_right = (wheels[n, 2] - wheels[k, 2]) / (2 * np.pi)
+    k, n, dt, along, turn, revs_left, revs_right = window_motion(truth, wheels, args.window)
     v, w = along / dt, turn / dt
     a_x, a_y = np.gradient(v, dt.mean()), v * w
     moving = (v > 3.0) & (revs_left > 0) & (revs_right > 0)
-    f_left = (along - 0.5 * track * turn)[moving] / (revs_left[moving] * c_left) - 1.0
-    f_right = (along + 0.5 * track * turn)[moving] / (revs_right[moving] * c_right) - 1.0
+    f_left, f_right = true_factors(along[moving], turn[moving], revs_left[moving],
+                                   revs_right[moving], (c_left, c_right), track)
     state = (a_x[moving], a_y[moving], v[moving], w[moving])
     print(f"{moving.sum()} windows of {args.window} samples; factor differential RMS "
           f"{np.std(f_left - f_right):.3e}, mean part RMS {np.std(0.5 * (f_left + f_right)):.3e}")
@@ -131,6 +142,9 @@ def main():
     report("3 physical terms", physical_regressors(1.0, *physical),
            physical_regressors(-1.0, *physical), f_left, f_right, (c_left, c_right),
            ["k_load", "k_drive_slip", "k_brake_slip"])
+    x, y, heading = truth[:, 1], truth[:, 2], np.unwrap(truth[:, 3])
+    course = 0.5 * (heading[1:] + heading[:-1])
+    along_step = np.diff(x) * np.cos(course) + np.diff(y) * np.sin(course)
     reckoned_x = x[0] + np.concatenate([[0.0], np.cumsum(along_step * np.cos(course))])
     reckoned_y = y[0] + np.concatenate([[0.0], np.cumsum(along_step * np.sin(course))])
     print(f"dead reckoning with the true factors, without the side slip: mean position error "
