@@ -5,10 +5,11 @@
 // coefficients says that they follow this log's wheel speeds more closely, not that they
 // extrapolate better to the circumference at rest, which is what is asked (on 3 laps of
 // Hockenheim with a front-driven car, the regression terms win the criterion and land 9 mm off,
-// the physical ones 2 mm). The result is one of the fits, never a blend (a log the plain model
-// explains calibrates exactly as under none). One problem lives at a time (a long log's memory
-// is its problem's): the plain fit is finished and freed first, and a candidate is finished
-// (noise adaptation, covariance) only when it beats the best fit so far.
+// the physical ones 2 mm); where the physical terms win the criterion and confirm the plain fit,
+// the plain fit stands and the regression terms are not tried. The result is one of the fits, never
+// a blend (a log the plain model explains calibrates exactly as under none). One problem lives at a
+// time (a long log's memory is its problem's): the plain fit is finished and freed first, and a
+// candidate is finished (noise adaptation, covariance) only when it beats the best fit so far.
 
 #include <fmt/format.h>
 
@@ -76,18 +77,18 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
           candidate.tyre && facts.free_tyre_coefficients > 0 && facts.bic < best_bic;
       // Circumferences at rest that the log cannot pin down (an extrapolation from the states
       // driven: on a long drive the BIC prefers effects of a few 1e-4) are no better answer than
-      // an identified plain fit that they agree with. Where they disagree with it by more than
-      // their own 3 sigma, the plain fit's sigma leaves out the slip and load that move it: the
-      // candidate stands, unidentified, rather than a confident wrong answer.
+      // an identified plain fit that they agree with: one that, its sigma widened by the gap
+      // between the two, would still be identified. Agreeing within the candidate's own 3 sigma
+      // is not enough: with a sigma of 3 mm that let a plain fit stand 11 mm off at a sigma of
+      // 0.6 mm (the realistic urban drive, rear-driven). Where they disagree, the candidate
+      // stands, unidentified, rather than a confident wrong answer.
       const bool unidentified =
           std::max(facts.circumference_variance[0], facts.circumference_variance[1]) > max_variance;
-      bool agrees = true;
-      for (int wheel = 0; wheel < 2; ++wheel) {
-        const double gap = facts.circumference[static_cast<std::size_t>(wheel)] -
-                           plain.circumference[static_cast<std::size_t>(wheel)];
-        agrees = agrees &&
-                 std::abs(gap) <=
-                     3.0 * std::sqrt(facts.circumference_variance[static_cast<std::size_t>(wheel)]);
+      bool agrees = plain_identified;
+      for (std::size_t wheel = 0; agrees && wheel < 2; ++wheel) {
+        const double gap = facts.circumference[wheel] - plain.circumference[wheel];
+        const double sigma = summary.parameters[wheel].sigma;  // as reported
+        agrees = sigma * sigma + gap * gap <= max_variance;
       }
       candidate.needed = !better || !unidentified || !plain_identified || !agrees;
       return better && candidate.needed;
@@ -96,6 +97,10 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
     const bool accepted = fit_model(run, options, common, terms, fitted, choose);
     candidate.solves = fitted.solves;
     all_solves += fitted.solves;
+    // A tyre model that won the criterion and agrees with the plain fit confirms it: the
+    // regression terms after it could only stand by disagreeing with both, and the physics
+    // carries the circumference at rest better than they do.
+    const bool confirms_plain = !candidate.needed;
     if (accepted) {
       // A lower BIC is not enough: with a million samples it prefers effects of a few 1e-5 (an
       // ideal 100-lap circuit), whose whole-log dead reckoning can be worse than the nominal
@@ -111,6 +116,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
       }
     }
     selection.candidates.push_back(candidate);
+    if (confirms_plain) break;
   }
   selection.other_solves = all_solves - summary.solves;
   summary.tyre_selection = selection;

@@ -58,8 +58,9 @@ struct TyreCandidate {
   // state, or circumferences out of their plausible band (the model explains something else).
   bool tyre = true;
   // false: refused: its circumferences at rest were not identified (sigma above
-  // max_sigma_circumference_m) and agree with the identified plain fit's within 3 of its sigma.
-  // (Where they do not, the candidate stands: the plain fit's sigma leaves out what moves it.)
+  // max_sigma_circumference_m) and agree with the identified plain fit's: the plain fit's sigma
+  // widened by the gap between them is still within max_sigma_circumference_m. (Where they do
+  // not, the candidate stands: the plain fit's sigma leaves out what moves it.)
   bool needed = true;
   // false: refused: it won the BIC, but its whole-log dead reckoning is worse than the nominal
   // parameters' (implausible) where the best fit before it was not.
