@@ -153,6 +153,7 @@ class BatchProblem {
     std::fill(params_.begin() + kTyreOffset, params_.end(), 0.0);
   }
   bool tyre_fitted() const { return tyre_terms_.has_value(); }
+  std::optional<TyreTerms> tyre_terms() const { return tyre_terms_; }
   // Whether coefficient j belongs to the family being fitted (held at zero or free).
   bool tyre_in_fit(int j) const {
     return tyre_terms_ && kTyreCoefficients[static_cast<std::size_t>(j)].terms == *tyre_terms_;
@@ -1020,7 +1021,10 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   summary.identifiability = problems.empty()
                                 ? "every requested parameter identified"
                                 : fmt::format("not identified: {}", fmt::join(problems, "; "));
-  summary.model_adequacy = assess_model_adequacy(batch.odometry_errors());
+  summary.model_adequacy = assess_model_adequacy(batch.odometry_errors(),
+                                                 batch.tyre_fitted() && !batch.tyre_model().plain()
+                                                     ? tyre_model_option(*batch.tyre_terms())
+                                                     : "");
   if (!summary.model_adequacy.explains && !batch.tyre_fitted()) {
     summary.model_adequacy.verdict +=
         "; batch tyre_model: physical (or extended) fits a circumference that follows the driving "

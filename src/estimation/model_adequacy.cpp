@@ -47,7 +47,8 @@ std::string likely_cause(const ResidualDependence& d) {
 }  // namespace
 
 ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& samples,
-                                    double min_distance_m, double min_correlation, double min_t) {
+                                    const std::string& tyre_terms, double min_distance_m,
+                                    double min_correlation, double min_t) {
   ModelAdequacy result;
   // The driving state of each interval from the fitted poses: speed, yaw rate, and the
   // longitudinal acceleration from the neighbouring intervals' speeds.
@@ -111,20 +112,28 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
     if (strongest == nullptr || std::abs(d.correlation) > std::abs(strongest->correlation))
       strongest = &d;
   }
+  // With tyre terms fitted these are their residuals: a verdict on "the two-wheel model" would
+  // describe a model that was not the one judged.
+  const std::string model =
+      tyre_terms.empty() ? "the two-wheel model"
+                         : fmt::format("the two-wheel model with the {} tyre terms", tyre_terms);
   if (strongest == nullptr) {
     result.verdict = fmt::format(
-        "the two-wheel model explains this log: its odometry residuals follow neither "
-        "acceleration nor speed (|rho| < {:.1f} over {} intervals; chi2/dof {:.2f})",
-        min_correlation, result.intervals, result.chi2_per_dof);
+        "{} explains this log: its odometry residuals follow neither acceleration nor speed "
+        "(|rho| < {:.1f} over {} intervals; chi2/dof {:.2f})",
+        model, min_correlation, result.intervals, result.chi2_per_dof);
     return result;
   }
   result.explains = false;
+  const std::string consequence = tyre_terms.empty()
+                                      ? "a constant circumference per wheel cannot express that"
+                                      : "the tyre terms leave that in the residuals";
   result.verdict = fmt::format(
-      "the two-wheel model does not explain this log: the {} residual follows {} (rho = {:.2f} "
-      "over {} intervals): {}; a constant circumference per wheel cannot express that, so "
-      "dead reckoning drifts where the driving differs from this log's average",
-      strongest->residual, strongest->quantity, strongest->correlation, result.intervals,
-      likely_cause(*strongest));
+      "{} does not explain this log: the {} residual follows {} (rho = {:.2f} over {} "
+      "intervals): {}; {}, so dead reckoning drifts where the driving differs from this log's "
+      "average",
+      model, strongest->residual, strongest->quantity, strongest->correlation, result.intervals,
+      likely_cause(*strongest), consequence);
   return result;
 }
 

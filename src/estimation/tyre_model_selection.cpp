@@ -24,10 +24,6 @@ namespace {
 // then, unless they replaced the plain fit, the regression terms (seven).
 constexpr TyreTerms kCandidates[] = {TyreTerms::kPhysical, TyreTerms::kRegression};
 
-const char* model_name(TyreTerms terms) {
-  return terms == TyreTerms::kPhysical ? "physical" : "extended";
-}
-
 // A fit whose answer stands on its own: converged, or converged without identifying the
 // circumferences to the required sigma (which the summary says). Not: no convergence, a solver
 // failure, an implausible answer.
@@ -61,7 +57,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
   bool finished = false;  // run.finish has scored `summary`
   for (const TyreTerms terms : kCandidates) {
     if (selection.chosen != "none") break;
-    TyreCandidate candidate{model_name(terms)};
+    TyreCandidate candidate{tyre_model_option(terms)};
     const auto choose = [&](const FitFacts& facts) {
       candidate.bic = facts.bic;
       if (!facts.usable) return false;

@@ -61,6 +61,20 @@ TEST(ModelAdequacy, NamesTheQuantityTheResidualsFollow) {
       << slip.verdict;
 }
 
+TEST(ModelAdequacy, NamesTheModelItJudges) {
+  // Residuals of a fit with tyre terms judge that model, not the plain two-wheel one.
+  const ModelAdequacy plain = assess_model_adequacy(drive(0.0, 0.0, 6));
+  EXPECT_EQ(plain.verdict.rfind("the two-wheel model explains this log", 0), 0u) << plain.verdict;
+  const ModelAdequacy white = assess_model_adequacy(drive(0.0, 0.0, 6), "physical");
+  EXPECT_EQ(white.verdict.rfind("the two-wheel model with the physical tyre terms explains", 0), 0u)
+      << white.verdict;
+  const ModelAdequacy slip = assess_model_adequacy(drive(0.0, 2e-3, 4), "extended");
+  EXPECT_EQ(slip.verdict.rfind("the two-wheel model with the extended tyre terms does not", 0), 0u)
+      << slip.verdict;
+  EXPECT_NE(slip.verdict.find("the tyre terms leave that in the residuals"), std::string::npos);
+  EXPECT_EQ(slip.verdict.find("constant circumference"), std::string::npos);
+}
+
 TEST(ModelAdequacy, TooFewIntervalsAreNotJudged) {
   auto samples = drive(0.0, 0.0, 5);
   samples.resize(8);

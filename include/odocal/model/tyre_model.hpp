@@ -43,6 +43,11 @@ struct VehicleBody {
 
 enum class TyreTerms { kRegression, kPhysical };
 
+// The batch's tyre_model option that fits a family of terms.
+inline const char* tyre_model_option(TyreTerms terms) {
+  return terms == TyreTerms::kPhysical ? "physical" : "extended";
+}
+
 // Coefficients, all zero for the plain model.
 struct TyreModel {
   double k_speed_s2pm2 = 0.0;   // per (m/s)^2: tyre growth and the drag's slip on a driven axle
