@@ -940,6 +940,13 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   u.params += batch.body_covariance();
   summary.body_sigma_m = {std::sqrt(batch.body_covariance()(0, 0)),
                           std::sqrt(batch.body_covariance()(1, 1))};
+  summary.body_sigma_parts.clear();
+  for (std::size_t i = 0; i < batch.body_responses().size(); ++i) {
+    const BatchProblem::BodyResponse& response = batch.body_responses()[i];
+    summary.body_sigma_parts.push_back({kBodyUncertainties[i].key,
+                                        {std::abs(response.moved(0)) / response.step,
+                                         std::abs(response.moved(1)) / response.step}});
+  }
   summary.parameters = {
       {"circumference_rl_m", p[0], sigma(u.params(0, 0)), true, true, ""},
       {"circumference_rr_m", p[1], sigma(u.params(1, 1)), true, true, ""},
@@ -985,14 +992,17 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
         // Beside a tyre model the circumference at rest is an extrapolation from the states
         // driven, and with the physical terms its sigma carries the body's uncertainty too.
         const double body_mm = 1e3 * std::sqrt(batch.body_covariance()(i, i));
+        const auto largest = std::max_element(
+            summary.body_sigma_parts.begin(), summary.body_sigma_parts.end(),
+            [i](const auto& a, const auto& b) { return a.sigma_m[i] < b.sigma_m[i]; });
         parameter.verdict =
-            body_mm > 0.0
+            body_mm > 0.0 && largest != summary.body_sigma_parts.end()
                 ? fmt::format(
                       "with the tyre model the circumference at rest is an extrapolation "
                       "from this drive's slip and load ({:.2g} mm of the sigma from the "
-                      "body's uncertainty: state vehicle.yaml's body, or drive longer "
-                      "and more gently)",
-                      body_mm)
+                      "body's uncertainty, {:.2g} mm of it from {}: state vehicle.yaml's "
+                      "body, or drive longer and more gently)",
+                      body_mm, 1e3 * largest->sigma_m[i], largest->key)
                 : "with the tyre model the circumference at rest is an extrapolation from this "
                   "drive's slip and load (drive longer and more gently)";
       }
@@ -1344,10 +1354,20 @@ std::string BatchSummary::full_report() const {
   if (body_sigma_m[0] > 0.0 || body_sigma_m[1] > 0.0) {
     std::vector<std::string> assumed;
     for (const BodyUncertainty& u : kBodyUncertainties) assumed.push_back(u.text());
+    // The number worth measuring first: the one whose uncertainty moves the circumferences most.
+    const auto largest = std::max_element(
+        body_sigma_parts.begin(), body_sigma_parts.end(), [](const auto& a, const auto& b) {
+          return std::max(a.sigma_m[0], a.sigma_m[1]) < std::max(b.sigma_m[0], b.sigma_m[1]);
+        });
+    const std::string most =
+        largest == body_sigma_parts.end()
+            ? ""
+            : fmt::format("; most of it {}'s, {:.3g} / {:.3g} mm", largest->key,
+                          1e3 * largest->sigma_m[0], 1e3 * largest->sigma_m[1]);
     text += fmt::format(
         "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the body's uncertainty "
-        "(vehicle.yaml body: {})\n",
-        "body", 1e3 * body_sigma_m[0], 1e3 * body_sigma_m[1], fmt::join(assumed, ", "));
+        "(vehicle.yaml body: {}{})\n",
+        "body", 1e3 * body_sigma_m[0], 1e3 * body_sigma_m[1], fmt::join(assumed, ", "), most);
   }
   if (!model_adequacy.verdict.empty())
     text += fmt::format("{:<13}{}\n", "model", model_adequacy.verdict);

@@ -147,8 +147,13 @@ void add_details(json& out, const BatchSummary& s) {
                                       {"sigma_rr_m", number_or_null(r.sigma_rr_m)},
                                       {"identified", r.identified}};
   }
-  if (s.body_sigma_m[0] > 0.0 || s.body_sigma_m[1] > 0.0)
+  if (s.body_sigma_m[0] > 0.0 || s.body_sigma_m[1] > 0.0) {
     out["body_sigma_m"] = {s.body_sigma_m[0], s.body_sigma_m[1]};
+    nlohmann::json parts = nlohmann::json::object();
+    for (const BatchSummary::BodySigmaPart& part : s.body_sigma_parts)
+      parts[part.key] = {part.sigma_m[0], part.sigma_m[1]};
+    out["body_sigma_parts_m"] = parts;
+  }
   if (s.tyre_selection.compared) {
     nlohmann::json candidates = nlohmann::json::array();
     for (const TyreCandidate& c : s.tyre_selection.candidates) {

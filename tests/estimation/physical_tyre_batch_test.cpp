@@ -159,6 +159,19 @@ TEST(PhysicalTyreBatch, SigmaCoversTheBodyThatVehicleYamlGetsWrong) {
   EXPECT_GT(physical.body_sigma_m[0], 0.5 * physical.sigma_rl_m());
   EXPECT_LT(physical.body_sigma_m[0], physical.sigma_rl_m());
   EXPECT_NE(physical.full_report().find("from the body's uncertainty"), std::string::npos);
+  // Its parts, one per body number, add in squares to it, and the report names the largest.
+  ASSERT_EQ(physical.body_sigma_parts.size(), 5u);
+  for (std::size_t wheel = 0; wheel < 2; ++wheel) {
+    double sum = 0.0, largest = 0.0;
+    for (const auto& part : physical.body_sigma_parts) {
+      sum += part.sigma_m[wheel] * part.sigma_m[wheel];
+      largest = std::max(largest, part.sigma_m[wheel]);
+    }
+    EXPECT_NEAR(std::sqrt(sum), physical.body_sigma_m[wheel], 1e-9);
+    EXPECT_GT(largest, 0.0);
+  }
+  EXPECT_NE(physical.full_report().find("; most of it "), std::string::npos)
+      << physical.full_report();
   // Rolling at 5 m/s the drive slip of the rolling resistance and drag (~1.5e-3, 3 mm) is in the
   // circumference; its sigma carries the body too.
   ASSERT_TRUE(physical.reference_circumference.has_value());

@@ -109,6 +109,13 @@ struct BatchSummary : CalibrationSummary {
   // The physical terms' share of the circumferences' sigma: what the body's uncertainty moves
   // them by (zero for any other model; it is in sigma and covariance too).
   std::array<double, 2> body_sigma_m{};
+  // Each body number's part of it: what its uncertainty alone moves each circumference by (the
+  // parts add in squares to body_sigma_m), so that a user knows which number to measure.
+  struct BodySigmaPart {
+    std::string key;  // vehicle.yaml body's
+    std::array<double, 2> sigma_m{};
+  };
+  std::vector<BodySigmaPart> body_sigma_parts;
   std::optional<ReferenceCircumference> reference_circumference;
   // Gentle segments (BatchOptions::gentle_max_*): keyframe intervals whose odometry is in the fit,
   // of all; equal without limits (gaps aside).
