@@ -12,9 +12,9 @@
 
 namespace odocal::experiments {
 
-// Bump when the tyre model or its fit changes what these pieces write (their cache key).
-inline constexpr int kTyreModelExperimentVersion =
-    7;  // 3: physical, auto; 6: side slip; 7: agreement
+// Bump when the tyre model or its fit changes what these pieces write (their cache key). 3: the
+// physical terms and auto; 6: the side slip; 7: auto's agreement with the plain fit.
+inline constexpr int kTyreModelExperimentVersion = 7;
 
 // {seed, realistic: {rear: {none, extended, auto}, front: {...}}, ideal: {none, auto}} with
 // method_run_to_json entries, each with "tyre_model_used" (whether the result carries one).
