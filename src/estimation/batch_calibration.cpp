@@ -992,9 +992,11 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
         // Beside a tyre model the circumference at rest is an extrapolation from the states
         // driven, and with the physical terms its sigma carries the body's uncertainty too.
         const double body_mm = 1e3 * std::sqrt(batch.body_covariance()(i, i));
-        const auto largest = std::max_element(
-            summary.body_sigma_parts.begin(), summary.body_sigma_parts.end(),
-            [i](const auto& a, const auto& b) { return a.sigma_m[i] < b.sigma_m[i]; });
+        const auto largest =
+            std::max_element(summary.body_sigma_parts.begin(), summary.body_sigma_parts.end(),
+                             [i](const auto& left, const auto& right) {
+                               return left.sigma_m[i] < right.sigma_m[i];
+                             });
         parameter.verdict =
             body_mm > 0.0 && largest != summary.body_sigma_parts.end()
                 ? fmt::format(
