@@ -2,8 +2,10 @@
 // Dead reckoning of the whole log with given parameters, compared with the reference (paper
 // section 4: "the two-wheel vehicle model with the new parameters is simulated on the whole
 // dataset"). The start pose follows CalibrationOptions::dr_start. Both live on the wheel time
-// base, so the comparison is index by index; the buffers are allocated once. Where the odometry
-// chain breaks (a wheel gap), the dead reckoning restarts from the reference pose.
+// base, so the comparison is index by index. The dead-reckoned path lives only while one call
+// runs (24 bytes per wheel sample): a long log's batch solve, which keeps the evaluator, must not
+// carry it at its peak. Where the odometry chain breaks (a wheel gap), the dead reckoning
+// restarts from the reference pose.
 
 #include <Eigen/Core>
 #include <vector>
@@ -30,12 +32,12 @@ class WholeLogEvaluator {
  private:
   // Moves path[0, end) rigidly so that its first positions (at most align_count_) best fit the
   // reference.
-  void align_start(std::size_t end);
+  void align_start(std::vector<Pose2>& path, std::size_t end);
 
   const WheelStream& wheels_;
   const ReferenceTrajectory& reference_;
   const CalibrationOptions& options_;
-  std::vector<Pose2> path_;
+  std::size_t samples_{};  // reference poses, one per wheel sample from first_wheel_index
   Eigen::Matrix2Xd source_, target_;
   std::size_t align_count_{};
   std::vector<std::size_t> breaks_;  // reference indices where the odometry chain breaks
