@@ -142,6 +142,9 @@ class BatchProblem {
     gnss_weights_.assign(log.gnss.size(), 1.0f);
     loss_.reset(gnss_loss());
   }
+  // The folds and the problem point into the object's own members: it stays where it was built.
+  BatchProblem(const BatchProblem&) = delete;
+  BatchProblem& operator=(const BatchProblem&) = delete;
 
   bool gauss_markov() const { return gm_sigma_m_ > 0.0; }
 
@@ -280,18 +283,19 @@ class BatchProblem {
       double cost = 0.0;
       problem_->EvaluateResidualBlock(b.id, false, &cost, whitened.data(), nullptr);
       const std::size_t i = b.segment;
+      const Eigen::Matrix3d& sqrt_covariance = odometry_[i].sqrt_covariance;
       OdometryResidualSample sample{
           log_.wheels.t_s[keyframes_[i]],
           log_.wheels.t_s[keyframes_[i + 1]],
           Eigen::Vector3d(poses_[i][0], poses_[i][1], poses_[i][2]),
           Eigen::Vector3d(poses_[i + 1][0], poses_[i + 1][1], poses_[i + 1][2]),
-          b.sqrt_covariance * whitened,
+          sqrt_covariance * whitened,
           whitened};
       if (i < gyro_turns_.size() && gyro_turns_[i]) {
         const batch::GyroResidual& gyro = *gyro_turns_[i];
         const double wheels_turn = sample.pose1(2) - sample.pose0(2) - sample.error(2);
         const double gyro_turn = gyro.integrated_rad - gyro_bias_ * gyro.duration_s;
-        const double odometry_variance = (b.sqrt_covariance * b.sqrt_covariance.transpose())(2, 2);
+        const double odometry_variance = (sqrt_covariance * sqrt_covariance.transpose())(2, 2);
         sample.error(2) = gyro_turn - wheels_turn;
         sample.whitened(2) =
             sample.error(2) / std::sqrt(odometry_variance + gyro.sigma_rad * gyro.sigma_rad);
@@ -322,7 +326,7 @@ class BatchProblem {
                            noise_.quantisation_sigma_rev,
                            std::max(noise_.lateral_sigma_m_per_sqrt_m, slip_floor)};
     params_lin_ = Eigen::Map<const batch::ParamsVector>(params_.data());
-    ends_.clear();
+    odometry_.clear();
     gnss_folds_.assign(keyframes_.size() - 1, {});
     heading_folds_.assign(keyframes_.size() - 1, {});
     max_weight_change_ = 0.0f;
@@ -333,10 +337,7 @@ class BatchProblem {
       const PreintegratedSegment segment =
           preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise,
                        tyre_fitted() ? &tyre : nullptr);
-      const std::size_t last = segment.delta.size() - 1;
-      ends_.push_back({segment.delta[last], params_jacobian(segment, last),
-                       segment.J_delta_first_increment[last], segment.J_end_last_increment,
-                       segment.covariance});
+      odometry_.push_back(odometry_interval(segment));
       if (gap_segment(i)) continue;
       fold_gnss(i, segment, next_fix);
       if (batch_.use_heading && log_.heading) fold_heading(i, segment, next_heading);
@@ -537,7 +538,7 @@ class BatchProblem {
           Eigen::Vector2d(log_.gnss.x_m[j], log_.gnss.y_m[j]) - origin, white_gnss_sigma(j),
           weight);
     });
-    if (!fold.empty()) gnss_folds_[i] = {origin, fold.factor(gnss_columns_), params_lin_};
+    if (!fold.empty()) gnss_folds_[i] = {origin, fold.factor(gnss_columns_), &params_lin_};
   }
 
   void fold_heading(std::size_t i, const PreintegratedSegment& seg, std::size_t& next) {
@@ -550,7 +551,7 @@ class BatchProblem {
       batch::FoldedHeadingResidual::add_sample(fold, at.motion, measured,
                                                sensors_.heading_sigma_rad);
     });
-    if (!fold.empty()) heading_folds_[i] = {fold.factor(heading_columns_), params_lin_};
+    if (!fold.empty()) heading_folds_[i] = {fold.factor(heading_columns_), &params_lin_};
   }
 
   // Calls visit(fix, segment, whitened residual) for every fix in the problem, at the current
@@ -651,25 +652,38 @@ class BatchProblem {
   }
 
  private:
+  // Per keyframe interval, the odometry residual of its pre-integration (the per-sample motion
+  // lives only while its fixes are folded). The problem's blocks point to these rather than own
+  // copies, so that a long log keeps one: they are replaced only after the problem is freed.
+  struct OdometryInterval {
+    batch::OdometryResidual residual;
+    Eigen::Matrix3d sqrt_covariance;  // lower Cholesky factor: error = it x whitened
+  };
+  OdometryInterval odometry_interval(const PreintegratedSegment& segment) const {
+    const std::size_t last = segment.delta.size() - 1;
+    // A tiny floor keeps a standing-still segment's information finite.
+    const Eigen::Matrix3d covariance =
+        segment.covariance + Eigen::Vector3d(1e-10, 1e-10, 1e-12).asDiagonal().toDenseMatrix();
+    const Eigen::Matrix3d L = covariance.llt().matrixL();
+    return {{{segment.delta[last], params_jacobian(segment, last),
+              segment.J_delta_first_increment[last], params_lin_},
+             segment.J_end_last_increment,
+             L.triangularView<Eigen::Lower>().solve(Eigen::Matrix3d::Identity())},
+            L};
+  }
+
   void add_odometry() {
     odometry_blocks_.clear();
-    for (std::size_t i = 0; i < ends_.size(); ++i) {
+    for (std::size_t i = 0; i < odometry_.size(); ++i) {
       if (gap_segment(i) || rough_segment_[i] != 0) continue;
-      const SegmentEnd& seg = ends_[i];
-      // A tiny floor keeps a standing-still segment's information finite.
-      const Eigen::Matrix3d covariance =
-          seg.covariance + Eigen::Vector3d(1e-10, 1e-10, 1e-12).asDiagonal().toDenseMatrix();
-      const Eigen::Matrix3d L = covariance.llt().matrixL();
-      auto* residual = new batch::OdometryResidual{
-          {seg.delta, seg.J_params, seg.J_first_increment, params_lin_},
-          seg.J_end_last_increment,
-          L.triangularView<Eigen::Lower>().solve(Eigen::Matrix3d::Identity())};
-      odometry_blocks_.push_back({nullptr, i, L});
-      odometry_blocks_.back().id = problem_->AddResidualBlock(
-          new ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3, 3, batch::kParams, 2, 2>(
-              residual),
-          nullptr, poses_[i].data(), poses_[i + 1].data(), params_.data(), count_error_[i].data(),
-          count_error_[i + 1].data());
+      odometry_blocks_.push_back(
+          {problem_->AddResidualBlock(new ceres::AutoDiffCostFunction<batch::OdometryResidual, 3, 3,
+                                                                      3, batch::kParams, 2, 2>(
+                                          &odometry_[i].residual, ceres::DO_NOT_TAKE_OWNERSHIP),
+                                      nullptr, poses_[i].data(), poses_[i + 1].data(),
+                                      params_.data(), count_error_[i].data(),
+                                      count_error_[i + 1].data()),
+           i});
     }
   }
 
@@ -815,16 +829,8 @@ class BatchProblem {
   const BatchOptions& batch_;
   VehicleBody body_;  // what the tyre model's physical terms are computed with
   std::vector<std::size_t> keyframes_;
-  // What the odometry residual needs of each segment's pre-integration (the per-sample motion
-  // lives only while its fixes are folded).
-  struct SegmentEnd {
-    Eigen::Vector3d delta;
-    batch::ParamsJacobian J_params;
-    Eigen::Matrix<double, 3, 2> J_first_increment;
-    Eigen::Matrix<double, 3, 2> J_end_last_increment;
-    Eigen::Matrix3d covariance;
-  };
-  std::vector<SegmentEnd> ends_;
+  // Per keyframe interval (odometry_interval); the problem's blocks point to these.
+  std::vector<OdometryInterval> odometry_;
   // Per keyframe interval; an empty factor: nothing measured there.
   std::vector<batch::FoldedGnssResidual> gnss_folds_;
   std::vector<batch::FoldedHeadingResidual> heading_folds_;
@@ -854,7 +860,6 @@ class BatchProblem {
   struct OdometryBlock {
     ceres::ResidualBlockId id;
     std::size_t segment;
-    Eigen::Matrix3d sqrt_covariance;  // lower Cholesky factor: error = it x whitened
   };
   std::vector<OdometryBlock> odometry_blocks_;
   std::vector<std::optional<batch::GyroResidual>> gyro_turns_;  // per interval, where used

@@ -107,7 +107,9 @@ class RowFold {
 struct FoldedGnssResidual {
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  // the fixes are taken relative to it
   PackedFactor factor;
-  ParamsVector params_lin = ParamsVector::Zero();
+  // The parameters the fold was linearised at: one for every fold of a solve, so pointed to,
+  // not copied (it must outlive the fold).
+  const ParamsVector* params_lin = nullptr;
 
   // Fix j's whitened row pair (x, y) with weight `weight` (a robust loss's, 1 without one).
   static void add_fix(RowFold<kFoldedGnssColumns>& fold, const RelativeMotion& motion,
@@ -138,7 +140,7 @@ struct FoldedGnssResidual {
     Eigen::Matrix<T, kFoldedGnssColumns, 1> phi;
     phi << c * x + s * y, -s * x + c * y, c, s, T(1.0), Eigen::Matrix<T, kParams, 1>::Zero(),
         count[0], count[1], lever[0], lever[1], latency[0];
-    for (int p = 0; p < kParams; ++p) phi(5 + p) = params[p] - params_lin(p);
+    for (int p = 0; p < kParams; ++p) phi(5 + p) = params[p] - (*params_lin)(p);
     factor.multiply(phi, residual);
     return true;
   }
@@ -147,7 +149,7 @@ struct FoldedGnssResidual {
 // The heading samples of one keyframe interval. Blocks: pose, params, heading_bias, count.
 struct FoldedHeadingResidual {
   PackedFactor factor;
-  ParamsVector params_lin = ParamsVector::Zero();
+  const ParamsVector* params_lin = nullptr;  // as the GNSS fold's
 
   // `measured_rad` is the sample unwrapped to within pi of its prediction.
   static void add_sample(RowFold<kFoldedHeadingColumns>& fold, const RelativeMotion& motion,
@@ -164,7 +166,7 @@ struct FoldedHeadingResidual {
     Eigen::Matrix<T, kFoldedHeadingColumns, 1> phi;
     phi(0) = pose[2] + heading_bias[0];
     phi(1) = T(1.0);
-    for (int p = 0; p < kParams; ++p) phi(2 + p) = params[p] - params_lin(p);
+    for (int p = 0; p < kParams; ++p) phi(2 + p) = params[p] - (*params_lin)(p);
     phi(2 + kParams) = count[0];
     phi(3 + kParams) = count[1];
     factor.multiply(phi, residual);

@@ -65,7 +65,7 @@ TEST(FoldedGnss, HasTheCostOfTheFixesItFolds) {
     fixes.push_back({motion, velocity, measured, sigma});
     batch::FoldedGnssResidual::add_fix(fold, motion, velocity, measured - origin, sigma, 1.0);
   }
-  const batch::FoldedGnssResidual folded{origin, fold.factor(), p_lin};
+  const batch::FoldedGnssResidual folded{origin, fold.factor(), &p_lin};
   ASSERT_EQ(folded.factor.rows, 14);  // 7 fixes: fewer rows than the 18 columns
   const auto costs = [&](const Unknowns& at) {
     double per_fix = 0.0;
@@ -113,8 +113,8 @@ TEST(FoldedGnss, HeldEntriesGoIntoTheConstantColumn) {
   selection.held_values(7 + kParams) = u.lever[0];
   selection.held_values(8 + kParams) = u.lever[1];
   selection.held_values(9 + kParams) = u.latency;
-  const batch::FoldedGnssResidual full{Eigen::Vector2d::Zero(), fold.factor(), p_lin};
-  const batch::FoldedGnssResidual reduced{Eigen::Vector2d::Zero(), fold.factor(selection), p_lin};
+  const batch::FoldedGnssResidual full{Eigen::Vector2d::Zero(), fold.factor(), &p_lin};
+  const batch::FoldedGnssResidual reduced{Eigen::Vector2d::Zero(), fold.factor(selection), &p_lin};
   EXPECT_EQ(reduced.factor.rows, 9);  // from 18
   u.params[0] += 0.004;
   u.params[1] -= 0.002;
@@ -136,8 +136,8 @@ TEST(FoldedGnss, AWeightScalesAFixsCost) {
   batch::RowFold<batch::kFoldedGnssColumns> whole, quarter;
   batch::FoldedGnssResidual::add_fix(whole, motion, velocity, measured, 2.0, 1.0);
   batch::FoldedGnssResidual::add_fix(quarter, motion, velocity, measured, 2.0, 0.25);
-  const batch::FoldedGnssResidual a{Eigen::Vector2d::Zero(), whole.factor(), p_lin};
-  const batch::FoldedGnssResidual b{Eigen::Vector2d::Zero(), quarter.factor(), p_lin};
+  const batch::FoldedGnssResidual a{Eigen::Vector2d::Zero(), whole.factor(), &p_lin};
+  const batch::FoldedGnssResidual b{Eigen::Vector2d::Zero(), quarter.factor(), &p_lin};
   Unknowns u;
   Eigen::Map<batch::ParamsVector>(u.params.data()) = p_lin;
   Eigen::Vector2d ra, rb;
@@ -165,7 +165,7 @@ TEST(FoldedHeading, HasTheCostOfTheSamplesItFolds) {
     samples.push_back({motion, logged, 0.02});
     batch::FoldedHeadingResidual::add_sample(fold, motion, unwrapped, 0.02);
   }
-  const batch::FoldedHeadingResidual folded{fold.factor(), p_lin};
+  const batch::FoldedHeadingResidual folded{fold.factor(), &p_lin};
   ASSERT_EQ(folded.factor.rows, batch::kFoldedHeadingColumns);
   double per_sample = 0.0;
   for (const batch::HeadingResidual& sample : samples) {
