@@ -14,7 +14,7 @@ namespace odocal {
 WholeLogEvaluator::WholeLogEvaluator(const WheelStream& wheels,
                                      const ReferenceTrajectory& reference,
                                      const CalibrationOptions& options)
-    : wheels_(wheels), reference_(reference), options_(options), samples_(reference.poses.size()) {
+    : wheels_(wheels), reference_(reference), options_(options) {
   const double window_end = reference.poses.t_s.front() + options.dr_align_window_s;
   align_count_ =
       options.dr_start == DeadReckoningStart::kAlignedWhole
@@ -26,25 +26,25 @@ WholeLogEvaluator::WholeLogEvaluator(const WheelStream& wheels,
   target_.resize(2, static_cast<Eigen::Index>(align_count_));
   for (std::size_t i = 0; i < align_count_; ++i)
     target_.col(static_cast<Eigen::Index>(i)) = reference.poses.pose[i].head<2>();
-  for (std::size_t i = 1; i < samples_; ++i)
+  for (std::size_t i = 1; i < reference.poses.size(); ++i)
     if (wheels.breaks_at(reference.first_wheel_index + i)) breaks_.push_back(i);
 }
 
 ODOCAL_HOT_LOOP DeadReckoningSummary WholeLogEvaluator::evaluate(const OdometryParams& params,
                                                                  const WheelStream& wheels) {
-  std::vector<Pose2> path(samples_);
+  std::vector<Pose2> path(reference_.poses.size());
   path[0] = reference_.poses.pose[0];
-  const std::size_t first_chain_end = breaks_.empty() ? samples_ : breaks_.front();
+  const std::size_t first_chain_end = breaks_.empty() ? path.size() : breaks_.front();
   dead_reckon_into(wheels, reference_.first_wheel_index, params, path, 1, first_chain_end);
   if (options_.dr_start != DeadReckoningStart::kFirstReference) align_start(path, first_chain_end);
   for (std::size_t b = 0; b < breaks_.size(); ++b) {
     const std::size_t start = breaks_[b];
     path[start] = reference_.poses.pose[start];
-    const std::size_t end = b + 1 < breaks_.size() ? breaks_[b + 1] : samples_;
+    const std::size_t end = b + 1 < breaks_.size() ? breaks_[b + 1] : path.size();
     dead_reckon_into(wheels, reference_.first_wheel_index, params, path, start + 1, end);
   }
   DeadReckoningSummary summary;
-  for (std::size_t i = 0; i < samples_; ++i) {
+  for (std::size_t i = 0; i < path.size(); ++i) {
     const Pose2& reference = reference_.poses.pose[i];
     const double position_m = (path[i].head<2>() - reference.head<2>()).norm();
     const double heading_rad = std::abs(angle_difference(path[i].z(), reference.z()));
@@ -53,13 +53,13 @@ ODOCAL_HOT_LOOP DeadReckoningSummary WholeLogEvaluator::evaluate(const OdometryP
     summary.max_position_m = std::max(summary.max_position_m, position_m);
     summary.max_heading_rad = std::max(summary.max_heading_rad, heading_rad);
   }
-  summary.mean_position_m /= static_cast<double>(samples_);
-  summary.mean_heading_rad /= static_cast<double>(samples_);
+  summary.mean_position_m /= static_cast<double>(path.size());
+  summary.mean_heading_rad /= static_cast<double>(path.size());
   return summary;
 }
 
 double WholeLogEvaluator::distance_m(const OdometryParams& params) {
-  std::vector<Pose2> path(samples_);
+  std::vector<Pose2> path(reference_.poses.size());
   path[0] = Pose2::Zero();
   dead_reckon_into(wheels_, reference_.first_wheel_index, params, path);
   return path_length_m(path);

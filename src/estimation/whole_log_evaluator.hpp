@@ -37,7 +37,6 @@ class WholeLogEvaluator {
   const WheelStream& wheels_;
   const ReferenceTrajectory& reference_;
   const CalibrationOptions& options_;
-  std::size_t samples_{};  // reference poses, one per wheel sample from first_wheel_index
   Eigen::Matrix2Xd source_, target_;
   std::size_t align_count_{};
   std::vector<std::size_t> breaks_;  // reference indices where the odometry chain breaks
