@@ -634,7 +634,7 @@ class BatchProblem {
         const DrivingState& s = states_[k];
         if (over(s.speed_mps, batch_.gentle_max_speed_mps) ||
             over(s.longitudinal_mps2, batch_.gentle_max_longitudinal_mps2) ||
-            over(s.lateral_mps2, batch_.gentle_max_lateral_mps2)) {
+            over(s.lateral_mps2(), batch_.gentle_max_lateral_mps2)) {
           rough_segment_[i] = 1;
           break;
         }

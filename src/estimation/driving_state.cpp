@@ -114,7 +114,6 @@ void fill_states(const WheelStream& wheels, const ImuStream* imu, const Odometry
     const double longitudinal = (path.rate(t + h, h) - path.rate(t - h, h)) / (2.0 * h);
     state.speed_mps = stored(speed);
     state.yaw_rate_radps = stored(yaw_rate);
-    state.lateral_mps2 = stored(speed * yaw_rate);
     state.longitudinal_mps2 = stored(longitudinal);
     state.specific_force_x_mps2 = stored(imu_here ? forward.at(t, h) : longitudinal);
     state.specific_force_y_mps2 = stored(imu_here ? left.at(t, h) : speed * yaw_rate);

@@ -61,10 +61,10 @@ std::vector<DrivingState> varied_states(std::size_t count) {
   for (std::size_t k = 0; k < count; ++k) {
     const double phase = 0.1 * static_cast<double>(k);
     const double a_x = 2.5 * std::sin(1.3 * phase), a_y = 4.0 * std::cos(0.7 * phase);
-    states[k].speed_mps = static_cast<float>(10.0 + 3.0 * std::sin(phase));
-    states[k].lateral_mps2 = static_cast<float>(a_y);
+    const double speed = 10.0 + 3.0 * std::sin(phase);
+    states[k].speed_mps = static_cast<float>(speed);
     states[k].longitudinal_mps2 = static_cast<float>(a_x);
-    states[k].yaw_rate_radps = static_cast<float>(0.4 * std::cos(0.7 * phase));
+    states[k].yaw_rate_radps = static_cast<float>(a_y / speed);
     states[k].specific_force_x_mps2 = static_cast<float>(a_x + 0.3);
     states[k].specific_force_y_mps2 = static_cast<float>(0.9 * a_y);
   }
@@ -108,8 +108,8 @@ TEST(OdometryPreintegration, TyreModelIsDeadReckoningOfTheScaledIncrements) {
     const double common = 1.0 + 2e-6 * x.speed_mps * x.speed_mps -
                           (x.longitudinal_mps2 > 0 ? 8e-3 : 2e-3) * x.longitudinal_mps2 -
                           5e-3 * x.yaw_rate_radps * x.yaw_rate_radps;
-    scaled.rev_rl[k] *= common + 3e-4 * x.lateral_mps2;
-    scaled.rev_rr[k] *= common - 3e-4 * x.lateral_mps2;
+    scaled.rev_rl[k] *= common + 3e-4 * x.lateral_mps2();
+    scaled.rev_rr[k] *= common - 3e-4 * x.lateral_mps2();
   }
   const PoseStream path = dead_reckon(scaled, params, Pose2::Zero());
   EXPECT_LT((segment.delta.back() - path.pose.back()).norm(), 1e-12);

@@ -33,7 +33,6 @@ DrivingState state(double speed, double f_x, double f_y, double yaw_rate) {
   s.specific_force_x_mps2 = static_cast<float>(f_x);
   s.specific_force_y_mps2 = static_cast<float>(f_y);
   s.longitudinal_mps2 = s.specific_force_x_mps2;
-  s.lateral_mps2 = s.specific_force_y_mps2;
   return s;
 }
 

@@ -126,7 +126,6 @@ inline TyreModel TyreModel::from(const Vector& k) {
 // not known to seven digits.
 struct DrivingState {
   float speed_mps{};
-  float lateral_mps2{};       // a_y = v w, left positive
   float longitudinal_mps2{};  // a_x from the wheels' speed, forward positive
   float yaw_rate_radps{};     // w, counter-clockwise positive
   // The accelerometer's specific force, forward and left (what the tyres push the body with; on
@@ -134,6 +133,9 @@ struct DrivingState {
   // wheels' a_x and v w.
   float specific_force_x_mps2{};
   float specific_force_y_mps2{};
+
+  // a_y = v w, left positive: computed, not stored (20 bytes per wheel sample, not 24).
+  double lateral_mps2() const { return static_cast<double>(speed_mps) * yaw_rate_radps; }
 };
 
 enum class RearWheel { kLeft, kRight };
@@ -146,7 +148,7 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
   const double v = state.speed_mps, w = state.yaw_rate_radps;
   const double a_x = state.longitudinal_mps2;
   const double drive = a_x > 0.0 ? -a_x : 0.0, brake = a_x < 0.0 ? -a_x : 0.0;
-  const double turn = side * state.lateral_mps2;
+  const double turn = side * state.lateral_mps2();
   // Physical: per vehicle mass, the wheel's load and the force its axle transmits.
   const double f_x = state.specific_force_x_mps2, f_y = state.specific_force_y_mps2;
   const double L = body.wheelbase_m, h = body.cg_height_m;
