@@ -31,7 +31,7 @@ void BM_ReferenceFilter(benchmark::State& state) {
   ReferenceOptions options;
   options.mode = state.range(0) == 0 ? ReferenceMode::kFilter : ReferenceMode::kSmoother;
   for (auto _ : state)
-    benchmark::DoNotOptimize(compute_reference(three_lap_log(), options).poses.pose.back());
+    benchmark::DoNotOptimize(compute_reference(three_lap_log(), options).poses.back());
   state.SetLabel(state.range(0) == 0 ? "filter" : "smoother");
 }
 BENCHMARK(BM_ReferenceFilter)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
@@ -51,9 +51,8 @@ BENCHMARK(BM_OdometryEkfPass)->Unit(benchmark::kMillisecond);
 void BM_LeastSquaresSolve(benchmark::State& state) {
   const ReferenceTrajectory reference = compute_reference(three_lap_log());
   for (auto _ : state) {
-    benchmark::DoNotOptimize(fit_circumferences(three_lap_log().wheels, reference,
-                                                reference.poses.pose, 1.6,
-                                                Eigen::Vector3d(1, 1, 10), 10));
+    benchmark::DoNotOptimize(fit_circumferences(three_lap_log().wheels, reference, reference.poses,
+                                                1.6, Eigen::Vector3d(1, 1, 10), 10));
   }
 }
 BENCHMARK(BM_LeastSquaresSolve)->Unit(benchmark::kMillisecond);

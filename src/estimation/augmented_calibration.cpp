@@ -23,8 +23,7 @@ void run_filter(const Log& log, const ReferenceTrajectory& reference,
                 const AugmentedOptions& options, const CalibrationOptions& common,
                 AugmentedSummary& summary) {
   Vector5 x;
-  x << reference.poses.pose[0], summary.nominal.circumference_rl_m,
-      summary.nominal.circumference_rr_m;
+  x << reference.poses[0], summary.nominal.circumference_rl_m, summary.nominal.circumference_rr_m;
   Matrix5 sigma = Matrix5::Zero();
   sigma.topLeftCorner<3, 3>() = common.measurement_diagonal.asDiagonal();
   sigma(3, 3) = sigma(4, 4) = options.initial_param_sigma_m * options.initial_param_sigma_m;
@@ -41,10 +40,10 @@ void run_filter(const Log& log, const ReferenceTrajectory& reference,
   Eigen::Matrix<double, 3, 5> H = Eigen::Matrix<double, 3, 5>::Zero();  // the pose is measured
   H.leftCols<3>().setIdentity();
   for (std::size_t i = 1; i < n; ++i) {
-    summary.parameter_t_s.push_back(reference.poses.t_s[i]);
+    summary.parameter_t_s.push_back(reference.t_s(log.wheels, i));
     if (log.wheels.breaks_at(reference.first_wheel_index + i)) {
       // A wheel gap: the pose restarts at the reference, the parameters keep what they learnt.
-      x.head<3>() = reference.poses.pose[i];
+      x.head<3>() = reference.poses[i];
       sigma.topLeftCorner<3, 3>() = M;
       sigma.topRightCorner<3, 2>().setZero();
       sigma.bottomLeftCorner<2, 3>().setZero();
@@ -61,8 +60,8 @@ void run_filter(const Log& log, const ReferenceTrajectory& reference,
     F.block<3, 2>(0, 3) = J_params.leftCols<2>();
     x.head<3>() = predicted;
     sigma = F * sigma * F.transpose() + Q;
-    Eigen::Vector3d innovation = reference.poses.pose[i] - predicted;
-    innovation.z() = angle_difference(reference.poses.pose[i].z(), predicted.z());
+    Eigen::Vector3d innovation = reference.poses[i] - predicted;
+    innovation.z() = angle_difference(reference.poses[i].z(), predicted.z());
     const Eigen::Matrix3d S = sigma.topLeftCorner<3, 3>() + M;
     const Eigen::LLT<Eigen::Matrix3d> S_llt(S);
     const Eigen::Matrix<double, 5, 3> K = S_llt.solve(sigma.topRows<3>()).transpose();

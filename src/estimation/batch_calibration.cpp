@@ -106,7 +106,7 @@ class BatchProblem {
           "too short for the batch calibration: fewer than 3 keyframes under GNSS");
     }
     for (const std::size_t k : keyframes_) {
-      const Pose2& pose = reference.poses.pose[k - reference.first_wheel_index];
+      const Pose2& pose = reference.poses[k - reference.first_wheel_index];
       poses_.push_back({pose.x(), pose.y(), pose.z()});
     }
     start_poses_ = poses_;

@@ -144,8 +144,10 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
   summary.estimate = summary.nominal;
   summary.reference_samples = reference_.poses.size();
   summary.reference_heading_source = reference_.heading_source;
-  summary.coverage = motion_coverage(this->log(), summary.nominal, reference_.poses.t_s.front(),
-                                     reference_.poses.t_s.back(), options.coverage);
+  const WheelStream& wheels = this->log().wheels;
+  summary.coverage =
+      motion_coverage(this->log(), summary.nominal, reference_.t_s(wheels, 0),
+                      reference_.t_s(wheels, reference_.poses.size() - 1), options.coverage);
   summary.distance_m = summary.coverage.distance_m;
   if (summary.distance_m < options.min_distance_m) {
     throw InsufficientDataError(fmt::format(

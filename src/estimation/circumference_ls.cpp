@@ -35,7 +35,7 @@ void for_each_row(const WheelStream& wheels, const ReferenceTrajectory& referenc
     }
     const WheelIncrement n = wheels.increment(reference.first_wheel_index + i);
     const Pose2& previous = x_hat[i - 1];
-    const Pose2& target = reference.poses.pose[i];
+    const Pose2& target = reference.poses[i];
     const auto [c, s] = heading_cos_sin(previous.z());
     window.row(0) +=
         Eigen::RowVector3d(0.5 * n.rev_rl * c, 0.5 * n.rev_rr * c, target.x() - previous.x());

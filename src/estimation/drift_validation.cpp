@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "odocal/error.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
@@ -44,7 +45,7 @@ bool spans_gap(const WheelStream& wheels, const ReferenceTrajectory& reference, 
 // Dead reckoning over reference samples [first, last] from the reference pose at `first`.
 WindowDrift window_drift(const WheelStream& wheels, const ReferenceTrajectory& reference,
                          std::size_t first, std::size_t last, const OdometryParams& params) {
-  Pose2 pose = reference.poses.pose[first];
+  Pose2 pose = reference.poses[first];
   double distance = 0.0;
   for (std::size_t i = first + 1; i <= last; ++i) {
     const std::size_t k = reference.first_wheel_index + i;
@@ -52,8 +53,8 @@ WindowDrift window_drift(const WheelStream& wheels, const ReferenceTrajectory& r
     distance += (next.head<2>() - pose.head<2>()).norm();
     pose = next;
   }
-  const double error = (pose.head<2>() - reference.poses.pose[last].head<2>()).norm();
-  return {reference.poses.t_s[first], distance, error, 100.0 * error / distance};
+  const double error = (pose.head<2>() - reference.poses[last].head<2>()).norm();
+  return {reference.t_s(wheels, first), distance, error, 100.0 * error / distance};
 }
 
 }  // namespace
@@ -81,7 +82,9 @@ DriftValidation validate_drift(const WheelStream& wheels, const WheelStream& cal
     throw Error("invalid validation options: " + problem);
   DriftValidation result;
   const double max_gap_s = default_max_wheel_gap_s(wheels);
-  const auto& t = reference.poses.t_s;
+  // The reference's times: the wheels' from its first sample on.
+  const std::span<const double> t(wheels.t_s.data() + reference.first_wheel_index,
+                                  reference.poses.size());
   // Disjoint windows share their end and start sample; overlapping ones start step_s apart.
   const auto next_start = [&](std::size_t first, std::size_t last) {
     if (options.step_s <= 0.0) return last;

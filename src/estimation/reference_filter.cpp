@@ -216,8 +216,7 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
   }
 
   ReferenceTrajectory reference;
-  reference.poses.t_s.reserve(log.wheels.size());
-  reference.poses.pose.reserve(log.wheels.size());
+  reference.poses.reserve(log.wheels.size());
   if (keep_covariance) reference.covariance.reserve(log.wheels.size());
   reference.heading_source = log.heading ? "heading.csv" : "GNSS course";
   const bool smooth = options.mode == ReferenceMode::kSmoother;
@@ -264,8 +263,7 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
       case SensorEventKind::kWheel:
         if (reference.poses.size() == 0) reference.first_wheel_index = event.index;
         if (smooth) wheel_node.push_back(filtered_x.size());
-        reference.poses.t_s.push_back(event.t_s);
-        reference.poses.pose.emplace_back(ekf.state()(0), ekf.state()(1), ekf.state()(4));
+        reference.poses.emplace_back(ekf.state()(0), ekf.state()(1), ekf.state()(4));
         if (keep_covariance) {
           reference.covariance.push_back((Eigen::Matrix3d() << ekf.covariance().block<2, 2>(0, 0),
                                           ekf.covariance().block<2, 1>(0, 4),
@@ -300,7 +298,7 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
   for (std::size_t i = 0; i < wheel_node.size(); ++i) {
     const auto& x = smoothed_x[wheel_node[i]];
     const auto& P = smoothed_P[wheel_node[i]];
-    reference.poses.pose[i] = Pose2(x(0), x(1), x(4));
+    reference.poses[i] = Pose2(x(0), x(1), x(4));
     if (keep_covariance) {
       reference.covariance[i] << P.block<2, 2>(0, 0), P.block<2, 1>(0, 4), P.block<1, 2>(4, 0),
           P(4, 4);

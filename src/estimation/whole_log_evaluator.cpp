@@ -15,17 +15,16 @@ WholeLogEvaluator::WholeLogEvaluator(const WheelStream& wheels,
                                      const ReferenceTrajectory& reference,
                                      const CalibrationOptions& options)
     : wheels_(wheels), reference_(reference), options_(options) {
-  const double window_end = reference.poses.t_s.front() + options.dr_align_window_s;
-  align_count_ =
-      options.dr_start == DeadReckoningStart::kAlignedWhole
-          ? reference.poses.size()
-          : static_cast<std::size_t>(std::upper_bound(reference.poses.t_s.begin(),
-                                                      reference.poses.t_s.end(), window_end) -
-                                     reference.poses.t_s.begin());
+  const auto first = wheels.t_s.begin() + static_cast<std::ptrdiff_t>(reference.first_wheel_index);
+  const auto last = first + static_cast<std::ptrdiff_t>(reference.poses.size());
+  const double window_end = *first + options.dr_align_window_s;
+  align_count_ = options.dr_start == DeadReckoningStart::kAlignedWhole
+                     ? reference.poses.size()
+                     : static_cast<std::size_t>(std::upper_bound(first, last, window_end) - first);
   source_.resize(2, static_cast<Eigen::Index>(align_count_));
   target_.resize(2, static_cast<Eigen::Index>(align_count_));
   for (std::size_t i = 0; i < align_count_; ++i)
-    target_.col(static_cast<Eigen::Index>(i)) = reference.poses.pose[i].head<2>();
+    target_.col(static_cast<Eigen::Index>(i)) = reference.poses[i].head<2>();
   for (std::size_t i = 1; i < reference.poses.size(); ++i)
     if (wheels.breaks_at(reference.first_wheel_index + i)) breaks_.push_back(i);
 }
@@ -33,19 +32,19 @@ WholeLogEvaluator::WholeLogEvaluator(const WheelStream& wheels,
 ODOCAL_HOT_LOOP DeadReckoningSummary WholeLogEvaluator::evaluate(const OdometryParams& params,
                                                                  const WheelStream& wheels) {
   std::vector<Pose2> path(reference_.poses.size());
-  path[0] = reference_.poses.pose[0];
+  path[0] = reference_.poses[0];
   const std::size_t first_chain_end = breaks_.empty() ? path.size() : breaks_.front();
   dead_reckon_into(wheels, reference_.first_wheel_index, params, path, 1, first_chain_end);
   if (options_.dr_start != DeadReckoningStart::kFirstReference) align_start(path, first_chain_end);
   for (std::size_t b = 0; b < breaks_.size(); ++b) {
     const std::size_t start = breaks_[b];
-    path[start] = reference_.poses.pose[start];
+    path[start] = reference_.poses[start];
     const std::size_t end = b + 1 < breaks_.size() ? breaks_[b + 1] : path.size();
     dead_reckon_into(wheels, reference_.first_wheel_index, params, path, start + 1, end);
   }
   DeadReckoningSummary summary;
   for (std::size_t i = 0; i < path.size(); ++i) {
-    const Pose2& reference = reference_.poses.pose[i];
+    const Pose2& reference = reference_.poses[i];
     const double position_m = (path[i].head<2>() - reference.head<2>()).norm();
     const double heading_rad = std::abs(angle_difference(path[i].z(), reference.z()));
     summary.mean_position_m += position_m;

@@ -30,8 +30,7 @@ TEST(OdometryEkf, MatchesTheHandComputedTwoStepCase) {
   wheels.rev_rl = {0.0, 0.5, 0.5};
   wheels.rev_rr = {0.0, 0.5, 0.5};
   ReferenceTrajectory reference;
-  reference.poses.t_s = wheels.t_s;
-  reference.poses.pose = {Pose2(0, 0, 0), Pose2(1.3, 0.3, 0.03), Pose2(2.0, 0.0, 0.0)};
+  reference.poses = {Pose2(0, 0, 0), Pose2(1.3, 0.3, 0.03), Pose2(2.0, 0.0, 0.0)};
   std::vector<Pose2> x_hat;
   run_odometry_ekf(wheels, reference, {2.0, 2.0, 1.6},
                    {Eigen::Vector3d::Ones(), Eigen::Vector3d::Ones()}, x_hat);
@@ -86,8 +85,7 @@ TEST(CircumferenceLs, RecoversExactParametersFromNoiseFreeRows) {
                                (n_l * c_true(0) + n_r * c_true(1)) / 2 * std::sin(previous.z()),
                                (n_r * c_true(1) - n_l * c_true(0)) / track);
     }
-    reference.poses.t_s.push_back(wheels.t_s.back());
-    reference.poses.pose.push_back(target);
+    reference.poses.push_back(target);
   }
   for (int window : {1, 7, 10, 1000}) {
     const CircumferenceFit fit =
@@ -101,10 +99,9 @@ TEST(CircumferenceLs, RecoversExactParametersFromNoiseFreeRows) {
 TEST(CircumferenceLs, ReportsRankDeficiencyInsteadOfANumber) {
   WheelStream wheels{{0, 1, 2}, {0, 0, 0}, {0, 0, 0}, {}, {}, WheelUnit::kTicks, {}};
   ReferenceTrajectory reference;
-  reference.poses.t_s = wheels.t_s;
-  reference.poses.pose = {Pose2::Zero(), Pose2::Zero(), Pose2::Zero()};
+  reference.poses = {Pose2::Zero(), Pose2::Zero(), Pose2::Zero()};
   const CircumferenceFit fit =
-      fit_circumferences(wheels, reference, reference.poses.pose, 1.6, Eigen::Vector3d(1, 1, 10));
+      fit_circumferences(wheels, reference, reference.poses, 1.6, Eigen::Vector3d(1, 1, 10));
   EXPECT_FALSE(std::isfinite(fit.condition_number));
   EXPECT_FALSE(fit.circumference_m.allFinite());
 }
@@ -112,13 +109,19 @@ TEST(CircumferenceLs, ReportsRankDeficiencyInsteadOfANumber) {
 double consistent_fraction(const Log& log, const ReferenceTrajectory& reference) {
   int inside = 0;
   for (std::size_t i = 0; i < reference.poses.size(); ++i) {
-    Eigen::Vector3d error =
-        reference.poses.pose[i] - log.truth->pose[reference.first_wheel_index + i];
+    Eigen::Vector3d error = reference.poses[i] - log.truth->pose[reference.first_wheel_index + i];
     error.z() = wrap_angle(error.z());
     // chi-square with 3 degrees of freedom: 99.7 % below 14.16
     if (error.dot(reference.covariance[i].ldlt().solve(error)) < 14.16) ++inside;
   }
   return static_cast<double>(inside) / static_cast<double>(reference.poses.size());
+}
+
+// The reference with its times (the wheels' from its first sample), as trajectory_errors takes it.
+PoseStream timed(const Log& log, const ReferenceTrajectory& reference) {
+  const auto first =
+      log.wheels.t_s.begin() + static_cast<std::ptrdiff_t>(reference.first_wheel_index);
+  return {{first, first + static_cast<std::ptrdiff_t>(reference.poses.size())}, reference.poses};
 }
 
 Log circuit_log() {
@@ -135,8 +138,8 @@ TEST(ReferenceFilter, FusesToWellBelowTheGnssNoiseAndIsConsistent) {
   options.mode = ReferenceMode::kSmoother;
   const ReferenceTrajectory smoother = compute_reference(log, options, ReferenceCovariance::kKeep);
   const ReferencePath truth = reference_from_poses(*log.truth, "truth");
-  const TrajectoryErrors filter_errors = trajectory_errors(filter.poses, truth);
-  const TrajectoryErrors smoother_errors = trajectory_errors(smoother.poses, truth);
+  const TrajectoryErrors filter_errors = trajectory_errors(timed(log, filter), truth);
+  const TrajectoryErrors smoother_errors = trajectory_errors(timed(log, smoother), truth);
   EXPECT_LT(filter_errors.mean_position_m, 0.6);  // GNSS alone: 3 m per axis
   EXPECT_LT(filter_errors.mean_heading_rad, rad_from_deg(0.6));
   EXPECT_LT(smoother_errors.mean_position_m, 0.6 * filter_errors.mean_position_m);
@@ -153,7 +156,7 @@ TEST(ReferenceFilter, WorksWithoutImuAndHeadingFromTheGnssCourse) {
   EXPECT_EQ(reference.heading_source, "GNSS course");
   EXPECT_TRUE(reference.covariance.empty());  // not asked for
   const TrajectoryErrors errors =
-      trajectory_errors(reference.poses, reference_from_poses(*log.truth, "truth"));
+      trajectory_errors(timed(log, reference), reference_from_poses(*log.truth, "truth"));
   EXPECT_LT(errors.mean_position_m, 2.0);
   EXPECT_LT(errors.mean_heading_rad, rad_from_deg(8.0));  // a coarse fallback: docs/calibration.md
 }

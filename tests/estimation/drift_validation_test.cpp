@@ -22,8 +22,7 @@ StraightDrive straight_drive(double duration_s) {
     d.wheels.t_s.push_back(0.1 * k);
     d.wheels.rev_rl.push_back(k == 0 ? 0.0 : 0.5);
     d.wheels.rev_rr.push_back(k == 0 ? 0.0 : 0.5);
-    d.reference.poses.t_s.push_back(0.1 * k);
-    d.reference.poses.pose.emplace_back(1.0 * k, 0.0, 0.0);
+    d.reference.poses.emplace_back(1.0 * k, 0.0, 0.0);
   }
   return d;
 }
