@@ -78,6 +78,9 @@ DriftValidation validate_drift(const WheelStream& wheels, const WheelStream& cal
                                const DriftValidationOptions& options) {
   if (calibrated_wheels.size() != wheels.size())
     throw Error("validate_drift: both wheel streams must hold the same samples");
+  // The reference's times are the wheels' (reference_filter.hpp): it must be these wheels'.
+  if (reference.first_wheel_index + reference.poses.size() > wheels.size())
+    throw Error("validate_drift: the reference reaches past the wheel stream it was computed on");
   if (const std::string problem = options.validate(); !problem.empty())
     throw Error("invalid validation options: " + problem);
   DriftValidation result;

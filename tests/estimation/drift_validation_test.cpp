@@ -65,5 +65,18 @@ TEST(DriftValidation, RefusesALogWithoutALongEnoughWindow) {
                Error);
 }
 
+TEST(DriftValidation, RefusesAReferenceOfOtherWheels) {
+  // The reference's times are its wheels': a stream shorter than it cannot be the one.
+  StraightDrive d = straight_drive(130.0);
+  d.reference.first_wheel_index = 5;
+  try {
+    validate_drift(d.wheels, d.reference, {2, 2, 1.6}, {2, 2, 1.6}, {60.0, 20.0});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("reaches past the wheel stream"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace odocal
