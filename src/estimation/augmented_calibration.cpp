@@ -32,6 +32,7 @@ void run_filter(const Log& log, const ReferenceTrajectory& reference,
   Q(3, 3) = Q(4, 4) = options.param_sigma_m_per_step * options.param_sigma_m_per_step;
   const Eigen::Matrix3d M = common.measurement_diagonal.asDiagonal();
   const std::size_t n = reference.poses.size();
+  const std::span<const double> t = reference.times(log.wheels);
   summary.parameter_t_s.reserve(n);
   summary.parameter_c_rl_m.reserve(n);
   summary.parameter_c_rr_m.reserve(n);
@@ -40,7 +41,7 @@ void run_filter(const Log& log, const ReferenceTrajectory& reference,
   Eigen::Matrix<double, 3, 5> H = Eigen::Matrix<double, 3, 5>::Zero();  // the pose is measured
   H.leftCols<3>().setIdentity();
   for (std::size_t i = 1; i < n; ++i) {
-    summary.parameter_t_s.push_back(reference.t_s(log.wheels, i));
+    summary.parameter_t_s.push_back(t[i]);
     if (log.wheels.breaks_at(reference.first_wheel_index + i)) {
       // A wheel gap: the pose restarts at the reference, the parameters keep what they learnt.
       x.head<3>() = reference.poses[i];

@@ -144,10 +144,9 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
   summary.estimate = summary.nominal;
   summary.reference_samples = reference_.poses.size();
   summary.reference_heading_source = reference_.heading_source;
-  const WheelStream& wheels = this->log().wheels;
+  const std::span<const double> t = reference_.times(this->log().wheels);
   summary.coverage =
-      motion_coverage(this->log(), summary.nominal, reference_.t_s(wheels, 0),
-                      reference_.t_s(wheels, reference_.poses.size() - 1), options.coverage);
+      motion_coverage(this->log(), summary.nominal, t.front(), t.back(), options.coverage);
   summary.distance_m = summary.coverage.distance_m;
   if (summary.distance_m < options.min_distance_m) {
     throw InsufficientDataError(fmt::format(

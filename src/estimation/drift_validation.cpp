@@ -54,7 +54,7 @@ WindowDrift window_drift(const WheelStream& wheels, const ReferenceTrajectory& r
     pose = next;
   }
   const double error = (pose.head<2>() - reference.poses[last].head<2>()).norm();
-  return {reference.t_s(wheels, first), distance, error, 100.0 * error / distance};
+  return {reference.times(wheels)[first], distance, error, 100.0 * error / distance};
 }
 
 }  // namespace
@@ -85,9 +85,7 @@ DriftValidation validate_drift(const WheelStream& wheels, const WheelStream& cal
     throw Error("invalid validation options: " + problem);
   DriftValidation result;
   const double max_gap_s = default_max_wheel_gap_s(wheels);
-  // The reference's times: the wheels' from its first sample on.
-  const std::span<const double> t(wheels.t_s.data() + reference.first_wheel_index,
-                                  reference.poses.size());
+  const std::span<const double> t = reference.times(wheels);
   // Disjoint windows share their end and start sample; overlapping ones start step_s apart.
   const auto next_start = [&](std::size_t first, std::size_t last) {
     if (options.step_s <= 0.0) return last;

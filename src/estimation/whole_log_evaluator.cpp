@@ -15,12 +15,13 @@ WholeLogEvaluator::WholeLogEvaluator(const WheelStream& wheels,
                                      const ReferenceTrajectory& reference,
                                      const CalibrationOptions& options)
     : wheels_(wheels), reference_(reference), options_(options) {
-  const auto first = wheels.t_s.begin() + static_cast<std::ptrdiff_t>(reference.first_wheel_index);
-  const auto last = first + static_cast<std::ptrdiff_t>(reference.poses.size());
-  const double window_end = *first + options.dr_align_window_s;
-  align_count_ = options.dr_start == DeadReckoningStart::kAlignedWhole
-                     ? reference.poses.size()
-                     : static_cast<std::size_t>(std::upper_bound(first, last, window_end) - first);
+  const std::span<const double> t = reference.times(wheels);
+  align_count_ =
+      options.dr_start == DeadReckoningStart::kAlignedWhole
+          ? t.size()
+          : static_cast<std::size_t>(
+                std::upper_bound(t.begin(), t.end(), t.front() + options.dr_align_window_s) -
+                t.begin());
   source_.resize(2, static_cast<Eigen::Index>(align_count_));
   target_.resize(2, static_cast<Eigen::Index>(align_count_));
   for (std::size_t i = 0; i < align_count_; ++i)

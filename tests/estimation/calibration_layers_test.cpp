@@ -119,9 +119,8 @@ double consistent_fraction(const Log& log, const ReferenceTrajectory& reference)
 
 // The reference with its times (the wheels' from its first sample), as trajectory_errors takes it.
 PoseStream timed(const Log& log, const ReferenceTrajectory& reference) {
-  const auto first =
-      log.wheels.t_s.begin() + static_cast<std::ptrdiff_t>(reference.first_wheel_index);
-  return {{first, first + static_cast<std::ptrdiff_t>(reference.poses.size())}, reference.poses};
+  const std::span<const double> t = reference.times(log.wheels);
+  return {{t.begin(), t.end()}, reference.poses};
 }
 
 Log circuit_log() {

@@ -12,6 +12,7 @@
 // of noisy fixes.
 
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -68,9 +69,9 @@ struct ReferenceTrajectory {
   std::size_t gnss_rejected{};
   std::string heading_source;  // "heading.csv" or "GNSS course"
 
-  // The time of pose i, from the wheel stream the reference was computed on.
-  double t_s(const WheelStream& wheels, std::size_t i) const {
-    return wheels.t_s[first_wheel_index + i];
+  // The poses' times, from the wheel stream the reference was computed on.
+  std::span<const double> times(const WheelStream& wheels) const {
+    return std::span<const double>(wheels.t_s).subspan(first_wheel_index, poses.size());
   }
 };
 
