@@ -78,7 +78,7 @@ class Doctor {
   }
 
   Diagnosis run() {
-    out_.compared_s = signals_.size() * signals_.step_s;
+    out_.compared_s = seconds(signals_.size());
     const bool clocks_agree = check_spans();
     if (signals_.size() > 0 && clocks_agree) {
       const bool signs_ok = check_wheel_speeds();
@@ -128,6 +128,10 @@ class Doctor {
     return static_cast<std::size_t>(std::count(use.begin(), use.end(), true));
   }
 
+  double seconds(std::size_t samples) const {
+    return static_cast<double>(samples) * signals_.step_s;
+  }
+
   // Time scale and span: the wheels' and GNSS's clocks must cover the same drive.
   bool check_spans() {
     const auto& wheels = facts_.wheels;
@@ -163,7 +167,7 @@ class Doctor {
           "give both streams one clock (import map: time.offset_s)");
       return false;
     }
-    const double shared = signals_.size() * signals_.step_s;
+    const double shared = seconds(signals_.size());
     if (shared < 0.9 * std::min(wheels_s, gnss_s) - 2.0 ||
         shared < 0.5 * std::max(wheels_s, gnss_s)) {
       add("time.span", FindingSeverity::kWarning, "the streams cover different spans",
@@ -197,7 +201,7 @@ class Doctor {
     if (count(moving_) < 50) {
       add("wheels.motion", FindingSeverity::kNote,
           "too little driving above 3 m/s to compare wheels with GNSS",
-          fmt::format("{:.1f} s moving", count(moving_) * signals_.step_s), "", "");
+          fmt::format("{:.1f} s moving", seconds(count(moving_))), "", "");
       return false;
     }
     bool ok = true;
@@ -269,7 +273,7 @@ class Doctor {
         add(fmt::format("wheels.{}_unit", id), FindingSeverity::kBlocking,
             fmt::format("the {} wheel's distance is {:.4g}x the GNSS distance", name, ratio),
             fmt::format("median speed ratio {:.4f} over {:.0f} s of driving", ratio,
-                        count(moving_) * signals_.step_s),
+                        seconds(count(moving_))),
             known->cause, fix);
       } else if (std::abs(ratio - 1.0) > 0.10) {
         const std::string key = fmt::format("circumference_{}_m", id);
@@ -307,8 +311,7 @@ class Doctor {
     if (count(turning_) < 50) {
       add("yaw.too_straight", FindingSeverity::kNote,
           "too little turning to check left/right, the gyro's sign and the IMU axes",
-          fmt::format("{:.1f} s turning faster than 3 deg/s", count(turning_) * signals_.step_s),
-          "", "");
+          fmt::format("{:.1f} s turning faster than 3 deg/s", seconds(count(turning_))), "", "");
       return;
     }
     const double wheel_course = detail::correlation(wheels, course, turning_);
