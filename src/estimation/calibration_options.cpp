@@ -53,7 +53,7 @@ std::string ReferenceOptions::validate() const { return check_option_ranges(fiel
 
 OptionTable<CalibrationOptions> CalibrationOptions::fields() {
   using O = CalibrationOptions;
-  static const std::array<OptionField<O>, 14> kFields{{
+  static const std::array<OptionField<O>, 15> kFields{{
       {"measurement_diagonal", "[m^2, m^2, rad^2]", 1e-12, 1e12,
        "M (eq. 13a): covariance of the reference pose in the odometry filters",
        &O::measurement_diagonal},
@@ -83,6 +83,9 @@ OptionTable<CalibrationOptions> CalibrationOptions::fields() {
       {"prepare_block_s", "s", 120.0, 1e7,
        "a long log is prepared (standstill, bias, grade, gaps) in blocks of this length",
        &O::prepare_block_s},
+      {"judge_model_adequacy", "", 0, 0,
+       "iterative, fixed-p, augmented: judge the two-wheel model on a batch fit (one solve more)",
+       &O::judge_model_adequacy},
       {"min_distance_m", "m", 0.0, 1e9, "refuse logs with less wheel odometry than this",
        &O::min_distance_m},
       {"min_reference_samples", "1", 2.0, 1e9, "refuse logs with fewer reference samples",

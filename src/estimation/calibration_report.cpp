@@ -47,6 +47,8 @@ std::string report_heading(const CalibrationSummary& s) {
 
 std::string report_ending(const CalibrationSummary& s) {
   std::string text;
+  if (!s.model_adequacy.verdict.empty())
+    text += fmt::format("{:<13}{}\n", "model", s.model_adequacy.verdict);
   if (const std::string prepared = s.preparation.describe(); !prepared.empty())
     text += fmt::format("{:<13}{}\n", "log", prepared);
   text += "dead reckoning of the whole log against the reference:\n";

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "batch_fit.hpp"
 #include "input_mistake_hint.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/driving_state.hpp"
@@ -183,6 +184,15 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
     summary.covariance += summary.preparation.grade_scale_variance * c * c.transpose();
   }
   if (summary.termination == Termination::kConverged) check_plausibility(log(), options_, summary);
+  // The batch judges its own fit (batch_calibration.cpp).
+  if (summary.method != CalibrationMethod::kBatch && summary.usable() &&
+      options_.judge_model_adequacy) {
+    try {
+      summary.model_adequacy = batch::judge_model_adequacy(*this, e, options_);
+    } catch (const InsufficientDataError& error) {
+      summary.model_adequacy.verdict = fmt::format("not judged: {}", error.what());
+    }
+  }
 }
 
 }  // namespace odocal

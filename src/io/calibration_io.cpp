@@ -42,41 +42,60 @@ json preparation_json(const LogPreparation& p) {
 // Infinite or NaN numbers (a sigma that could not be computed) are written as null.
 json number_or_null(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
 
+json model_adequacy_json(const ModelAdequacy& m) {
+  json dependences = json::array();
+  for (const ResidualDependence& d : m.dependences) {
+    dependences.push_back({{"residual", d.residual},
+                           {"quantity", d.quantity},
+                           {"correlation", d.correlation},
+                           {"t_statistic", d.t_statistic}});
+  }
+  return {{"intervals", m.intervals},
+          {"chi2_per_dof", number_or_null(m.chi2_per_dof)},
+          {"autocorrelation", number_or_null(m.autocorrelation)},
+          {"dependences", dependences},
+          {"explains", m.explains},
+          {"verdict", m.verdict}};
+}
+
 json core_json(const CalibrationSummary& s, const CalibrationConfig& config) {
   const Eigen::Matrix2d& P = s.covariance;
-  return {{"method", method_name(s.method)},
-          {"termination", enum_name(s.termination)},
-          {"usable", s.usable()},
-          {"message", s.message},
-          {"note", s.note},
-          {"circumference_rl_m", number_or_null(s.estimate.circumference_rl_m)},
-          {"circumference_rr_m", number_or_null(s.estimate.circumference_rr_m)},
-          {"track_width_m", number_or_null(s.estimate.track_width_m)},
-          {"sigma_circumference_rl_m", number_or_null(s.sigma_rl_m())},
-          {"sigma_circumference_rr_m", number_or_null(s.sigma_rr_m())},
-          {"covariance_m2",
-           {{number_or_null(P(0, 0)), number_or_null(P(0, 1))},
-            {number_or_null(P(1, 0)), number_or_null(P(1, 1))}}},
-          {"condition_number", number_or_null(s.condition_number)},
-          {"nominal",
-           {{"circumference_rl_m", s.nominal.circumference_rl_m},
-            {"circumference_rr_m", s.nominal.circumference_rr_m},
-            {"track_width_m", s.nominal.track_width_m}}},
-          {"difference_identifiable", s.difference_identifiable},
-          {"identifiability", s.identifiability},
-          {"dead_reckoning_before", errors_json(s.before)},
-          {"dead_reckoning_after", errors_json(s.after)},
-          {"distance_m", s.distance_m},
-          {"preparation", preparation_json(s.preparation)},
-          {"coverage",
-           {{"distance_m", s.coverage.distance_m},
-            {"moving_s", s.coverage.moving_s},
-            {"left_turning_deg", deg_from_rad(s.coverage.left_turning_rad)},
-            {"right_turning_deg", deg_from_rad(s.coverage.right_turning_rad)},
-            {"turning_source", s.coverage.turning_source}}},
-          {"reference_samples", s.reference_samples},
-          {"reference_heading_source", s.reference_heading_source},
-          {"configuration", config_to_json(config)}};
+  json out = {{"method", method_name(s.method)},
+              {"termination", enum_name(s.termination)},
+              {"usable", s.usable()},
+              {"message", s.message},
+              {"note", s.note},
+              {"circumference_rl_m", number_or_null(s.estimate.circumference_rl_m)},
+              {"circumference_rr_m", number_or_null(s.estimate.circumference_rr_m)},
+              {"track_width_m", number_or_null(s.estimate.track_width_m)},
+              {"sigma_circumference_rl_m", number_or_null(s.sigma_rl_m())},
+              {"sigma_circumference_rr_m", number_or_null(s.sigma_rr_m())},
+              {"covariance_m2",
+               {{number_or_null(P(0, 0)), number_or_null(P(0, 1))},
+                {number_or_null(P(1, 0)), number_or_null(P(1, 1))}}},
+              {"condition_number", number_or_null(s.condition_number)},
+              {"nominal",
+               {{"circumference_rl_m", s.nominal.circumference_rl_m},
+                {"circumference_rr_m", s.nominal.circumference_rr_m},
+                {"track_width_m", s.nominal.track_width_m}}},
+              {"difference_identifiable", s.difference_identifiable},
+              {"identifiability", s.identifiability},
+              {"dead_reckoning_before", errors_json(s.before)},
+              {"dead_reckoning_after", errors_json(s.after)},
+              {"distance_m", s.distance_m},
+              {"preparation", preparation_json(s.preparation)},
+              {"coverage",
+               {{"distance_m", s.coverage.distance_m},
+                {"moving_s", s.coverage.moving_s},
+                {"left_turning_deg", deg_from_rad(s.coverage.left_turning_rad)},
+                {"right_turning_deg", deg_from_rad(s.coverage.right_turning_rad)},
+                {"turning_source", s.coverage.turning_source}}},
+              {"reference_samples", s.reference_samples},
+              {"reference_heading_source", s.reference_heading_source},
+              {"configuration", config_to_json(config)}};
+  if (!s.model_adequacy.verdict.empty())
+    out["model_adequacy"] = model_adequacy_json(s.model_adequacy);
+  return out;
 }
 
 void add_details(json& out, const IterativeSummary& s) {
@@ -124,20 +143,6 @@ void add_details(json& out, const BatchSummary& s) {
                               {"yaw_rate_scale", o.yaw_rate_scale},
                               {"sigma_yaw_rate_scale", o.sigma_yaw_rate_scale}};
   }
-  const ModelAdequacy& m = s.model_adequacy;
-  json dependences = json::array();
-  for (const ResidualDependence& d : m.dependences) {
-    dependences.push_back({{"residual", d.residual},
-                           {"quantity", d.quantity},
-                           {"correlation", d.correlation},
-                           {"t_statistic", d.t_statistic}});
-  }
-  out["model_adequacy"] = {{"intervals", m.intervals},
-                           {"chi2_per_dof", number_or_null(m.chi2_per_dof)},
-                           {"autocorrelation", number_or_null(m.autocorrelation)},
-                           {"dependences", dependences},
-                           {"explains", m.explains},
-                           {"verdict", m.verdict}};
   if (s.reference_circumference) {
     const ReferenceCircumference& r = *s.reference_circumference;
     out["reference_circumference"] = {{"speed_mps", r.speed_mps},

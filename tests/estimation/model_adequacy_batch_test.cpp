@@ -1,10 +1,15 @@
 // Model adequacy on simulated logs, through the batch: the ideal vehicle is explained; a vehicle
 // whose wheels turn on a wider track than vehicle.yaml states is not (its heading residual
-// follows curvature), until the batch estimates the track.
+// follows curvature), until the batch estimates the track. The other methods are judged on a
+// batch fit of the same model, and say the same.
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "odocal/estimation/batch_calibration.hpp"
+#include "odocal/estimation/calibration.hpp"
+#include "odocal/io/calibration_io.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
@@ -32,6 +37,38 @@ TEST(ModelAdequacyBatch, IdealVehicleIsExplainedAWrongTrackIsNot) {
   BatchOptions with_track;
   with_track.estimate_track_width = true;
   EXPECT_TRUE(calibrate_batch(wide, with_track).model_adequacy.explains);
+}
+
+TEST(ModelAdequacyBatch, EveryMethodIsJudgedUnlessAskedNotTo) {
+  const Log ideal = simulated_log(ideal_lap(0.0));
+  const Log wide = simulated_log(ideal_lap(1.76));
+  for (const CalibrationMethod method :
+       {CalibrationMethod::kIterative, CalibrationMethod::kFixedP, CalibrationMethod::kAugmented}) {
+    SCOPED_TRACE(method_name(method));
+    CalibrationConfig config;
+    config.method = method;
+    const AnyCalibrationSummary explained = calibrate(ideal, config);
+    ASSERT_TRUE(core(explained).usable()) << core(explained).message;
+    EXPECT_TRUE(core(explained).model_adequacy.explains) << core(explained).model_adequacy.verdict;
+    EXPECT_NE(full_report(explained).find("model        the two-wheel model explains this log"),
+              std::string::npos)
+        << full_report(explained);
+
+    const AnyCalibrationSummary wrong_track = calibrate(wide, config);
+    ASSERT_TRUE(core(wrong_track).usable()) << core(wrong_track).message;
+    const ModelAdequacy& m = core(wrong_track).model_adequacy;
+    EXPECT_FALSE(m.explains);
+    EXPECT_NE(m.verdict.find("heading residual follows curvature"), std::string::npos) << m.verdict;
+    const nlohmann::json json = summary_to_json(wrong_track, config);
+    EXPECT_FALSE(json.at("model_adequacy").at("explains").get<bool>());
+    EXPECT_EQ(json.at("model_adequacy").at("dependences").size(), 4u);
+
+    config.common.judge_model_adequacy = false;
+    const AnyCalibrationSummary unjudged = calibrate(wide, config);
+    EXPECT_TRUE(core(unjudged).model_adequacy.verdict.empty());
+    EXPECT_FALSE(summary_to_json(unjudged, config).contains("model_adequacy"));
+    EXPECT_EQ(full_report(unjudged).find("model "), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -102,9 +102,6 @@ struct BatchSummary : CalibrationSummary {
   // The speed and yaw-rate scales of the calibrated model against the nominal one; set when the
   // track was estimated (twist odometry, robots).
   std::optional<OdometryScales> odometry_scales;
-  // Whether the two-wheel model explains the log (whitened odometry residuals against the
-  // driving state).
-  ModelAdequacy model_adequacy;
   TyreModelSelection tyre_selection;
   // The physical terms' share of the circumferences' sigma: what the body's uncertainty moves
   // them by (zero for any other model; it is in sigma and covariance too).

@@ -62,6 +62,10 @@ struct CalibrationOptions {
   double grade_window_m = 100.0;
   // A long log is prepared a block of this length at a time (prepared_blocks.hpp).
   double prepare_block_s = 600.0;
+  // After an iterative, fixed-P or augmented calibration: whether the two-wheel model explains
+  // the log, judged on a plain batch fit (one batch solve more; the batch method always judges
+  // its own fit).
+  bool judge_model_adequacy = true;
 
   static OptionTable<CalibrationOptions> fields();  // without `reference` (its own table)
   std::string validate() const;                     // empty when valid; includes `reference`

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "odocal/estimation/log_preparation.hpp"
+#include "odocal/estimation/model_adequacy.hpp"
 #include "odocal/estimation/motion_coverage.hpp"
 #include "odocal/model/odometry_model.hpp"
 #include "odocal/model/tyre_model.hpp"
@@ -78,6 +79,10 @@ struct CalibrationSummary {
   LogPreparation preparation;   // standstill, wheel rate bias, first motion, wheel gaps
   std::size_t reference_samples{};
   std::string reference_heading_source;
+  // Whether the model explains the log (model_adequacy.hpp): the batch judges its own fit; for
+  // the other methods the plain batch fit judges the two-wheel model (batch_fit.hpp). Empty
+  // verdict: not judged (not usable, or judge_model_adequacy off).
+  ModelAdequacy model_adequacy;
 
   bool usable() const { return termination == Termination::kConverged; }
   double sigma_rl_m() const;  // 1-sigma from the covariance
