@@ -57,9 +57,12 @@ void BM_LeastSquaresSolve(benchmark::State& state) {
 }
 BENCHMARK(BM_LeastSquaresSolve)->Unit(benchmark::kMillisecond);
 
+// The estimator alone: after the iterative, fixed-P and augmented methods the model-adequacy
+// judge (a batch fit) is off here and measured by BM_CalibrateJudged.
 void BM_Calibrate(benchmark::State& state) {
   CalibrationConfig options;
   options.method = static_cast<CalibrationMethod>(state.range(0));
+  options.common.judge_model_adequacy = false;
   std::size_t iterations = 0;
   for (auto _ : state) {
     const AnyCalibrationSummary summary = calibrate(three_lap_log(), options);
@@ -71,12 +74,23 @@ void BM_Calibrate(benchmark::State& state) {
 }
 BENCHMARK(BM_Calibrate)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 
-// The iterative method forced through all 30 iterations (no early stop).
+// The iterative method as `odocal calibrate` runs it by default: with the model-adequacy judge.
+void BM_CalibrateJudged(benchmark::State& state) {
+  CalibrationConfig options;
+  for (auto _ : state) benchmark::DoNotOptimize(core(calibrate(three_lap_log(), options)).usable());
+}
+BENCHMARK(BM_CalibrateJudged)->Unit(benchmark::kMillisecond);
+
+// The iterative method forced through all 30 iterations (no early stop), without the judge.
 void BM_CalibrateThirtyIterations(benchmark::State& state) {
   IterativeOptions options;
   options.max_iterations = options.patience = 30;
-  for (auto _ : state)
-    benchmark::DoNotOptimize(calibrate_iterative(three_lap_log(), options).iterations.size());
+  CalibrationOptions common;
+  common.judge_model_adequacy = false;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        calibrate_iterative(three_lap_log(), options, common).iterations.size());
+  }
 }
 BENCHMARK(BM_CalibrateThirtyIterations)->Unit(benchmark::kMillisecond);
 

@@ -488,6 +488,10 @@ def speed(report, command):
         if name in runs:
             report.write(f"| whole calibration, {runs[name].get('label', method)} | `{name}` | "
                          f"{fmt(ms(name), 1)} ms |")
+    if "BM_CalibrateJudged" in runs:
+        report.write("| whole calibration, iterative with the model-adequacy judge (a batch fit; "
+                     "the default) | `BM_CalibrateJudged` | "
+                     f"{fmt(ms('BM_CalibrateJudged'), 1)} ms |")
     if "BM_CalibrateThirtyIterations" in runs:
         report.write("| whole calibration, iterative forced through all 30 iterations | "
                      f"`BM_CalibrateThirtyIterations` | {fmt(ms('BM_CalibrateThirtyIterations'), 1)} ms |")
