@@ -1304,6 +1304,8 @@ ModelAdequacy batch::judge_model_adequacy(const CalibrationRun& run, const Odome
     return none;
   }
   ModelAdequacy adequacy = assess_model_adequacy(batch.odometry_errors());
+  // Said, so that the residuals are not taken for the other method's.
+  adequacy.verdict += " [judged on a batch fit of this log]";
   if (!adequacy.explains) {
     adequacy.verdict +=
         "; the batch method's tyre_model: physical (or auto) fits a circumference that follows "

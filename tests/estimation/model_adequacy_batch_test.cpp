@@ -59,6 +59,8 @@ TEST(ModelAdequacyBatch, EveryMethodIsJudgedUnlessAskedNotTo) {
     const ModelAdequacy& m = core(wrong_track).model_adequacy;
     EXPECT_FALSE(m.explains);
     EXPECT_NE(m.verdict.find("heading residual follows curvature"), std::string::npos) << m.verdict;
+    EXPECT_NE(m.verdict.find("[judged on a batch fit of this log]"), std::string::npos)
+        << m.verdict;
     const nlohmann::json json = summary_to_json(wrong_track, config);
     EXPECT_FALSE(json.at("model_adequacy").at("explains").get<bool>());
     EXPECT_EQ(json.at("model_adequacy").at("dependences").size(), 4u);

@@ -51,6 +51,9 @@ def test_every_method_finds_the_wear(worn, method):
     assert as_json["usable"] is True and as_json["method"] == method
     # Worn tyres: the estimate dead-reckons better than the nominal, no caution goes with it.
     assert result.note == "" and as_json["note"] == ""
+    # Every method says whether the two-wheel model explains the (ideal) log.
+    assert as_json["model_adequacy"]["explains"] is True, as_json["model_adequacy"]["verdict"]
+    assert as_json["model_adequacy"]["verdict"].startswith("the two-wheel model explains this log")
 
 
 def test_options_are_the_config_files_keys(worn):
