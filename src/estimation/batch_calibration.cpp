@@ -1042,7 +1042,7 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                                                  batch.tyre_fitted() && !batch.tyre_model().plain()
                                                      ? tyre_model_option(*batch.tyre_terms())
                                                      : "");
-  if (!summary.model_adequacy.explains && !batch.tyre_fitted()) {
+  if (summary.model_adequacy.judged && !summary.model_adequacy.explains && !batch.tyre_fitted()) {
     summary.model_adequacy.verdict +=
         "; batch tyre_model: physical (or extended) fits a circumference that follows the driving "
         "state (docs/tyre-model.md)";
@@ -1306,7 +1306,7 @@ ModelAdequacy batch::judge_model_adequacy(const CalibrationRun& run, const Odome
   ModelAdequacy adequacy = assess_model_adequacy(batch.odometry_errors());
   // Said, so that the residuals are not taken for the other method's.
   adequacy.verdict += " [judged on a batch fit of this log]";
-  if (!adequacy.explains) {
+  if (adequacy.judged && !adequacy.explains) {
     adequacy.verdict +=
         "; the batch method's tyre_model: physical (or auto) fits a circumference that follows "
         "the driving state (docs/tyre-model.md)";

@@ -81,6 +81,7 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
     result.verdict = "too few moving keyframe intervals to judge the model";
     return result;
   }
+  result.judged = true;
   const auto n = static_cast<double>(result.intervals);
   result.chi2_per_dof = chi2 / (3.0 * n);
   double lag = 0.0, zero = 0.0;
@@ -122,9 +123,9 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
         "{} explains this log: its odometry residuals follow neither acceleration nor speed "
         "(|rho| < {:.1f} over {} intervals; chi2/dof {:.2f})",
         model, min_correlation, result.intervals, result.chi2_per_dof);
+    result.explains = true;
     return result;
   }
-  result.explains = false;
   const std::string consequence = tyre_terms.empty()
                                       ? "a constant circumference per wheel cannot express that"
                                       : "the tyre terms leave that in the residuals";

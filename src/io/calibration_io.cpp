@@ -54,7 +54,8 @@ json model_adequacy_json(const ModelAdequacy& m) {
           {"chi2_per_dof", number_or_null(m.chi2_per_dof)},
           {"autocorrelation", number_or_null(m.autocorrelation)},
           {"dependences", dependences},
-          {"explains", m.explains},
+          {"judged", m.judged},
+          {"explains", m.judged ? json(m.explains) : json(nullptr)},
           {"verdict", m.verdict}};
 }
 

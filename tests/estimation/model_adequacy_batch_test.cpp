@@ -62,6 +62,7 @@ TEST(ModelAdequacyBatch, EveryMethodIsJudgedUnlessAskedNotTo) {
     EXPECT_NE(m.verdict.find("[judged on a batch fit of this log]"), std::string::npos)
         << m.verdict;
     const nlohmann::json json = summary_to_json(wrong_track, config);
+    EXPECT_TRUE(json.at("model_adequacy").at("judged").get<bool>());
     EXPECT_FALSE(json.at("model_adequacy").at("explains").get<bool>());
     EXPECT_EQ(json.at("model_adequacy").at("dependences").size(), 4u);
 

@@ -43,6 +43,7 @@ std::vector<OdometryResidualSample> drive(double k_y, double k_x, std::uint64_t 
 TEST(ModelAdequacy, WhiteResidualsAreExplained) {
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     const ModelAdequacy m = assess_model_adequacy(drive(0.0, 0.0, seed));
+    EXPECT_TRUE(m.judged);
     EXPECT_TRUE(m.explains) << m.verdict;
     EXPECT_NEAR(m.chi2_per_dof, 1.0, 0.15);
     EXPECT_NE(m.verdict.find("explains this log"), std::string::npos);
@@ -79,7 +80,8 @@ TEST(ModelAdequacy, TooFewIntervalsAreNotJudged) {
   auto samples = drive(0.0, 0.0, 5);
   samples.resize(8);
   const ModelAdequacy m = assess_model_adequacy(samples);
-  EXPECT_TRUE(m.explains);
+  EXPECT_FALSE(m.judged);
+  EXPECT_FALSE(m.explains);  // not "explained" where nothing was judged
   EXPECT_NE(m.verdict.find("too few"), std::string::npos);
 }
 

@@ -36,7 +36,10 @@ struct ModelAdequacy {
   double chi2_per_dof{};     // mean squared whitened odometry residual per component
   double autocorrelation{};  // lag-1, whitened heading residuals
   std::vector<ResidualDependence> dependences;  // every pair tested
-  bool explains{true};
+  // false: not judged (too few moving intervals, or no fit to judge); the verdict says why, and
+  // `explains` says nothing.
+  bool judged{false};
+  bool explains{false};
   std::string verdict;  // in words
 };
 
