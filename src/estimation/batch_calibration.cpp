@@ -24,6 +24,7 @@
 #include "odocal/error.hpp"
 #include "odocal/estimation/driving_state.hpp"
 #include "odocal/estimation/odometry_preintegration.hpp"
+#include "odocal/estimation/road_grade.hpp"
 
 namespace odocal {
 namespace {
@@ -98,7 +99,8 @@ class BatchProblem {
         sensors_(common.reference),
         batch_(options),
         body_(log.vehicle.body_geometry()),
-        nominal_(nominal) {
+        nominal_(nominal),
+        grade_window_m_(common.use_gnss_altitude ? common.grade_window_m : 0.0) {
     keyframes_ =
         keyframe_samples(log.wheels, reference.first_wheel_index, batch_.keyframe_interval_s);
     if (keyframes_.size() < 3) {
@@ -278,6 +280,10 @@ class BatchProblem {
   std::vector<OdometryResidualSample> odometry_errors() const {
     std::vector<OdometryResidualSample> samples;
     samples.reserve(odometry_blocks_.size());
+    // The grade the preparation projected with, so that the residuals can be held against it.
+    const std::optional<GradeProfile> grade =
+        grade_window_m_ > 0.0 ? grade_from_gnss_altitude(log_, nominal_, grade_window_m_)
+                              : std::nullopt;
     for (const OdometryBlock& b : odometry_blocks_) {
       Eigen::Vector3d whitened;
       double cost = 0.0;
@@ -291,6 +297,11 @@ class BatchProblem {
           Eigen::Vector3d(poses_[i + 1][0], poses_[i + 1][1], poses_[i + 1][2]),
           sqrt_covariance * whitened,
           whitened};
+      if (grade) {
+        const std::vector<double>& driven = grade->wheel_distance_m;
+        sample.grade =
+            grade->at_distance(0.5 * (driven[keyframes_[i]] + driven[keyframes_[i + 1]]));
+      }
       if (i < gyro_turns_.size() && gyro_turns_[i]) {
         const batch::GyroResidual& gyro = *gyro_turns_[i];
         const double wheels_turn = sample.pose1(2) - sample.pose0(2) - sample.error(2);
@@ -875,6 +886,7 @@ class BatchProblem {
   ParamsBlock params_{};
   Block2 lever_{0.0, 0.0};
   OdometryParams nominal_;
+  double grade_window_m_;  // 0: the grade is not used
   double latency_ = 0.0;
   double heading_bias_ = 0.0;
   double gyro_bias_ = 0.0;
@@ -924,6 +936,15 @@ ReferenceCircumference reference_circumference(
     r.identified = r.identified && std::isfinite(sigma) && sigma <= max_sigma;
   }
   return r;
+}
+
+// A plain model that does not explain the log: the verdict says what would (the batch's own and
+// the one judged for another method read alike).
+void suggest_tyre_model(ModelAdequacy& adequacy) {
+  if (!adequacy.judged || adequacy.explains) return;
+  adequacy.verdict +=
+      "; the batch method's tyre_model: physical (or auto) fits a circumference that follows the "
+      "driving state (docs/tyre-model.md)";
 }
 
 // Fills the summary from the solved problem: every parameter with its sigma and verdict, and
@@ -1042,11 +1063,7 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                                                  batch.tyre_fitted() && !batch.tyre_model().plain()
                                                      ? tyre_model_option(*batch.tyre_terms())
                                                      : "");
-  if (summary.model_adequacy.judged && !summary.model_adequacy.explains && !batch.tyre_fitted()) {
-    summary.model_adequacy.verdict +=
-        "; batch tyre_model: physical (or extended) fits a circumference that follows the driving "
-        "state (docs/tyre-model.md)";
-  }
+  if (!batch.tyre_fitted()) suggest_tyre_model(summary.model_adequacy);
   summary.solver_report = solver.BriefReport();
   summary.gentle_limits = b.gentle_max_speed_mps > 0.0 || b.gentle_max_longitudinal_mps2 > 0.0 ||
                           b.gentle_max_lateral_mps2 > 0.0;
@@ -1128,9 +1145,12 @@ double max_tyre_effect(const BatchProblem& batch) {
 // and again with what that solution's residuals show (a fit that trusts GNSS too much hides part
 // of its error in the trajectory), until the noise estimate settles. The report says by how much
 // that widened the circumferences' sigma.
+enum class SigmaInflation { kMeasure, kSkip };
+
 void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
                       const CalibrationOptions& common, BatchSummary& summary,
-                      ceres::Solver::Summary& solver) {
+                      ceres::Solver::Summary& solver,
+                      SigmaInflation inflation = SigmaInflation::kMeasure) {
   GnssNoiseReport& report = summary.gnss_noise;
   report.configured_sigma_m = batch.gnss_sigma_rms_m();
   GnssNoiseEstimate noise = estimate_gnss_noise(batch.gnss_errors());
@@ -1145,7 +1165,9 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
   const double configured = report.configured_sigma_m;
   const double white_ratio = noise.white_sigma_m / configured;
   if (noise.gauss_markov_sigma_m == 0.0 && white_ratio > 0.8 && white_ratio < 1.25) return;
-  const auto before = batch.uncertainty();
+  // Two marginal covariances: a judge that only reads the residuals does without them.
+  const bool measure = inflation == SigmaInflation::kMeasure;
+  const auto before = measure ? batch.uncertainty() : std::nullopt;
   const auto first_params = batch.params();
   const double first_tyre_effect = max_tyre_effect(batch);
   constexpr int kMaxRounds = 4;
@@ -1182,7 +1204,7 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
                          report.model_gauss_markov_tau_s);
     solver = solve_relinearised(batch, options, summary);
   }
-  const auto after = batch.uncertainty();
+  const auto after = measure ? batch.uncertainty() : std::nullopt;
   if (before && after) {
     report.sigma_inflation = std::sqrt(after->params.topLeftCorner<2, 2>().trace() /
                                        before->params.topLeftCorner<2, 2>().trace());
@@ -1296,7 +1318,7 @@ ModelAdequacy batch::judge_model_adequacy(const CalibrationRun& run, const Odome
   BatchSummary scratch;
   scratch.nominal = run.log().vehicle.nominal_params();
   ceres::Solver::Summary solver = solve_relinearised(batch, options, scratch);
-  adapt_gnss_noise(batch, options, common, scratch, solver);
+  adapt_gnss_noise(batch, options, common, scratch, solver, SigmaInflation::kSkip);
   if (!solver.IsSolutionUsable()) {
     ModelAdequacy none;
     none.verdict = fmt::format("not judged: the batch pose graph did not solve ({})",
@@ -1306,11 +1328,7 @@ ModelAdequacy batch::judge_model_adequacy(const CalibrationRun& run, const Odome
   ModelAdequacy adequacy = assess_model_adequacy(batch.odometry_errors());
   // Said, so that the residuals are not taken for the other method's.
   adequacy.verdict += " [judged on a batch fit of this log]";
-  if (adequacy.judged && !adequacy.explains) {
-    adequacy.verdict +=
-        "; the batch method's tyre_model: physical (or auto) fits a circumference that follows "
-        "the driving state (docs/tyre-model.md)";
-  }
+  suggest_tyre_model(adequacy);
   return adequacy;
 }
 

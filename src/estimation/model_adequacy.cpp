@@ -41,6 +41,9 @@ std::string likely_cause(const ResidualDependence& d) {
   if (d.quantity == "curvature")
     return "the track width is off, or the rolling radius changes in turns (estimate_track_width "
            "tells which)";
+  if (d.quantity == "grade")
+    return "the driven wheels slip with the force that climbing takes (drive slip uphill, "
+           "engine braking downhill)";
   return "the rolling radius grows with speed";
 }
 
@@ -59,7 +62,8 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
     speed[i] = distance[i] / std::max(s.t1_s - s.t0_s, 1e-9);
   }
   std::vector<double> heading_per_m, along_per_m, lateral, longitudinal, speed_squared, curvature;
-  std::vector<double> whitened_heading;
+  std::vector<double> whitened_heading, grade;
+  bool grade_known = true;
   double chi2 = 0.0;
   for (std::size_t i = 1; i + 1 < samples.size(); ++i) {
     const OdometryResidualSample& s = samples[i];
@@ -74,6 +78,8 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
     longitudinal.push_back((speed[i + 1] - speed[i - 1]) / std::max(mid_next - mid_prev, 1e-9));
     speed_squared.push_back(speed[i] * speed[i]);
     whitened_heading.push_back(s.whitened(2));
+    grade.push_back(s.grade);
+    grade_known = grade_known && std::isfinite(s.grade);
     chi2 += s.whitened.squaredNorm();
   }
   result.intervals = heading_per_m.size();
@@ -106,6 +112,11 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
   test("heading", heading_per_m, "curvature", curvature, {});
   test("along-track", along_per_m, "longitudinal acceleration", longitudinal, {&speed_squared});
   test("along-track", along_per_m, "speed squared", speed_squared, {&longitudinal});
+  // Climbing takes a drive force that the horizontal acceleration does not show (m g grade):
+  // slip beyond what acceleration and speed explain.
+  if (grade_known) {
+    test("along-track", along_per_m, "grade", grade, {&longitudinal, &speed_squared});
+  }
 
   const ResidualDependence* strongest = nullptr;
   for (const ResidualDependence& d : result.dependences) {

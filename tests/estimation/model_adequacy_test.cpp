@@ -1,6 +1,6 @@
 // Model adequacy against residuals with a known dependence: drawn white residuals are explained;
 // a heading error per metre proportional to lateral acceleration, or an along-track error
-// proportional to longitudinal acceleration, is named.
+// proportional to longitudinal acceleration or to the grade, is named.
 
 #include "odocal/estimation/model_adequacy.hpp"
 
@@ -12,9 +12,11 @@
 namespace odocal {
 namespace {
 
-// A drive of 1 s intervals weaving at 10-20 m/s: heading error k_y a_y per metre and along-track
-// error k_x a_x per metre, plus white noise.
-std::vector<OdometryResidualSample> drive(double k_y, double k_x, std::uint64_t seed) {
+// A drive of 1 s intervals weaving at 10-20 m/s over hills of up to 5 % grade (known when
+// `grade_known`): heading error k_y a_y per metre and along-track error k_x a_x + k_g grade per
+// metre, plus white noise.
+std::vector<OdometryResidualSample> drive(double k_y, double k_x, std::uint64_t seed,
+                                          double k_g = 0.0, bool grade_known = false) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::vector<OdometryResidualSample> samples;
@@ -31,8 +33,10 @@ std::vector<OdometryResidualSample> drive(double k_y, double k_x, std::uint64_t 
     next.z() += yaw_rate;
     OdometryResidualSample s{
         t, t + 1.0, pose, next, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
-    s.error = Eigen::Vector3d(k_x * ax * speed + 0.01 * noise(rng), 0.01 * noise(rng),
-                              k_y * ay * speed + 1e-3 * noise(rng));
+    const double grade = 0.05 * std::sin(0.013 * t);
+    if (grade_known) s.grade = grade;
+    s.error = Eigen::Vector3d((k_x * ax + k_g * grade) * speed + 0.01 * noise(rng),
+                              0.01 * noise(rng), k_y * ay * speed + 1e-3 * noise(rng));
     s.whitened = Eigen::Vector3d(s.error(0) / 0.01, s.error(1) / 0.01, s.error(2) / 1e-3);
     samples.push_back(s);
     pose = next;
@@ -60,6 +64,23 @@ TEST(ModelAdequacy, NamesTheQuantityTheResidualsFollow) {
   EXPECT_NE(slip.verdict.find("along-track residual follows longitudinal acceleration"),
             std::string::npos)
       << slip.verdict;
+}
+
+TEST(ModelAdequacy, NamesTheGradeWhereTheLogHasIt) {
+  // Slip with the climbing force (0.75 per mille of the distance at 5 %), beyond acceleration and
+  // speed.
+  const ModelAdequacy climb = assess_model_adequacy(drive(0.0, 0.0, 7, 1.5e-2, true));
+  EXPECT_FALSE(climb.explains);
+  EXPECT_NE(climb.verdict.find("along-track residual follows grade"), std::string::npos)
+      << climb.verdict;
+  // The same hills without slip are explained, the grade tested all the same.
+  const ModelAdequacy no_slip = assess_model_adequacy(drive(0.0, 0.0, 7, 0.0, true));
+  EXPECT_TRUE(no_slip.explains) << no_slip.verdict;
+  EXPECT_EQ(no_slip.dependences.size(), 5u);
+  // Without the altitude the grade is not a quantity the verdict can name.
+  const ModelAdequacy unknown = assess_model_adequacy(drive(0.0, 0.0, 7, 1.5e-2, false));
+  EXPECT_EQ(unknown.dependences.size(), 4u);
+  EXPECT_EQ(unknown.verdict.find("grade"), std::string::npos) << unknown.verdict;
 }
 
 TEST(ModelAdequacy, NamesTheModelItJudges) {

@@ -5,10 +5,12 @@
 // driving state there. A model that fits leaves white residuals that depend on nothing; a tyre
 // whose rolling radius moves with load, slip or speed leaves residuals that follow lateral
 // acceleration (load transfer in turns: the heading residual), longitudinal acceleration
-// (drive and brake slip: the along-track residual) or speed (radius growth).
+// (drive and brake slip: the along-track residual), speed (radius growth) or the road's grade
+// (the drive force that climbing takes, beyond acceleration).
 // docs/model-adequacy.md.
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -20,13 +22,15 @@ struct OdometryResidualSample {
   Eigen::Vector3d pose0, pose1;  // fitted keyframe poses [x m, y m, yaw rad]
   Eigen::Vector3d error;     // poses' relative motion minus the wheels' [along m, left m, yaw rad]
   Eigen::Vector3d whitened;  // the same, whitened by the interval's odometry covariance
+  // dz/ds fitted from GNSS altitude (road_grade.hpp); NaN where the log has no altitude.
+  double grade{std::numeric_limits<double>::quiet_NaN()};
 };
 
 // A residual's linear dependence on one driving quantity.
 struct ResidualDependence {
   std::string residual;  // "heading" or "along-track"
   std::string quantity;  // "lateral acceleration", "curvature", "longitudinal acceleration",
-                         // "speed squared"
+                         // "speed squared", "grade" (only with every interval's grade known)
   double correlation{};  // partial correlation over the moving intervals (model_adequacy.cpp)
   double t_statistic{};  // rho sqrt(n - 2) / sqrt(1 - rho^2)
 };
