@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 namespace odocal::sim {
 namespace {
@@ -14,10 +13,7 @@ constexpr double kGridHz = 200.0;
 
 GradedMotion::GradedMotion(std::unique_ptr<MotionTruth> flat, const Terrain& terrain,
                            double lap_length_m)
-    : flat_(std::move(flat)) {
-  const double waves = std::max(1.0, std::round(lap_length_m / terrain.wavelength_m));
-  wavenumber_1pm_ = 2.0 * std::numbers::pi * waves / lap_length_m;
-  amplitude_m_ = terrain.max_grade / wavenumber_1pm_;
+    : flat_(std::move(flat)), hills_(terrain, lap_length_m) {
   // Wheel angles: over each step the wheels' mean turn grows by 1 / cos(pitch) (the 3-D distance)
   // and their difference shrinks by cos(pitch) (the body turns about its tilted vertical).
   grid_step_s_ = 1.0 / kGridHz;
@@ -43,10 +39,6 @@ GradedMotion::GradedMotion(std::unique_ptr<MotionTruth> flat, const Terrain& ter
   }
 }
 
-double GradedMotion::grade(double s_m) const {
-  return amplitude_m_ * wavenumber_1pm_ * std::cos(wavenumber_1pm_ * s_m);
-}
-
 double GradedMotion::interpolate(const std::vector<double>& values, double t_s) const {
   const double position =
       std::clamp(t_s / grid_step_s_, 0.0, static_cast<double>(values.size() - 1));
@@ -61,7 +53,7 @@ TruthSample GradedMotion::at(double t_s) const {
   const double slope = grade(s);
   const double cos_pitch = 1.0 / std::sqrt(1.0 + slope * slope);
   const double sin_pitch = slope * cos_pitch;
-  sample.altitude_m = amplitude_m_ * std::sin(wavenumber_1pm_ * s);
+  sample.altitude_m = hills_.altitude_m(s);
   sample.wheel_angle_rl_rad += interpolate(extra_angle_rl_rad_, t_s);
   sample.wheel_angle_rr_rad += interpolate(extra_angle_rr_rad_, t_s);
   const double mean = 0.5 * (sample.wheel_rate_rl_radps + sample.wheel_rate_rr_radps);

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "hills.hpp"
 #include "odocal/sim/motion_truth.hpp"
 #include "odocal/sim/scenario.hpp"
 
@@ -21,11 +22,10 @@ class GradedMotion : public MotionTruth {
 
  private:
   double interpolate(const std::vector<double>& values, double t_s) const;
-  double grade(double s_m) const;
+  double grade(double s_m) const { return hills_.grade(s_m); }
 
   std::unique_ptr<MotionTruth> flat_;
-  double amplitude_m_{};
-  double wavenumber_1pm_{};  // 2 pi / wavelength
+  Hills hills_;
   // On a fine time grid: horizontal distance driven, and what the slope adds to each wheel angle.
   double grid_step_s_{};
   std::vector<double> distance_m_, extra_angle_rl_rad_, extra_angle_rr_rad_;

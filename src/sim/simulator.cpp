@@ -3,10 +3,12 @@
 #include <GeographicLib/LocalCartesian.hpp>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <random>
 
 #include "graded_motion.hpp"
+#include "hills.hpp"
 #include "odocal/error.hpp"
 #include "odocal/model/angle.hpp"
 #include "odocal/model/path_length.hpp"
@@ -261,8 +263,13 @@ SimulatedDrive simulate(const Scenario& scenario) {
     const StaticRearRadii radii{out.true_params.circumference_rl_m / kTwoPi,
                                 out.true_params.circumference_rr_m / kTwoPi,
                                 scenario.vehicle.pressure_rl, scenario.vehicle.pressure_rr};
+    std::function<double(double)> grade;
+    if (scenario.route.terrain.max_grade > 0.0) {
+      grade = [hills = Hills(scenario.route.terrain, path.length_m() / scenario.route.laps)](
+                  double s_m) { return hills.grade(s_m); };
+    }
     truth = simulate_vehicle_dynamics(path, profile, scenario.dynamics,
-                                      scenario.vehicle.wheelbase_m, track_m, radii);
+                                      scenario.vehicle.wheelbase_m, track_m, radii, grade);
     const std::array<double, 2> rolling =
         steady_rolling_radii_m(scenario.dynamics, scenario.vehicle.wheelbase_m, track_m, radii,
                                out.steady_rolling_speed_mps);

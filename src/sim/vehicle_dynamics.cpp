@@ -28,6 +28,13 @@ struct Controls {
   double steer_rad;
   double force_n;  // total longitudinal tyre force command (signed, body x)
   double ax_estimate_mps2;
+  double grade;  // dz/ds of the road under the car: climbing takes m g sin(pitch) of the force
+};
+
+struct Pitch {
+  double sin, cos;
+  explicit Pitch(double grade)
+      : sin(grade / std::sqrt(1.0 + grade * grade)), cos(1.0 / std::sqrt(1.0 + grade * grade)) {}
 };
 
 class Vehicle {
@@ -69,13 +76,19 @@ class Vehicle {
     const double front_share = u.force_n >= 0.0 ? drive_front_share() : c_.brake_front_share;
     const double drive_n = (1.0 - front_share) * u.force_n;  // rear axle
     const double front_brake_n = front_share * u.force_n;
+    // On a slope the ground's force also holds the weight's component along it: that moves load
+    // to the rear as acceleration does.
+    const Pitch pitch(u.grade);
+    const double slope_n = c_.mass_kg * kGravity * pitch.sin;
     const double transfer_x =
-        c_.load_transfer ? c_.mass_kg * u.ax_estimate_mps2 * c_.cg_height_m / L_ : 0.0;
-    const double load_front = c_.mass_kg * kGravity * b_ / L_ - transfer_x;
-    const double load_rear = c_.mass_kg * kGravity * a_ / L_ + transfer_x;
+        c_.load_transfer
+            ? c_.mass_kg * (u.ax_estimate_mps2 + kGravity * pitch.sin) * c_.cg_height_m / L_
+            : 0.0;
+    const double load_front = c_.mass_kg * kGravity * pitch.cos * b_ / L_ - transfer_x;
+    const double load_rear = c_.mass_kg * kGravity * pitch.cos * a_ / L_ + transfer_x;
     double ay = s.vx * r;
     if (kinematic(s)) {
-      d.vx = (u.force_n - resistance_n(s.vx)) / c_.mass_kg;
+      d.vx = (u.force_n - resistance_n(s.vx) - slope_n) / c_.mass_kg;
     } else {
       const double alpha_front = u.steer_rad - std::atan2(s.vy + a_ * s.r, s.vx);
       const double alpha_rear = -std::atan2(s.vy - b_ * s.r, s.vx);
@@ -84,9 +97,9 @@ class Vehicle {
       const double fy_rear =
           lateral_force(alpha_rear, load_rear, c_.cornering_stiffness_per_load_rear);
       const double cos_d = std::cos(u.steer_rad), sin_d = std::sin(u.steer_rad);
-      d.vx =
-          (drive_n + front_brake_n * cos_d - fy_front * sin_d - resistance_n(s.vx)) / c_.mass_kg +
-          s.r * s.vy;
+      d.vx = (drive_n + front_brake_n * cos_d - fy_front * sin_d - resistance_n(s.vx) - slope_n) /
+                 c_.mass_kg +
+             s.r * s.vy;
       d.vy = (fy_rear + fy_front * cos_d + front_brake_n * sin_d) / c_.mass_kg - s.r * s.vx;
       d.r = (a_ * (fy_front * cos_d + front_brake_n * sin_d) - b_ * fy_rear) / c_.yaw_inertia_kgm2;
       ay = d.vy + s.r * s.vx;
@@ -211,7 +224,8 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
                                                        const SpeedProfile& profile,
                                                        const VehicleDynamicsConfig& config,
                                                        double wheelbase_m, double track_width_m,
-                                                       const StaticRearRadii& radii) {
+                                                       const StaticRearRadii& radii,
+                                                       const std::function<double(double)>& grade) {
   const Vehicle vehicle(config, wheelbase_m, track_width_m, radii);
   const double h = 1.0 / config.step_hz;
   const int steps_per_control =
@@ -234,7 +248,7 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
   auto motion = std::make_unique<RecordedMotion>(h);
   double progress_m = 0.0;
   const std::vector<double> cusps_m = path.direction_changes_m();
-  Controls controls{0.0, 0.0, 0.0};
+  Controls controls{0.0, 0.0, 0.0, grade ? grade(0.0) : 0.0};
 
   for (std::size_t k = 0; k <= steps; ++k) {
     const double t = static_cast<double>(k) * h;
@@ -282,7 +296,11 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
                          config.speed_gain_1ps * (direction * reference.speed_mps - s.vx) +
                          config.position_gain_1ps2 * direction * behind_m,
                      -config.friction * kGravity, config.friction * kGravity);
-      controls.force_n = config.mass_kg * acc + vehicle.resistance_n(s.vx);
+      // The driver holds the speed on a hill: the slope's share of the weight is driven (or
+      // braked) on top.
+      controls.grade = grade ? grade(progress_m) : 0.0;
+      controls.force_n = config.mass_kg * acc + vehicle.resistance_n(s.vx) +
+                         config.mass_kg * kGravity * Pitch(controls.grade).sin;
       controls.ax_estimate_mps2 = acc;
     }
 

@@ -1,10 +1,12 @@
 // Model adequacy on simulated logs, through the batch: the ideal vehicle is explained; a vehicle
 // whose wheels turn on a wider track than vehicle.yaml states is not (its heading residual
-// follows curvature), until the batch estimates the track. The other methods are judged on a
-// batch fit of the same model, and say the same.
+// follows curvature), until the batch estimates the track; rear wheels that slip climbing hills
+// are named by the grade. The other methods are judged on a batch fit of the same model, and say
+// the same.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "odocal/estimation/batch_calibration.hpp"
@@ -37,6 +39,28 @@ TEST(ModelAdequacyBatch, IdealVehicleIsExplainedAWrongTrackIsNot) {
   BatchOptions with_track;
   with_track.estimate_track_width = true;
   EXPECT_TRUE(calibrate_batch(wide, with_track).model_adequacy.explains);
+}
+
+// Hills of up to 6 % on the realistic urban drive: driven from the rear, the wheels slip with
+// the climbing force and the verdict names the grade; the free-rolling rear wheels of a
+// front-driven car do not climb, and the grade is not what their residual follows.
+TEST(ModelAdequacyBatch, RearWheelsThatClimbAreNamedByTheGrade) {
+  const auto hilly_urban = [](sim::Drivetrain drivetrain) {
+    sim::Scenario scenario = load_scenario("urban");
+    scenario.route.laps = 3;
+    scenario.route.terrain.max_grade = 0.06;
+    scenario.seeds.noise = 3;
+    scenario.dynamics.drivetrain = drivetrain;
+    return simulated_log(sim::simulate(scenario));
+  };
+  const ModelAdequacy rear = calibrate_batch(hilly_urban(sim::Drivetrain::kRear)).model_adequacy;
+  EXPECT_FALSE(rear.explains);
+  EXPECT_NE(rear.verdict.find("along-track residual follows grade"), std::string::npos)
+      << rear.verdict;
+  const ModelAdequacy front = calibrate_batch(hilly_urban(sim::Drivetrain::kFront)).model_adequacy;
+  ASSERT_EQ(front.dependences.size(), 5u);
+  EXPECT_EQ(front.dependences.back().quantity, "grade");
+  EXPECT_LT(std::abs(front.dependences.back().correlation), 0.3);
 }
 
 TEST(ModelAdequacyBatch, EveryMethodIsJudgedUnlessAskedNotTo) {

@@ -322,6 +322,48 @@ TEST(RealisticSimulator, SteadyRollingCircumferenceHasTheDriveSlipOfTheResistanc
   EXPECT_EQ(ideal.steady_rolling_circumference_m[1], ideal.true_params.circumference_rr_m);
 }
 
+// On a slope the driver holds the speed with the weight's share along it on top of the
+// resistance: a rear-driven car's rear wheels slip by the inverse magic formula of half that force
+// on their load (which grade moves to the rear as acceleration does, m g sin h / L); downhill the
+// force turns to braking, split 35 % to the rear. Straight, at a steady 15 m/s.
+TEST(RealisticSimulator, ClimbingSlipsTheDrivenRearWheels) {
+  VehicleDynamicsConfig c;
+  const double wheelbase = 2.7, speed = 15.0, g = 9.81;
+  const StaticRearRadii radii{0.31, 0.31};
+  const Path path({{2000.0, 0.0, 0.0, 1}}, Pose2::Zero());
+  DriverLimits limits;
+  limits.max_speed_mps = speed;
+  const SpeedProfile profile(path, limits, {});
+  const double resistance = 0.5 * c.air_density_kgpm3 * c.drag_area_m2 * speed * speed +
+                            c.rolling_resistance * c.mass_kg * g;
+  const double b = c.slip_stiffness_per_load / (c.longitudinal_shape * c.friction);
+  const double static_load = c.mass_kg * g * c.cg_to_front_axle_m / wheelbase / 2.0;
+  const auto expected_rate = [&](double grade) {
+    const double sin_pitch = grade / std::sqrt(1.0 + grade * grade);
+    const double cos_pitch = 1.0 / std::sqrt(1.0 + grade * grade);
+    const double force = resistance + c.mass_kg * g * sin_pitch;
+    const double rear_share = force >= 0.0 ? 1.0 : 1.0 - c.brake_front_share;
+    const double load = 0.5 * (c.mass_kg * g * cos_pitch * c.cg_to_front_axle_m / wheelbase +
+                               c.mass_kg * g * sin_pitch * c.cg_height_m / wheelbase);
+    const double slip =
+        std::tan(std::asin(0.5 * rear_share * force / (c.friction * load)) / c.longitudinal_shape) /
+        b;
+    const double radius = radii.rl_m - c.radius_load_sensitivity_m_per_n * (load - static_load);
+    return speed * (1.0 + slip) / radius;
+  };
+  const auto simulated_rate = [&](double grade) {
+    const auto motion = simulate_vehicle_dynamics(path, profile, c, wheelbase, 1.6, radii,
+                                                  [grade](double) { return grade; });
+    return motion->at(0.5 * profile.duration_s()).wheel_rate_rl_radps;
+  };
+  for (const double grade : {0.0, 0.06, -0.06}) {
+    EXPECT_NEAR(simulated_rate(grade) / expected_rate(grade), 1.0, 2e-5) << "grade " << grade;
+  }
+  // Climbing 6 % takes ~880 N more: several per mille of slip, far above the flat road's.
+  EXPECT_GT(expected_rate(0.06) / expected_rate(0.0) - 1.0, 3e-3);
+  EXPECT_LT(expected_rate(-0.06), expected_rate(0.0));
+}
+
 TEST(ScenarioYaml, DrivetrainIsReadAndChecked) {
   const std::string route = "route: {segments: [{straight: 100}]}\n";
   const Scenario front = parse_scenario(

@@ -8,6 +8,7 @@
 // radius that depends on its vertical load. docs/simulator.md has the equations and defaults.
 
 #include <array>
+#include <functional>
 #include <memory>
 
 #include "odocal/sim/motion_truth.hpp"
@@ -72,11 +73,11 @@ std::array<double, 2> steady_rolling_radii_m(const VehicleDynamicsConfig& config
                                              double wheelbase_m, double track_width_m,
                                              const StaticRearRadii& radii, double speed_mps);
 
-// Simulates the drive; the wheel radii at static load are given (nominal minus wear).
-std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
-                                                       const SpeedProfile& profile,
-                                                       const VehicleDynamicsConfig& config,
-                                                       double wheelbase_m, double track_width_m,
-                                                       const StaticRearRadii& radii);
+// Simulates the drive; the wheel radii at static load are given (nominal minus wear). `grade`:
+// the road's dz/ds at a distance along the path (empty: flat), which the drive force climbs.
+std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(
+    const Path& path, const SpeedProfile& profile, const VehicleDynamicsConfig& config,
+    double wheelbase_m, double track_width_m, const StaticRearRadii& radii,
+    const std::function<double(double)>& grade = {});
 
 }  // namespace odocal::sim
