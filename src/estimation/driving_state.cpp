@@ -100,9 +100,18 @@ void fill_states(const WheelStream& wheels, const ImuStream* imu, const Odometry
     wheel_turn.value[k] = wheel_turn.value[k - 1] + step.yaw_rad;
   }
   const bool measured = imu != nullptr && imu->size() >= 2;
-  static const ImuStream kNoImu{{0.0, 1.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+  static const ImuStream kNoImu{{0.0, 1.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}, {}};
   const ImuStream& source = measured ? *imu : kNoImu;
-  RunningMean gyro(source, source.wz_radps), forward(source, source.ax_mps2),
+  // The specific force the tyres push with: on a hill, with the slope's gravity the projection
+  // took out (a wheel climbing slips as one accelerating does).
+  std::vector<double> specific_force_x;
+  if (!source.slope_gravity_mps2.empty()) {
+    specific_force_x = source.ax_mps2;
+    for (std::size_t k = 0; k < specific_force_x.size(); ++k)
+      specific_force_x[k] += source.slope_gravity_mps2[k];
+  }
+  RunningMean gyro(source, source.wz_radps),
+      forward(source, specific_force_x.empty() ? source.ax_mps2 : specific_force_x),
       left(source, source.ay_mps2);
   const double h = half_window_s;
   for (std::size_t k = 0; k < wheels.size(); ++k) {

@@ -139,11 +139,15 @@ void project_to_horizontal(Log& log, const GradeProfile& profile) {
     wheels.rev_rr[k] = mean * c + half_difference / c;
   }
   if (!log.imu) return;
+  std::vector<double>& slope_gravity = log.imu->slope_gravity_mps2;
+  slope_gravity.resize(log.imu->size(), 0.0);
   for (std::size_t k = 0; k < log.imu->size(); ++k) {
     const auto d = interpolate_linear(wheels.t_s, profile.wheel_distance_m, log.imu->t_s[k]);
     if (!d) continue;
     const double grade = profile.at_distance(*d);
-    log.imu->ax_mps2[k] -= kGravityMps2 * grade * cos_pitch(grade);
+    const double along_slope = kGravityMps2 * grade * cos_pitch(grade);
+    log.imu->ax_mps2[k] -= along_slope;
+    slope_gravity[k] += along_slope;
     log.imu->wz_radps[k] /= profile.cos_pitch_at(*d);  // turning about the vertical, not the body
   }
 }

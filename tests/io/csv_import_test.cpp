@@ -300,8 +300,9 @@ streams:
   for (std::size_t k = 1; k < log.gnss.size(); ++k) {
     ASSERT_GT(log.gnss.t_s[k], log.gnss.t_s[k - 1]);
     // The other file's speed, interpolated across its own chunks: 10 m/s except near the stop.
-    if (log.gnss.t_s[k] < 590.0 || log.gnss.t_s[k] > 670.0)
+    if (log.gnss.t_s[k] < 590.0 || log.gnss.t_s[k] > 670.0) {
       ASSERT_NEAR(log.gnss.speed_mps[k], 10.0, 1e-9) << log.gnss.t_s[k];
+    }
   }
   ASSERT_TRUE(log.truth.has_value());
   // The course east everywhere, the standing rows included (0.5 m before and after the stop).

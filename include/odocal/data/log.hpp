@@ -108,6 +108,10 @@ struct ImuStream {
   std::vector<double> ax_mps2;
   std::vector<double> ay_mps2;
   std::vector<double> wz_radps;
+  // Gravity along the slope that the hills' projection took out of ax_mps2 (road_grade.hpp), so
+  // that ax is the horizontal acceleration; empty where nothing was taken. The tyres push against
+  // it all the same: the tyre model's force adds it back (driving_state.hpp).
+  std::vector<double> slope_gravity_mps2;
 
   std::size_t size() const { return t_s.size(); }
 };

@@ -33,6 +33,7 @@ void for_each_column(Visit&& visit, Streams&... s) {
     visit(s.ax_mps2...);
     visit(s.ay_mps2...);
     visit(s.wz_radps...);
+    visit(s.slope_gravity_mps2...);
   } else if constexpr (std::is_same_v<Stream, HeadingStream>) {
     visit(s.t_s...);
     visit(s.heading_rad...);
