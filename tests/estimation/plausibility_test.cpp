@@ -159,7 +159,9 @@ TEST(Plausibility, AnUnwornCarIsNoInputMistake) {
   ASSERT_EQ(scenario.vehicle.wear_rl_mm, 0.0);
   ASSERT_EQ(scenario.vehicle.wear_rr_mm, 0.0);
   const Log log = simulated_log(drive);
-  const IterativeSummary iterative = calibrate_iterative(log);
+  CalibrationOptions unjudged;  // plausibility, not the model-adequacy verdict
+  unjudged.judge_model_adequacy = false;
+  const IterativeSummary iterative = calibrate_iterative(log, {}, unjudged);
   EXPECT_TRUE(iterative.usable()) << iterative.message;
   const BatchSummary batch = calibrate_batch(log);
   EXPECT_TRUE(batch.usable()) << batch.message;

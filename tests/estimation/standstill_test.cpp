@@ -48,8 +48,10 @@ TEST(Standstill, FoundAtTheStartAndTheEnd) {
 TEST(Standstill, WheelRateBiasesAreRemovedAndChangeNothingElse) {
   const Log clean = rate_sensor_lap(0.0, 0.0, 30.0);
   const Log biased = rate_sensor_lap(-0.33, 1.22, 30.0);
-  const IterativeSummary reference = calibrate_iterative(clean);
-  const IterativeSummary result = calibrate_iterative(biased);
+  CalibrationOptions unjudged;  // the estimates, not the model-adequacy verdict
+  unjudged.judge_model_adequacy = false;
+  const IterativeSummary reference = calibrate_iterative(clean, {}, unjudged);
+  const IterativeSummary result = calibrate_iterative(biased, {}, unjudged);
   ASSERT_TRUE(result.preparation.wheel_rate_bias.has_value());
   EXPECT_NEAR(360.0 * result.preparation.wheel_rate_bias->rl_rev_per_s, -0.33, 0.02);
   EXPECT_NEAR(360.0 * result.preparation.wheel_rate_bias->rr_rev_per_s, 1.22, 0.02);

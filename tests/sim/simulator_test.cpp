@@ -330,7 +330,7 @@ TEST(RealisticSimulator, ClimbingSlipsTheDrivenRearWheels) {
   VehicleDynamicsConfig c;
   const double wheelbase = 2.7, speed = 15.0, g = 9.81;
   const StaticRearRadii radii{0.31, 0.31};
-  const Path path({{2000.0, 0.0, 0.0, 1}}, Pose2::Zero());
+  const Path path({{600.0, 0.0, 0.0, 1}}, Pose2::Zero());
   DriverLimits limits;
   limits.max_speed_mps = speed;
   const SpeedProfile profile(path, limits, {});
