@@ -1140,13 +1140,15 @@ double max_tyre_effect(const BatchProblem& batch) {
   return effect.maxCoeff();
 }
 
+// Whether adapt_gnss_noise measures how much the adaptation widened the circumferences' sigma
+// (two marginal covariances; a judge that only reads the residuals does without).
+enum class SigmaInflation { kMeasure, kSkip };
+
 // The GNSS error in the solution's residuals; when it differs from the configured noise (a
 // correlated part, or a white level off by more than 25 %), the problem is solved again with it,
 // and again with what that solution's residuals show (a fit that trusts GNSS too much hides part
 // of its error in the trajectory), until the noise estimate settles. The report says by how much
 // that widened the circumferences' sigma.
-enum class SigmaInflation { kMeasure, kSkip };
-
 void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
                       const CalibrationOptions& common, BatchSummary& summary,
                       ceres::Solver::Summary& solver,
@@ -1165,7 +1167,6 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
   const double configured = report.configured_sigma_m;
   const double white_ratio = noise.white_sigma_m / configured;
   if (noise.gauss_markov_sigma_m == 0.0 && white_ratio > 0.8 && white_ratio < 1.25) return;
-  // Two marginal covariances: a judge that only reads the residuals does without them.
   const bool measure = inflation == SigmaInflation::kMeasure;
   const auto before = measure ? batch.uncertainty() : std::nullopt;
   const auto first_params = batch.params();

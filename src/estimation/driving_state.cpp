@@ -41,8 +41,10 @@ float stored(double value) {
 // additions, as a stored cumulative interpolated linearly and clamped to the span.
 class RunningIntegral {
  public:
-  RunningIntegral(const std::vector<double>& t_s, const std::vector<double>& channel)
-      : t_s_(t_s), channel_(channel) {}
+  // `addend` (empty: none): a second channel integrated as part of the first.
+  RunningIntegral(const std::vector<double>& t_s, const std::vector<double>& channel,
+                  const std::vector<double>& addend)
+      : t_s_(t_s), channel_(channel), addend_(addend) {}
   double at(double t) {
     while (k_ + 1 < t_s_.size() && t_s_[k_ + 1] <= t) {
       sum_ += segment(k_);
@@ -54,11 +56,15 @@ class RunningIntegral {
   }
 
  private:
+  double value(std::size_t k) const {
+    return addend_.empty() ? channel_[k] : channel_[k] + addend_[k];
+  }
   double segment(std::size_t k) const {
-    return 0.5 * (channel_[k + 1] + channel_[k]) * (t_s_[k + 1] - t_s_[k]);
+    return 0.5 * (value(k + 1) + value(k)) * (t_s_[k + 1] - t_s_[k]);
   }
   const std::vector<double>& t_s_;
   const std::vector<double>& channel_;
+  const std::vector<double>& addend_;
   std::size_t k_ = 0;
   double sum_ = 0.0;
 };
@@ -66,8 +72,9 @@ class RunningIntegral {
 // The mean of one IMU channel over [t - h, t + h] clipped to its span, at non-decreasing t.
 class RunningMean {
  public:
-  RunningMean(const ImuStream& imu, const std::vector<double>& channel)
-      : t_s_(imu.t_s), from_(imu.t_s, channel), to_(imu.t_s, channel) {}
+  RunningMean(const ImuStream& imu, const std::vector<double>& channel,
+              const std::vector<double>& addend = kNone)
+      : t_s_(imu.t_s), from_(imu.t_s, channel, addend), to_(imu.t_s, channel, addend) {}
   double at(double t, double h) {
     const double from = std::max(t - h, t_s_.front()), to = std::min(t + h, t_s_.back());
     const double begin = from_.at(from), end = to_.at(to);
@@ -75,6 +82,7 @@ class RunningMean {
   }
 
  private:
+  static inline const std::vector<double> kNone;
   const std::vector<double>& t_s_;
   RunningIntegral from_, to_;
 };
@@ -104,15 +112,8 @@ void fill_states(const WheelStream& wheels, const ImuStream* imu, const Odometry
   const ImuStream& source = measured ? *imu : kNoImu;
   // The specific force the tyres push with: on a hill, with the slope's gravity the projection
   // took out (a wheel climbing slips as one accelerating does).
-  std::vector<double> specific_force_x;
-  if (!source.slope_gravity_mps2.empty()) {
-    specific_force_x = source.ax_mps2;
-    for (std::size_t k = 0; k < specific_force_x.size(); ++k)
-      specific_force_x[k] += source.slope_gravity_mps2[k];
-  }
   RunningMean gyro(source, source.wz_radps),
-      forward(source, specific_force_x.empty() ? source.ax_mps2 : specific_force_x),
-      left(source, source.ay_mps2);
+      forward(source, source.ax_mps2, source.slope_gravity_mps2), left(source, source.ay_mps2);
   const double h = half_window_s;
   for (std::size_t k = 0; k < wheels.size(); ++k) {
     const double t = wheels.t_s[k];
