@@ -1,5 +1,9 @@
 #pragma once
-// A fresh directory under the system's temporary directory, removed with everything in it.
+// A fresh directory under the system's temporary directory, removed with everything in it. Its
+// name carries the process id: ctest runs each test in a process of its own, two at a time, and
+// two tests of one fixture must not share (and remove) each other's files.
+
+#include <unistd.h>
 
 #include <filesystem>
 #include <string>
@@ -9,7 +13,8 @@ namespace odocal::testing {
 class ScratchDir {
  public:
   explicit ScratchDir(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() / ("odocal_bag_test_" + name)) {
+      : path_(std::filesystem::temp_directory_path() /
+              ("odocal_bag_test_" + name + "_" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
