@@ -280,7 +280,9 @@ class BatchProblem {
   std::vector<OdometryResidualSample> odometry_errors() const {
     std::vector<OdometryResidualSample> samples;
     samples.reserve(odometry_blocks_.size());
-    // The grade the preparation projected with, so that the residuals can be held against it.
+    // The grade, so that the residuals can be held against it: fitted again on the prepared log,
+    // as the preparation keeps no profile (a long log's is made block by block). Its distances
+    // are the horizontal ones, shorter than the preparation's by cos(pitch): a few per mille.
     const std::optional<GradeProfile> grade =
         grade_window_m_ > 0.0 ? grade_from_gnss_altitude(log_, nominal_, grade_window_m_)
                               : std::nullopt;

@@ -26,8 +26,7 @@ GradedMotion::GradedMotion(std::unique_ptr<MotionTruth> flat, const Terrain& ter
     const TruthSample sample = flat_->at(static_cast<double>(i) * grid_step_s_);
     const double ds = (sample.pose.head<2>() - previous.pose.head<2>()).norm();
     distance_m_[i] = distance_m_[i - 1] + ds;
-    const double cos_pitch =
-        1.0 / std::sqrt(1.0 + std::pow(grade(0.5 * (distance_m_[i] + distance_m_[i - 1])), 2));
+    const double cos_pitch = Pitch(grade(0.5 * (distance_m_[i] + distance_m_[i - 1]))).cos;
     const double d_rl = sample.wheel_angle_rl_rad - previous.wheel_angle_rl_rad;
     const double d_rr = sample.wheel_angle_rr_rad - previous.wheel_angle_rr_rad;
     const double mean = 0.5 * (d_rl + d_rr), half_difference = 0.5 * (d_rr - d_rl);
@@ -50,9 +49,8 @@ double GradedMotion::interpolate(const std::vector<double>& values, double t_s) 
 TruthSample GradedMotion::at(double t_s) const {
   TruthSample sample = flat_->at(t_s);
   const double s = interpolate(distance_m_, t_s);
-  const double slope = grade(s);
-  const double cos_pitch = 1.0 / std::sqrt(1.0 + slope * slope);
-  const double sin_pitch = slope * cos_pitch;
+  const Pitch pitch(grade(s));
+  const double cos_pitch = pitch.cos;
   sample.altitude_m = hills_.altitude_m(s);
   sample.wheel_angle_rl_rad += interpolate(extra_angle_rl_rad_, t_s);
   sample.wheel_angle_rr_rad += interpolate(extra_angle_rr_rad_, t_s);
@@ -61,7 +59,7 @@ TruthSample GradedMotion::at(double t_s) const {
   sample.wheel_rate_rl_radps = mean / cos_pitch - half_difference * cos_pitch;
   sample.wheel_rate_rr_radps = mean / cos_pitch + half_difference * cos_pitch;
   // Nose up on the way uphill: the forward accelerometer reads g sin(pitch) more.
-  sample.ax_mps2 += kGravityMps2 * sin_pitch;
+  sample.ax_mps2 += kGravityMps2 * pitch.sin;
   sample.yaw_rate_radps *= cos_pitch;
   return sample;
 }

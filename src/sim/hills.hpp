@@ -11,6 +11,14 @@
 
 namespace odocal::sim {
 
+// The body's pitch on a road of grade dz/ds (positive uphill).
+struct Pitch {
+  double sin{0.0}, cos{1.0};
+  Pitch() = default;
+  explicit Pitch(double grade)
+      : sin(grade / std::sqrt(1.0 + grade * grade)), cos(1.0 / std::sqrt(1.0 + grade * grade)) {}
+};
+
 class Hills {
  public:
   Hills(const Terrain& terrain, double lap_length_m) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "hills.hpp"
 #include "odocal/model/angle.hpp"
 
 namespace odocal::sim {
@@ -28,13 +29,7 @@ struct Controls {
   double steer_rad;
   double force_n;  // total longitudinal tyre force command (signed, body x)
   double ax_estimate_mps2;
-  double grade;  // dz/ds of the road under the car: climbing takes m g sin(pitch) of the force
-};
-
-struct Pitch {
-  double sin, cos;
-  explicit Pitch(double grade)
-      : sin(grade / std::sqrt(1.0 + grade * grade)), cos(1.0 / std::sqrt(1.0 + grade * grade)) {}
+  Pitch pitch;  // of the road under the car: climbing takes m g sin(pitch) of the force
 };
 
 class Vehicle {
@@ -78,7 +73,7 @@ class Vehicle {
     const double front_brake_n = front_share * u.force_n;
     // On a slope the ground's force also holds the weight's component along it: that moves load
     // to the rear as acceleration does.
-    const Pitch pitch(u.grade);
+    const Pitch& pitch = u.pitch;
     const double slope_n = c_.mass_kg * kGravity * pitch.sin;
     const double transfer_x =
         c_.load_transfer
@@ -248,7 +243,7 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
   auto motion = std::make_unique<RecordedMotion>(h);
   double progress_m = 0.0;
   const std::vector<double> cusps_m = path.direction_changes_m();
-  Controls controls{0.0, 0.0, 0.0, grade ? grade(0.0) : 0.0};
+  Controls controls{0.0, 0.0, 0.0, Pitch(grade ? grade(0.0) : 0.0)};
 
   for (std::size_t k = 0; k <= steps; ++k) {
     const double t = static_cast<double>(k) * h;
@@ -298,9 +293,9 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
                      -config.friction * kGravity, config.friction * kGravity);
       // The driver holds the speed on a hill: the slope's share of the weight is driven (or
       // braked) on top.
-      controls.grade = grade ? grade(progress_m) : 0.0;
+      controls.pitch = Pitch(grade ? grade(progress_m) : 0.0);
       controls.force_n = config.mass_kg * acc + vehicle.resistance_n(s.vx) +
-                         config.mass_kg * kGravity * Pitch(controls.grade).sin;
+                         config.mass_kg * kGravity * controls.pitch.sin;
       controls.ax_estimate_mps2 = acc;
     }
 

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/unjudged_options.hpp"
 #include "odocal/error.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
@@ -36,14 +37,6 @@ sim::Scenario worn_circuit(int laps) {
   return scenario;
 }
 
-// The methods alone: these tests check estimates, not the model-adequacy verdict (its batch fit
-// would double their time under the sanitizers; model_adequacy_batch_test.cpp checks it).
-CalibrationOptions unjudged() {
-  CalibrationOptions common;
-  common.judge_model_adequacy = false;
-  return common;
-}
-
 template <typename Summary>
 constexpr bool kHasIterations = requires(const Summary& s) {
   s.iterations;
@@ -56,7 +49,7 @@ double worst_error_mm(const CalibrationSummary& result, const OdometryParams& tr
 
 TEST(Calibration, IterativeLoopConvergesOnIdealData) {
   const Simulated run = simulated_log(worn_circuit(3));
-  CalibrationOptions common = unjudged();
+  CalibrationOptions common = testing::unjudged_options();
   common.reference.mode = ReferenceMode::kSmoother;
   const IterativeSummary result = calibrate_iterative(run.log, {}, common);
   EXPECT_TRUE(result.usable()) << result.message;
@@ -77,12 +70,14 @@ TEST(Calibration, IterativeLoopConvergesOnIdealData) {
 
 TEST(Calibration, PaperFilterReferenceStaysBelowAMillimetre) {
   const Simulated run = simulated_log(worn_circuit(3));
-  EXPECT_LT(worst_error_mm(calibrate_iterative(run.log, {}, unjudged()), run.truth), 1.0);
+  EXPECT_LT(
+      worst_error_mm(calibrate_iterative(run.log, {}, testing::unjudged_options()), run.truth),
+      1.0);
 }
 
 TEST(Calibration, FixedPAndAugmentedBaselinesRecoverTheWear) {
   const Simulated run = simulated_log(worn_circuit(3));
-  CalibrationOptions common = unjudged();
+  CalibrationOptions common = testing::unjudged_options();
   common.reference.mode = ReferenceMode::kSmoother;
   const IterativeSummary fixed_p = calibrate_fixed_p(run.log, {}, common);
   EXPECT_EQ(fixed_p.method, CalibrationMethod::kFixedP);
@@ -98,9 +93,9 @@ TEST(Calibration, FixedPAndAugmentedBaselinesRecoverTheWear) {
 
 TEST(Calibration, NeverReadsTruth) {
   Simulated run = simulated_log(worn_circuit(1));
-  const IterativeSummary without = calibrate_iterative(run.log, {}, unjudged());
+  const IterativeSummary without = calibrate_iterative(run.log, {}, testing::unjudged_options());
   run.log.truth = PoseStream{{0.0, 1.0}, {Pose2(1e6, 1e6, 3.0), Pose2(-1e6, 0.0, 0.0)}};
-  const IterativeSummary with = calibrate_iterative(run.log, {}, unjudged());
+  const IterativeSummary with = calibrate_iterative(run.log, {}, testing::unjudged_options());
   EXPECT_EQ(with.estimate.circumference_rl_m, without.estimate.circumference_rl_m);
   EXPECT_EQ(with.after.mean_position_m, without.after.mean_position_m);
 }
@@ -178,7 +173,7 @@ TEST(CalibrationOutcome, TheFrontDoorRunsTheConfiguredMethodAsItsOwnFunctionDoes
   CalibrationConfig config;
   config.method = CalibrationMethod::kFixedP;
   config.iterative.patience = 3;
-  config.common = unjudged();
+  config.common = testing::unjudged_options();
   config.common.reference.mode = ReferenceMode::kSmoother;
   const AnyCalibrationSummary any = calibrate(run.log, config);
   const IterativeSummary direct = calibrate_fixed_p(run.log, config.iterative, config.common);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "../support/hilly_urban.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/io/calibration_io.hpp"
@@ -45,19 +46,14 @@ TEST(ModelAdequacyBatch, IdealVehicleIsExplainedAWrongTrackIsNot) {
 // the climbing force and the verdict names the grade; the free-rolling rear wheels of a
 // front-driven car do not climb, and the grade is not what their residual follows.
 TEST(ModelAdequacyBatch, RearWheelsThatClimbAreNamedByTheGrade) {
-  const auto hilly_urban = [](sim::Drivetrain drivetrain) {
-    sim::Scenario scenario = load_scenario("urban");
-    scenario.route.laps = 3;
-    scenario.route.terrain.max_grade = 0.06;
-    scenario.seeds.noise = 3;
-    scenario.dynamics.drivetrain = drivetrain;
-    return simulated_log(sim::simulate(scenario));
+  const auto drive = [](sim::Drivetrain drivetrain) {
+    return simulated_log(sim::simulate(testing::hilly_urban(drivetrain)));
   };
-  const ModelAdequacy rear = calibrate_batch(hilly_urban(sim::Drivetrain::kRear)).model_adequacy;
+  const ModelAdequacy rear = calibrate_batch(drive(sim::Drivetrain::kRear)).model_adequacy;
   EXPECT_FALSE(rear.explains);
   EXPECT_NE(rear.verdict.find("along-track residual follows grade"), std::string::npos)
       << rear.verdict;
-  const ModelAdequacy front = calibrate_batch(hilly_urban(sim::Drivetrain::kFront)).model_adequacy;
+  const ModelAdequacy front = calibrate_batch(drive(sim::Drivetrain::kFront)).model_adequacy;
   ASSERT_EQ(front.dependences.size(), 5u);
   EXPECT_EQ(front.dependences.back().quantity, "grade");
   EXPECT_LT(std::abs(front.dependences.back().correlation), 0.3);

@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "../support/hilly_urban.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/driving_state.hpp"
 #include "odocal/io/scenario_io.hpp"
@@ -117,11 +118,7 @@ TEST(PhysicalTyreBatch, CalibratesAHillyDriveWithTheForceThatClimbingTakes) {
   // slope's share of the weight, which the accelerometer feels but the hills' projection takes
   // out of its horizontal acceleration. The tyre force adds it back (without: +11.8 mm, 4 sigma
   // off, and the verdict names the grade).
-  sim::Scenario scenario = load_scenario("urban");
-  scenario.route.laps = 3;
-  scenario.route.terrain.max_grade = 0.06;
-  scenario.seeds.noise = 3;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const sim::SimulatedDrive drive = sim::simulate(testing::hilly_urban());
   const BatchSummary physical = calibrate(simulated_log(drive), TyreModelChoice::kPhysical);
   ASSERT_TRUE(physical.usable()) << physical.full_report();
   const double truth_m = drive.true_params.circumference_rl_m;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../support/unjudged_options.hpp"
 #include "estimation/calibration_run.hpp"
 #include "estimation/input_mistake_hint.hpp"
 #include "odocal/estimation/calibration.hpp"
@@ -159,9 +160,7 @@ TEST(Plausibility, AnUnwornCarIsNoInputMistake) {
   ASSERT_EQ(scenario.vehicle.wear_rl_mm, 0.0);
   ASSERT_EQ(scenario.vehicle.wear_rr_mm, 0.0);
   const Log log = simulated_log(drive);
-  CalibrationOptions unjudged;  // plausibility, not the model-adequacy verdict
-  unjudged.judge_model_adequacy = false;
-  const IterativeSummary iterative = calibrate_iterative(log, {}, unjudged);
+  const IterativeSummary iterative = calibrate_iterative(log, {}, testing::unjudged_options());
   EXPECT_TRUE(iterative.usable()) << iterative.message;
   const BatchSummary batch = calibrate_batch(log);
   EXPECT_TRUE(batch.usable()) << batch.message;

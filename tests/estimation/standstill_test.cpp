@@ -8,6 +8,7 @@
 
 #include <numbers>
 
+#include "../support/unjudged_options.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/estimation/log_window.hpp"
@@ -48,8 +49,7 @@ TEST(Standstill, FoundAtTheStartAndTheEnd) {
 TEST(Standstill, WheelRateBiasesAreRemovedAndChangeNothingElse) {
   const Log clean = rate_sensor_lap(0.0, 0.0, 30.0);
   const Log biased = rate_sensor_lap(-0.33, 1.22, 30.0);
-  CalibrationOptions unjudged;  // the estimates, not the model-adequacy verdict
-  unjudged.judge_model_adequacy = false;
+  const CalibrationOptions unjudged = testing::unjudged_options();
   const IterativeSummary reference = calibrate_iterative(clean, {}, unjudged);
   const IterativeSummary result = calibrate_iterative(biased, {}, unjudged);
   ASSERT_TRUE(result.preparation.wheel_rate_bias.has_value());
