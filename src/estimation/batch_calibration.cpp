@@ -24,7 +24,6 @@
 #include "odocal/error.hpp"
 #include "odocal/estimation/driving_state.hpp"
 #include "odocal/estimation/odometry_preintegration.hpp"
-#include "odocal/estimation/road_grade.hpp"
 
 namespace odocal {
 namespace {
@@ -81,6 +80,13 @@ std::vector<std::size_t> keyframe_samples(const WheelStream& wheels, std::size_t
   return samples;
 }
 
+// The mean of a per-sample column over the increments of samples (from, to].
+double interval_mean(const std::vector<float>& column, std::size_t from, std::size_t to) {
+  double sum = 0.0;
+  for (std::size_t k = from + 1; k <= to; ++k) sum += column[k];
+  return to > from ? sum / static_cast<double>(to - from) : column[from];
+}
+
 double median_step_s(const std::vector<double>& t_s) {
   std::vector<double> steps;
   for (std::size_t i = 1; i < t_s.size(); ++i) steps.push_back(t_s[i] - t_s[i - 1]);
@@ -99,8 +105,7 @@ class BatchProblem {
         sensors_(common.reference),
         batch_(options),
         body_(log.vehicle.body_geometry()),
-        nominal_(nominal),
-        grade_window_m_(common.use_gnss_altitude ? common.grade_window_m : 0.0) {
+        nominal_(nominal) {
     keyframes_ =
         keyframe_samples(log.wheels, reference.first_wheel_index, batch_.keyframe_interval_s);
     if (keyframes_.size() < 3) {
@@ -280,12 +285,6 @@ class BatchProblem {
   std::vector<OdometryResidualSample> odometry_errors() const {
     std::vector<OdometryResidualSample> samples;
     samples.reserve(odometry_blocks_.size());
-    // The grade, so that the residuals can be held against it: fitted again on the prepared log,
-    // as the preparation keeps no profile (a long log's is made block by block). Its distances
-    // are the horizontal ones, shorter than the preparation's by cos(pitch): a few per mille.
-    const std::optional<GradeProfile> grade =
-        grade_window_m_ > 0.0 ? grade_from_gnss_altitude(log_, nominal_, grade_window_m_)
-                              : std::nullopt;
     for (const OdometryBlock& b : odometry_blocks_) {
       Eigen::Vector3d whitened;
       double cost = 0.0;
@@ -299,11 +298,9 @@ class BatchProblem {
           Eigen::Vector3d(poses_[i + 1][0], poses_[i + 1][1], poses_[i + 1][2]),
           sqrt_covariance * whitened,
           whitened};
-      if (grade) {
-        const std::vector<double>& driven = grade->wheel_distance_m;
-        sample.grade =
-            grade->at_distance(0.5 * (driven[keyframes_[i]] + driven[keyframes_[i + 1]]));
-      }
+      // The grade the preparation projected with (none: not known, and not tested).
+      if (!log_.wheels.grade.empty())
+        sample.grade = interval_mean(log_.wheels.grade, keyframes_[i], keyframes_[i + 1]);
       if (i < gyro_turns_.size() && gyro_turns_[i]) {
         const batch::GyroResidual& gyro = *gyro_turns_[i];
         const double wheels_turn = sample.pose1(2) - sample.pose0(2) - sample.error(2);
@@ -888,7 +885,6 @@ class BatchProblem {
   ParamsBlock params_{};
   Block2 lever_{0.0, 0.0};
   OdometryParams nominal_;
-  double grade_window_m_;  // 0: the grade is not used
   double latency_ = 0.0;
   double heading_bias_ = 0.0;
   double gyro_bias_ = 0.0;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "odocal/estimation/road_grade.hpp"
+
 namespace odocal {
 namespace {
 
@@ -41,10 +43,8 @@ float stored(double value) {
 // additions, as a stored cumulative interpolated linearly and clamped to the span.
 class RunningIntegral {
  public:
-  // `addend` (empty: none): a second channel integrated as part of the first.
-  RunningIntegral(const std::vector<double>& t_s, const std::vector<double>& channel,
-                  const std::vector<double>& addend)
-      : t_s_(t_s), channel_(channel), addend_(addend) {}
+  RunningIntegral(const std::vector<double>& t_s, const std::vector<double>& channel)
+      : t_s_(t_s), channel_(channel) {}
   double at(double t) {
     while (k_ + 1 < t_s_.size() && t_s_[k_ + 1] <= t) {
       sum_ += segment(k_);
@@ -56,15 +56,11 @@ class RunningIntegral {
   }
 
  private:
-  double value(std::size_t k) const {
-    return addend_.empty() ? channel_[k] : channel_[k] + addend_[k];
-  }
   double segment(std::size_t k) const {
-    return 0.5 * (value(k + 1) + value(k)) * (t_s_[k + 1] - t_s_[k]);
+    return 0.5 * (channel_[k + 1] + channel_[k]) * (t_s_[k + 1] - t_s_[k]);
   }
   const std::vector<double>& t_s_;
   const std::vector<double>& channel_;
-  const std::vector<double>& addend_;
   std::size_t k_ = 0;
   double sum_ = 0.0;
 };
@@ -72,9 +68,8 @@ class RunningIntegral {
 // The mean of one IMU channel over [t - h, t + h] clipped to its span, at non-decreasing t.
 class RunningMean {
  public:
-  RunningMean(const ImuStream& imu, const std::vector<double>& channel,
-              const std::vector<double>& addend = kNone)
-      : t_s_(imu.t_s), from_(imu.t_s, channel, addend), to_(imu.t_s, channel, addend) {}
+  RunningMean(const ImuStream& imu, const std::vector<double>& channel)
+      : t_s_(imu.t_s), from_(imu.t_s, channel), to_(imu.t_s, channel) {}
   double at(double t, double h) {
     const double from = std::max(t - h, t_s_.front()), to = std::min(t + h, t_s_.back());
     const double begin = from_.at(from), end = to_.at(to);
@@ -82,7 +77,6 @@ class RunningMean {
   }
 
  private:
-  static inline const std::vector<double> kNone;
   const std::vector<double>& t_s_;
   RunningIntegral from_, to_;
 };
@@ -108,12 +102,10 @@ void fill_states(const WheelStream& wheels, const ImuStream* imu, const Odometry
     wheel_turn.value[k] = wheel_turn.value[k - 1] + step.yaw_rad;
   }
   const bool measured = imu != nullptr && imu->size() >= 2;
-  static const ImuStream kNoImu{{0.0, 1.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}, {}};
+  static const ImuStream kNoImu{{0.0, 1.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
   const ImuStream& source = measured ? *imu : kNoImu;
-  // The specific force the tyres push with: on a hill, with the slope's gravity the projection
-  // took out (a wheel climbing slips as one accelerating does).
-  RunningMean gyro(source, source.wz_radps),
-      forward(source, source.ax_mps2, source.slope_gravity_mps2), left(source, source.ay_mps2);
+  RunningMean gyro(source, source.wz_radps), forward(source, source.ax_mps2),
+      left(source, source.ay_mps2);
   const double h = half_window_s;
   for (std::size_t k = 0; k < wheels.size(); ++k) {
     const double t = wheels.t_s[k];
@@ -125,7 +117,10 @@ void fill_states(const WheelStream& wheels, const ImuStream* imu, const Odometry
     state.speed_mps = stored(speed);
     state.yaw_rate_radps = stored(yaw_rate);
     state.longitudinal_mps2 = stored(longitudinal);
-    state.specific_force_x_mps2 = stored(imu_here ? forward.at(t, h) : longitudinal);
+    // The specific force the tyres push with: on a hill, with the slope's gravity that the
+    // projection took out of the accelerometer (a wheel climbing slips as one accelerating does).
+    const double slope = wheels.grade.empty() ? 0.0 : slope_gravity_mps2(wheels.grade[k]);
+    state.specific_force_x_mps2 = stored((imu_here ? forward.at(t, h) : longitudinal) + slope);
     state.specific_force_y_mps2 = stored(imu_here ? left.at(t, h) : speed * yaw_rate);
   }
 }

@@ -128,10 +128,14 @@ std::optional<GradeProfile> grade_from_gnss_altitude(const Log& log, const Odome
   return profile;
 }
 
+double slope_gravity_mps2(double grade) { return kGravityMps2 * grade * cos_pitch(grade); }
+
 void project_to_horizontal(Log& log, const GradeProfile& profile) {
   WheelStream& wheels = log.wheels;
+  wheels.grade.assign(wheels.size(), static_cast<float>(profile.at_distance(0.0)));
   for (std::size_t k = 1; k < wheels.size(); ++k) {
     const double mid_m = 0.5 * (profile.wheel_distance_m[k] + profile.wheel_distance_m[k - 1]);
+    wheels.grade[k] = static_cast<float>(profile.at_distance(mid_m));
     const double c = profile.cos_pitch_at(mid_m);
     const double mean = 0.5 * (wheels.rev_rl[k] + wheels.rev_rr[k]);
     const double half_difference = 0.5 * (wheels.rev_rr[k] - wheels.rev_rl[k]);
@@ -139,15 +143,10 @@ void project_to_horizontal(Log& log, const GradeProfile& profile) {
     wheels.rev_rr[k] = mean * c + half_difference / c;
   }
   if (!log.imu) return;
-  std::vector<double>& slope_gravity = log.imu->slope_gravity_mps2;
-  slope_gravity.resize(log.imu->size(), 0.0);
   for (std::size_t k = 0; k < log.imu->size(); ++k) {
     const auto d = interpolate_linear(wheels.t_s, profile.wheel_distance_m, log.imu->t_s[k]);
     if (!d) continue;
-    const double grade = profile.at_distance(*d);
-    const double along_slope = kGravityMps2 * grade * cos_pitch(grade);
-    log.imu->ax_mps2[k] -= along_slope;
-    slope_gravity[k] += along_slope;
+    log.imu->ax_mps2[k] -= slope_gravity_mps2(profile.at_distance(*d));
     log.imu->wz_radps[k] /= profile.cos_pitch_at(*d);  // turning about the vertical, not the body
   }
 }

@@ -78,7 +78,7 @@ ImuStream imu_stream_from_table(const CsvTable& table) {
   require_within(table, "ax", kAccelerationMps2, "an acceleration in m/s^2");
   require_within(table, "ay", kAccelerationMps2, "an acceleration in m/s^2");
   require_within(table, "wz", kRateRadps, "a yaw rate in rad/s");
-  return {table.column("t"), table.column("ax"), table.column("ay"), table.column("wz"), {}};
+  return {table.column("t"), table.column("ax"), table.column("ay"), table.column("wz")};
 }
 
 HeadingStream heading_stream_from_table(const CsvTable& table) {

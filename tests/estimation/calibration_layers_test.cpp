@@ -97,7 +97,7 @@ TEST(CircumferenceLs, RecoversExactParametersFromNoiseFreeRows) {
 }
 
 TEST(CircumferenceLs, ReportsRankDeficiencyInsteadOfANumber) {
-  WheelStream wheels{{0, 1, 2}, {0, 0, 0}, {0, 0, 0}, {}, {}, WheelUnit::kTicks, {}, {}};
+  WheelStream wheels{{0, 1, 2}, {0, 0, 0}, {0, 0, 0}, {}, {}, WheelUnit::kTicks, {}, {}, {}};
   ReferenceTrajectory reference;
   reference.poses = {Pose2::Zero(), Pose2::Zero(), Pose2::Zero()};
   const CircumferenceFit fit =

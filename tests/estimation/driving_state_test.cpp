@@ -104,6 +104,22 @@ TEST(DrivingState, SpecificForceIsTheAccelerometersWhereItMeasures) {
   EXPECT_NEAR(states[200].specific_force_y_mps2, 0.0, 1e-5);  // the wheels turn nowhere
 }
 
+TEST(DrivingState, TheSlopeThatTheProjectionKnowsAddsToTheForceWithOrWithoutAnAccelerometer) {
+  // A 5 % climb at constant speed, the grade beside the wheels as the hills' projection leaves it
+  // (the accelerometer, where there is one, then reads the horizontal acceleration: none): the
+  // tyres push against g sin(pitch) all the same.
+  Log log = log_of(
+      10.0, [](double) { return 10.0; }, [](double) { return 0.0; });
+  log.wheels.grade.assign(log.wheels.size(), 0.05F);
+  const double slope = 9.81 * 0.05 / std::sqrt(1.0 + 0.05 * 0.05);
+  const auto without_imu = driving_states(log, log.vehicle.nominal_params());
+  EXPECT_NEAR(without_imu[500].specific_force_x_mps2, slope, 1e-5);
+  EXPECT_NEAR(without_imu[500].longitudinal_mps2, 0.0, 1e-5);
+  add_gyro(log, 0.0, 0.3);
+  const auto with_imu = driving_states(log, log.vehicle.nominal_params());
+  EXPECT_NEAR(with_imu[500].specific_force_x_mps2, 0.3 + slope, 1e-5);
+}
+
 TEST(DrivingState, PlainTyreModelLeavesTheWheelsAlone) {
   const Log log = log_of(
       5.0, [](double t) { return 3.0 + t; }, [](double) { return 0.2; });

@@ -49,6 +49,25 @@ TEST(RoadGrade, FittedFromGnssAltitude) {
   EXPECT_FALSE(grade_from_gnss_altitude(flat, flat.vehicle.nominal_params(), 100.0).has_value());
 }
 
+TEST(RoadGrade, TheProjectionKeepsTheGradeBesideTheWheels) {
+  // The grade at each wheel sample against the road's own (a sine of amplitude 0.06 over the
+  // distance, so its mean square is 0.0018): what the verdict and the tyre force read later.
+  Log log = simulated_log(sim::simulate(circuit(0.06, 1)));
+  const auto profile = grade_from_gnss_altitude(log, log.vehicle.nominal_params(), 100.0);
+  ASSERT_TRUE(profile.has_value());
+  EXPECT_TRUE(log.wheels.grade.empty());
+  project_to_horizontal(log, *profile);
+  ASSERT_EQ(log.wheels.grade.size(), log.wheels.size());
+  double sum_squares = 0.0, distance_m = 0.0;
+  for (std::size_t k = 1; k < log.wheels.size(); ++k) {
+    const double step_m =
+        std::abs(body_increment(log.wheels.increment(k), log.vehicle.nominal_params()).distance_m);
+    sum_squares += step_m * log.wheels.grade[k] * log.wheels.grade[k];
+    distance_m += step_m;
+  }
+  EXPECT_NEAR(sum_squares / distance_m, 0.5 * 0.06 * 0.06, 2e-4);
+}
+
 TEST(RoadGrade, AHillyDriveCalibratesLikeAFlatOne) {
   const sim::SimulatedDrive hill = sim::simulate(circuit(0.06, 2));
   const Log log = simulated_log(hill);

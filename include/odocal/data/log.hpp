@@ -76,6 +76,10 @@ struct WheelStream {
   // positive), from a tyre model (driving_state.hpp's with_tyre_model); empty: none, as in
   // eqs. 1-2. Never read from a log file.
   std::vector<float> side_slip_rad;
+  // The road's grade (dz/ds) under sample k's increment, from the GNSS altitude (road_grade.hpp's
+  // projection, which made the increments horizontal); empty: not known. Rows of a block of a
+  // long log that had no altitude read 0. Never read from a log file.
+  std::vector<float> grade;
 
   std::size_t size() const { return t_s.size(); }
   WheelIncrement increment(std::size_t k) const { return {rev_rl[k], rev_rr[k]}; }
@@ -108,10 +112,6 @@ struct ImuStream {
   std::vector<double> ax_mps2;
   std::vector<double> ay_mps2;
   std::vector<double> wz_radps;
-  // Gravity along the slope that the hills' projection took out of ax_mps2 (road_grade.hpp), so
-  // that ax is the horizontal acceleration; empty where nothing was taken. The tyres push against
-  // it all the same: the tyre model's force adds it back (driving_state.hpp).
-  std::vector<double> slope_gravity_mps2;
 
   std::size_t size() const { return t_s.size(); }
 };

@@ -21,6 +21,7 @@ void for_each_column(Visit&& visit, Streams&... s) {
     visit(s.rev_fr...);
     visit(s.chain_break...);
     visit(s.side_slip_rad...);
+    visit(s.grade...);
   } else if constexpr (std::is_same_v<Stream, GnssStream>) {
     visit(s.t_s...);
     visit(s.x_m...);
@@ -33,7 +34,6 @@ void for_each_column(Visit&& visit, Streams&... s) {
     visit(s.ax_mps2...);
     visit(s.ay_mps2...);
     visit(s.wz_radps...);
-    visit(s.slope_gravity_mps2...);
   } else if constexpr (std::is_same_v<Stream, HeadingStream>) {
     visit(s.t_s...);
     visit(s.heading_rad...);

@@ -40,8 +40,13 @@ struct GradeProfile {
 std::optional<GradeProfile> grade_from_gnss_altitude(const Log& log, const OdometryParams& nominal,
                                                      double window_m);
 
-// Projects the wheel increments and the gyro to the horizontal and removes gravity along the
-// slope from the forward accelerometer.
+// Projects the wheel increments and the gyro to the horizontal, keeps the grade beside the wheels
+// (WheelStream::grade) and removes gravity along the slope from the forward accelerometer, which
+// then reads the horizontal acceleration that the reference filter integrates.
 void project_to_horizontal(Log& log, const GradeProfile& profile);
+
+// Gravity along a slope of this grade (m/s^2): what the accelerometer feels on it, and the
+// force per mass that climbing takes from the tyres.
+double slope_gravity_mps2(double grade);
 
 }  // namespace odocal
