@@ -49,6 +49,15 @@ std::string report_ending(const CalibrationSummary& s) {
   std::string text;
   if (!s.model_adequacy.verdict.empty())
     text += fmt::format("{:<13}{}\n", "model", s.model_adequacy.verdict);
+  // What a constant per wheel is, so that it is not read as the tyre at rest: a residual test
+  // cannot see a slip that is the same all drive long (docs/tyre-model.md).
+  if (s.usable() && s.tyre_model.plain()) {
+    text += fmt::format(
+        "{:<13}the circumferences this drive rolled on, its average slip and load in them: at "
+        "rest a driven axle's are larger by its slip at cruise (about 1.6 per mille at 10 m/s); "
+        "the batch's tyre_model: physical separates the two\n",
+        "rolling");
+  }
   if (const std::string prepared = s.preparation.describe(); !prepared.empty())
     text += fmt::format("{:<13}{}\n", "log", prepared);
   text += "dead reckoning of the whole log against the reference:\n";

@@ -73,6 +73,10 @@ TEST(ModelAdequacyBatch, EveryMethodIsJudgedUnlessAskedNotTo) {
     EXPECT_NE(full_report(explained).find("model        the two-wheel model explains this log"),
               std::string::npos)
         << full_report(explained);
+    // Explained or not, a constant per wheel is what this drive rolled on, not the tyre at rest.
+    EXPECT_NE(full_report(explained).find("rolling      the circumferences this drive rolled on"),
+              std::string::npos)
+        << full_report(explained);
 
     const AnyCalibrationSummary wrong_track = calibrate(wide, config);
     ASSERT_TRUE(core(wrong_track).usable()) << core(wrong_track).message;

@@ -55,6 +55,10 @@ TEST(PhysicalTyreBatch, RecoversKnownLoadAndSlipWhereThePlainModelIsBiased) {
 
   const BatchSummary plain = calibrate(log, TyreModelChoice::kNone);
   EXPECT_GT(std::abs(plain.estimate.circumference_rl_m - truth_m), 3.0 * plain.sigma_rl_m());
+  // The plain fit says that its constants are what this drive rolled on; the physical one has
+  // its circumferences at rest and states the rolling one instead.
+  const std::string plain_note = "the circumferences this drive rolled on";
+  EXPECT_NE(plain.full_report().find(plain_note), std::string::npos) << plain.full_report();
 
   const BatchSummary physical = calibrate(log, TyreModelChoice::kPhysical);
   ASSERT_TRUE(physical.usable()) << physical.full_report();
@@ -67,6 +71,7 @@ TEST(PhysicalTyreBatch, RecoversKnownLoadAndSlipWhereThePlainModelIsBiased) {
     EXPECT_TRUE(p.estimated) << name;
     EXPECT_LT(std::abs(p.value - value), 3.0 * p.sigma) << name << " " << p.value;
   }
+  EXPECT_EQ(physical.full_report().find(plain_note), std::string::npos);
   // Rolling at 5 m/s the drive slip of the rolling resistance and drag is in the circumference.
   ASSERT_TRUE(physical.reference_circumference.has_value());
   const ReferenceCircumference& rolling = *physical.reference_circumference;
