@@ -115,6 +115,7 @@ void parse_sensors(YamlMap sensors, sim::Scenario& s) {
     gnss->read("outlier_max_m", s.gnss.outlier_max_m, s.gnss.outlier_min_m, 1e6);
     gnss->read("latency_s", s.gnss.latency_s, 0.0, 10.0);
     gnss->read("altitude_sigma_m", s.gnss.altitude_sigma_m, -1.0, 1e3);
+    gnss->read("speed_sigma_mps", s.gnss.speed_sigma_mps, -1.0, 100.0);
     const auto outages = gnss->sequence("outages");
     if (!outages.empty()) s.gnss.outages.clear();
     for (std::size_t i = 0; i < outages.size(); ++i) {
@@ -398,6 +399,7 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("outlier_max_m", s.gnss.outlier_max_m);
   key("latency_s", s.gnss.latency_s);
   key("altitude_sigma_m", s.gnss.altitude_sigma_m);
+  key("speed_sigma_mps", s.gnss.speed_sigma_mps);
   out << YAML::Key << "outages" << YAML::Value << YAML::BeginSeq;
   for (const sim::Outage& outage : s.gnss.outages) {
     out << YAML::Flow << YAML::BeginMap;

@@ -36,17 +36,19 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
     // sigma_m must be positive in the log format: error-free fixes leave the column out.
     const bool has_sigma = drive.gnss_sigma_m > 0.0;
     const bool has_alt = !drive.gnss_alt.empty();
-    out.print("{}{}{}\n", drive.gnss_latlon ? "t,lat,lon" : "t,x,y", has_alt ? ",alt" : "",
-              has_sigma ? ",sigma_m" : "");
+    const bool has_speed = !drive.gnss_speed_mps.empty();
+    out.print("{}{}{}{}\n", drive.gnss_latlon ? "t,lat,lon" : "t,x,y", has_alt ? ",alt" : "",
+              has_sigma ? ",sigma_m" : "", has_speed ? ",speed_mps" : "");
     const std::string sigma = has_sigma ? fmt::format(",{:.3f}", drive.gnss_sigma_m) : "";
     for (std::size_t k = 0; k < drive.gnss_t_s.size(); ++k) {
       const std::string alt = has_alt ? fmt::format(",{:.3f}", drive.gnss_alt[k]) : "";
+      const std::string speed = has_speed ? fmt::format(",{:.4f}", drive.gnss_speed_mps[k]) : "";
       if (drive.gnss_latlon) {
-        out.print("{:.4f},{:.9f},{:.9f}{}{}\n", drive.gnss_t_s[k], drive.gnss_a[k], drive.gnss_b[k],
-                  alt, sigma);
+        out.print("{:.4f},{:.9f},{:.9f}{}{}{}\n", drive.gnss_t_s[k], drive.gnss_a[k],
+                  drive.gnss_b[k], alt, sigma, speed);
       } else {
-        out.print("{:.4f},{:.4f},{:.4f}{}{}\n", drive.gnss_t_s[k], drive.gnss_a[k], drive.gnss_b[k],
-                  alt, sigma);
+        out.print("{:.4f},{:.4f},{:.4f}{}{}{}\n", drive.gnss_t_s[k], drive.gnss_a[k],
+                  drive.gnss_b[k], alt, sigma, speed);
       }
     }
   });

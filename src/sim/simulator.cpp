@@ -1,6 +1,7 @@
 #include "odocal/sim/simulator.hpp"
 
 #include <GeographicLib/LocalCartesian.hpp>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -121,12 +122,24 @@ void simulate_wheels(const Scenario& scenario, const MotionTruth& truth, std::mt
   out.distance_m = path_length_m(out.truth.pose);
 }
 
+// The reference point's horizontal speed over ground at t (central difference of the truth).
+double ground_speed_mps(const MotionTruth& truth, double t_s) {
+  constexpr double kHalfStep = 1e-3;
+  const double from = std::max(t_s - kHalfStep, 0.0);
+  const double to = std::min(t_s + kHalfStep, truth.duration_s());
+  if (to <= from) return 0.0;
+  const Pose2 a = truth.at(from).pose, b = truth.at(to).pose;
+  return (b.head<2>() - a.head<2>()).norm() / (to - from);
+}
+
 void simulate_gnss(const GnssSimConfig& config, bool altitude, const MotionTruth& truth,
-                   std::mt19937_64& rng, SimulatedDrive& out) {
+                   std::mt19937_64& rng, std::mt19937_64& speed_rng, SimulatedDrive& out) {
   const double altitude_sigma_m =
       config.altitude_sigma_m >= 0.0 ? config.altitude_sigma_m : 1.5 * config.sigma_m;
   std::normal_distribution<double> unit(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  // A distribution of its own: one draws its normals in pairs and keeps the second.
+  std::normal_distribution<double> speed_unit(0.0, 1.0);
   const GeographicLib::LocalCartesian enu(config.origin.latitude_deg, config.origin.longitude_deg,
                                           config.origin.altitude_m);
   const double period_s = 1.0 / config.rate_hz;
@@ -147,6 +160,8 @@ void simulate_gnss(const GnssSimConfig& config, bool altitude, const MotionTruth
     const double outlier_angle = kTwoPi * uniform(rng);
     // Drawn only on hills: flat logs keep their noise sequence.
     const double altitude_noise = altitude ? altitude_sigma_m * unit(rng) : 0.0;
+    const double speed_noise =
+        config.speed_sigma_mps > 0.0 ? config.speed_sigma_mps * speed_unit(speed_rng) : 0.0;
     if (outlier)
       error += outlier_size * Eigen::Vector2d(std::cos(outlier_angle), std::sin(outlier_angle));
 
@@ -161,6 +176,10 @@ void simulate_gnss(const GnssSimConfig& config, bool altitude, const MotionTruth
     const double y = pose.y() + error.y();
     const double up = altitude ? sample.altitude_m + altitude_noise : 0.0;
     out.gnss_t_s.push_back(t);
+    if (config.speed_sigma_mps >= 0.0) {
+      out.gnss_speed_mps.push_back(
+          std::max(ground_speed_mps(truth, t - config.latency_s) + speed_noise, 0.0));
+    }
     if (config.output_latlon) {
       double lat = 0, lon = 0, alt = 0;
       enu.Reverse(x, y, up, lat, lon, alt);
@@ -253,7 +272,8 @@ SimulatedDrive simulate(const Scenario& scenario) {
   std::seed_seq seeds{scenario.seeds.noise, std::uint64_t{0x0d0ca1}};
   std::array<std::uint64_t, 4> sensor_seeds{};
   seeds.generate(sensor_seeds.begin(), sensor_seeds.end());
-  std::mt19937_64 wheel_rng(sensor_seeds[0]), gnss_rng(sensor_seeds[1]), imu_rng(sensor_seeds[2]);
+  std::mt19937_64 wheel_rng(sensor_seeds[0]), gnss_rng(sensor_seeds[1]), imu_rng(sensor_seeds[2]),
+      speed_rng(sensor_seeds[3]);
   out.steady_rolling_circumference_m = {out.true_params.circumference_rl_m,
                                         out.true_params.circumference_rr_m};
   std::unique_ptr<MotionTruth> truth;
@@ -284,7 +304,7 @@ SimulatedDrive simulate(const Scenario& scenario) {
   using Altitude = GnssSimConfig::Altitude;
   const bool altitude = scenario.gnss.altitude == Altitude::kAlways ||
                         (scenario.gnss.altitude == Altitude::kAuto && hills);
-  simulate_gnss(scenario.gnss, altitude, *truth, gnss_rng, out);
+  simulate_gnss(scenario.gnss, altitude, *truth, gnss_rng, speed_rng, out);
   if (out.gnss_t_s.size() < 2) {
     throw InputError({"scenario", 0, "sensors.gnss.outages"},
                      "the outages leave fewer than 2 GNSS fixes in the whole drive");

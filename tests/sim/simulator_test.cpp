@@ -191,6 +191,33 @@ TEST(Simulator, SensorNoiseHasItsConfiguredSigma) {
   EXPECT_NEAR(rms(yaw_rate_error), 0.02, 0.001);
 }
 
+TEST(Simulator, DopplerSpeedHasItsConfiguredSigmaAndLeavesThePositionsAlone) {
+  const TempLogDir dir;
+  Scenario scenario = load_scenario("circuit");
+  scenario.route.laps = 1;
+  const SimulatedDrive without = simulate(scenario);
+  EXPECT_TRUE(without.gnss_speed_mps.empty());
+  scenario.gnss.speed_sigma_mps = 0.05;
+  const Simulated run = simulate_and_read(scenario, dir);
+  EXPECT_EQ(run.drive.gnss_a, without.gnss_a);  // its noise comes from a generator of its own
+  const GnssStream& gnss = run.log.gnss;
+  ASSERT_EQ(gnss.speed_mps.size(), gnss.size());
+  // Truth: the true path's length over 0.2 s around each fix (the realistic car's speed at the
+  // rear-axle midpoint, side slip included).
+  std::vector<double> error;
+  const PoseStream& truth = *run.log.truth;
+  for (std::size_t k = 0; k < gnss.size(); ++k) {
+    const double t = gnss.t_s[k];
+    if (t < truth.t_s.front() + 0.1 || t > truth.t_s.back() - 0.1) continue;
+    const Pose2 a = *interpolate_pose(truth, t - 0.1), b = *interpolate_pose(truth, t + 0.1);
+    error.push_back(gnss.speed_mps[k] - (b.head<2>() - a.head<2>()).norm() / 0.2);
+  }
+  ASSERT_GT(error.size(), 5000u);
+  EXPECT_NEAR(rms(error), 0.05, 0.003);
+  EXPECT_NEAR(std::accumulate(error.begin(), error.end(), 0.0) / static_cast<double>(error.size()),
+              0.0, 0.003);
+}
+
 TEST(Simulator, NoiseSeedVariesNoiseOverFixedTruth) {
   Scenario scenario = load_scenario("circuit");  // speed_variation 0.05: the trajectory seed acts
   scenario.route.laps = 1;

@@ -69,6 +69,9 @@ struct GnssSimConfig {
   // Altitude noise (white, m) of the alt column, written when the terrain is not flat; negative:
   // 1.5 x sigma_m (GNSS altitude is worse than its horizontal position).
   double altitude_sigma_m = -1.0;
+  // Doppler speed over ground (white noise, m/s) of gnss.csv's speed_mps column, drawn from a
+  // generator of its own (the positions keep their noise); negative: no column.
+  double speed_sigma_mps = -1.0;
   // Whether gnss.csv has an alt column: auto writes it on hills only (flat logs keep their noise
   // sequence); always is a receiver that reports its altitude on a flat road too.
   enum class Altitude { kAuto, kAlways, kNever } altitude = Altitude::kAuto;

@@ -26,6 +26,7 @@ struct SimulatedDrive {
   // gnss.csv's alt column (m, with its noise): local up, or ellipsoidal height with lat/lon; empty
   // on flat terrain.
   std::vector<double> gnss_alt;
+  std::vector<double> gnss_speed_mps;  // its speed_mps column (horizontal); empty: none
   bool gnss_latlon{};
   double gnss_sigma_m{};
   ImuStream imu;
