@@ -19,7 +19,8 @@ of Hockenheim, with `auto` and the issue's targets, is a section of docs/results
 
     ODOCAL_CLI=build/apps/odocal/odocal /usr/bin/python3 bench/tyre_model_bench.py \\
         --seeds 10 --work /tmp/tyre-bench [--drives circuit urban] [--cars scenario low-heavy]
-        [--models none extended physical auto] [--max-sigma-m 0.001] [--json FILE]
+        [--models none extended physical auto] [--max-sigma-m 0.001] [--doppler-sigma-mps 0.05]
+        [--json FILE]
 """
 import argparse
 import json
@@ -51,11 +52,14 @@ def run(*args):
     return subprocess.run([CLI, *args], capture_output=True, text=True)
 
 
-def scenario_file(work, drive, drivetrain, car):
+def scenario_file(work, drive, drivetrain, car, doppler_sigma):
     scenario = yaml.safe_load(open(os.path.join(SOURCE, "config", "scenarios", f"{drive}.yaml")))
     dynamics = scenario.setdefault("vehicle", {}).setdefault("dynamics", {})
     dynamics["drivetrain"] = drivetrain
     dynamics.update(CARS[car])
+    if doppler_sigma is not None:
+        sensors = scenario.setdefault("sensors", {})
+        sensors.setdefault("gnss", {})["speed_sigma_mps"] = doppler_sigma
     path = os.path.join(work, f"{drive}-{drivetrain}-{car}.yaml")
     yaml.safe_dump(scenario, open(path, "w"))
     return path
@@ -70,10 +74,11 @@ def truth_of(log):
     return values
 
 
-def calibrate(log, model, work, max_sigma_m):
+def calibrate(log, model, work, max_sigma_m, doppler_sigma):
     config = os.path.join(work, f"batch-{model}.yaml")
+    doppler = f"  gnss_speed_sigma_mps: {doppler_sigma}\n" if doppler_sigma is not None else ""
     open(config, "w").write(
-        f"batch:\n  tyre_model: {model}\n  max_sigma_circumference_m: {max_sigma_m}\n")
+        f"batch:\n  tyre_model: {model}\n  max_sigma_circumference_m: {max_sigma_m}\n{doppler}")
     result = os.path.join(log, f"result-{model}.json")
     start = time.perf_counter()
     calibrated = run("calibrate", log, "--method", "batch", "--config", config, "--json", result)
@@ -123,6 +128,8 @@ def main():
     # The circumferences' sigma is what is measured: by default no refusal for a sigma above 1 mm.
     # At 0.001 (odocal's default) auto's rules for unidentified candidates come into play.
     parser.add_argument("--max-sigma-m", type=float, default=0.01)
+    # A Doppler speed column with this white noise (m/s), fitted with the same sigma.
+    parser.add_argument("--doppler-sigma-mps", type=float)
     parser.add_argument("--json", help="write every row here")
     args = parser.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
@@ -135,7 +142,8 @@ def main():
     for drive in args.drives:
         for drivetrain in args.drivetrains:
             for car in args.cars:
-                scenario = scenario_file(args.work, drive, drivetrain, car)
+                scenario = scenario_file(args.work, drive, drivetrain, car,
+                                         args.doppler_sigma_mps)
                 logs = []
                 for seed in range(1, args.seeds + 1):
                     log = os.path.join(args.work, f"{drive}-{drivetrain}-{car}-{seed}")
@@ -144,7 +152,8 @@ def main():
                     assert made.returncode == 0, made.stderr
                     logs.append(log)
                 for model in args.models:
-                    rows = [calibrate(log, model, args.work, args.max_sigma_m) for log in logs]
+                    rows = [calibrate(log, model, args.work, args.max_sigma_m, args.doppler_sigma_mps)
+                            for log in logs]
                     errors = [abs(e) for r in rows for e in r["errors"]]
                     inside = [abs(e) <= 3 * s for r in rows
                               for e, s in zip(r["errors"], r["sigmas"]) if s is not None]

@@ -18,6 +18,7 @@
 #include "batch_folded_residuals.hpp"
 #include "batch_observability.hpp"
 #include "batch_residuals.hpp"
+#include "batch_speed_residual.hpp"
 #include "calibration_report.hpp"
 #include "calibration_run.hpp"
 #include "gnss_noise_estimate.hpp"
@@ -134,6 +135,7 @@ class BatchProblem {
     mark_gentle_segments();
     gm_sigma_m_ = batch_.gnss_gauss_markov_sigma_m;
     const double gnss_step_s = median_step_s(log.gnss.t_s);
+    speed_max_gap_s_ = std::max(3.0 * gnss_step_s, 0.5);
     if (gnss_step_s > 0.0)
       gnss_fixes_per_keyframe_ = std::max(1.0, batch_.keyframe_interval_s / gnss_step_s);
     gm_tau_s_ = batch_.gnss_gauss_markov_tau_s;
@@ -337,6 +339,7 @@ class BatchProblem {
                            std::max(noise_.lateral_sigma_m_per_sqrt_m, slip_floor)};
     params_lin_ = Eigen::Map<const batch::ParamsVector>(params_.data());
     odometry_.clear();
+    speed_.clear();
     gnss_folds_.assign(keyframes_.size() - 1, {});
     heading_folds_.assign(keyframes_.size() - 1, {});
     max_weight_change_ = 0.0f;
@@ -348,7 +351,9 @@ class BatchProblem {
           preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise,
                        tyre_fitted() ? &tyre : nullptr);
       odometry_.push_back(odometry_interval(segment));
+      speed_.push_back(std::nullopt);
       if (gap_segment(i)) continue;
+      if (use_speed() && rough_segment_[i] == 0) speed_.back() = speed_residual(i, segment, at);
       fold_gnss(i, segment, next_fix);
       if (batch_.use_heading && log_.heading) fold_heading(i, segment, next_heading);
     }
@@ -364,6 +369,7 @@ class BatchProblem {
     add_gnss();
     if (batch_.use_heading && log_.heading) add_heading();
     if (batch_.use_gyro && log_.imu) add_gyro();
+    if (use_speed()) add_speed();
     if (gauss_markov()) add_gauss_markov();
     hold_unrequested();
 
@@ -474,8 +480,104 @@ class BatchProblem {
     return log_.wheels.t_s[keyframes_.back()] - log_.wheels.t_s[keyframes_.front()];
   }
   std::size_t gnss_residuals() const { return gnss_residuals_; }
+  // The Doppler residuals' noise from the next pre-integration on: the configured one times this.
+  void set_speed_noise(double scale) { speed_scale_ = scale; }
+  double speed_noise_scale() const { return speed_scale_; }
+  // Every Doppler residual at the current unknowns, whitened (robust loss not applied).
+  std::vector<double> speed_whitened() const {
+    std::vector<double> whitened;
+    for (std::size_t i = 0; i < speed_.size(); ++i) {
+      if (!speed_[i]) continue;
+      double r = 0.0;
+      (*speed_[i])(params_.data(), lever_.data(), &latency_, count_error_[i].data(),
+                   count_error_[i + 1].data(), &r);
+      whitened.push_back(r);
+    }
+    return whitened;
+  }
+  // Keyframe intervals whose Doppler speed is in the fit.
+  std::size_t speed_intervals() const {
+    return static_cast<std::size_t>(
+        std::count_if(speed_.begin(), speed_.end(), [](const auto& r) { return r.has_value(); }));
+  }
 
  private:
+  bool use_speed() const {
+    return batch_.gnss_speed_sigma_mps > 0.0 && !log_.gnss.speed_mps.empty();
+  }
+
+  // Segment i's Doppler speed against its wheels (none where the fixes do not cover it or a wheel
+  // turns backwards: the Doppler speed has no sign).
+  std::optional<batch::SpeedResidual> speed_residual(std::size_t i, const PreintegratedSegment& seg,
+                                                     const OdometryParams& at) const {
+    // Below this the speed's magnitude is biased by its own noise (and reversing would hide).
+    constexpr double kMinSpeedMps = 1.0;
+    const double begin = log_.wheels.t_s[keyframes_[i]], end = log_.wheels.t_s[keyframes_[i + 1]];
+    const auto interval =
+        batch::doppler_interval(log_.gnss, begin, end, speed_max_gap_s_,
+                                std::max(kMinSpeedMps, 5.0 * batch_.gnss_speed_sigma_mps));
+    if (!interval) return std::nullopt;
+    batch::SpeedResidual r;
+    for (std::size_t k = keyframes_[i] + 1; k <= keyframes_[i + 1]; ++k) {
+      const WheelIncrement n = log_.wheels.increment(k);
+      if (n.rev_rl < 0.0 || n.rev_rr < 0.0) return std::nullopt;
+      r.half_revolutions[0] += 0.5 * n.rev_rl;
+      r.half_revolutions[1] += 0.5 * n.rev_rr;
+      if (!tyre_fitted()) continue;
+      r.half_tyre_revolutions.row(0) +=
+          0.5 * n.rev_rl * tyre_regressors(states_[k], RearWheel::kLeft, body_).transpose();
+      r.half_tyre_revolutions.row(1) +=
+          0.5 * n.rev_rr * tyre_regressors(states_[k], RearWheel::kRight, body_).transpose();
+      const double half_square = 0.5 * square(side_slip_regressor(states_[k]));
+      r.half_side_slip_revolutions[0] += 0.5 * n.rev_rl * half_square;
+      r.half_side_slip_revolutions[1] += 0.5 * n.rev_rr * half_square;
+    }
+    const double duration = end - begin;
+    const double doppler_variance =
+        square(batch_.gnss_speed_sigma_mps) *
+        std::max(interval->sum_squared_weights_s2, batch_.gnss_speed_correlation_s * duration);
+    // The slip noise of the two arcs, each half the distance.
+    const double slip_variance = 0.25 * square(noise_.slip_sigma_m_per_sqrt_m) *
+                                 (at.circumference_rl_m * 2.0 * r.half_revolutions[0] +
+                                  at.circumference_rr_m * 2.0 * r.half_revolutions[1]);
+    r.sigma_m = speed_scale_ * std::sqrt(doppler_variance + slip_variance);
+    r.speed_change_mps = interval->speed_change_mps;
+    if (!batch_.estimate_lever_arm) {
+      // Held at zero: the integral alone.
+      double distance = 0.0;
+      for (std::size_t f = 0; f < interval->fixes.size(); ++f)
+        distance += interval->weights_s[f] * log_.gnss.speed_mps[interval->fixes[f]];
+      r.shares.push_back({1.0, distance, 0.0});
+      return r;
+    }
+    const auto& t = log_.wheels.t_s;
+    for (std::size_t f = 0; f < interval->fixes.size(); ++f) {
+      const std::size_t j = interval->fixes[f];
+      const double when = std::clamp(log_.gnss.t_s[j], begin, end);
+      const auto after = std::upper_bound(t.begin() + static_cast<long>(seg.first_sample) + 1,
+                                          t.begin() + static_cast<long>(seg.last_sample), when);
+      const std::size_t s = static_cast<std::size_t>(after - t.begin()) - 1 - seg.first_sample;
+      const double yaw_rate = (seg.delta[s + 1].z() - seg.delta[s].z()) /
+                              (t[seg.first_sample + s + 1] - t[seg.first_sample + s]);
+      r.shares.push_back({interval->weights_s[f], log_.gnss.speed_mps[j], yaw_rate});
+    }
+    return r;
+  }
+
+  void add_speed() {
+    // The Doppler speed's outliers under the GNSS positions' loss (one per problem: it owns it).
+    if (speed_intervals() == 0) return;
+    ceres::LossFunction* loss = gnss_loss();
+    for (std::size_t i = 0; i < speed_.size(); ++i) {
+      if (!speed_[i]) continue;
+      problem_->AddResidualBlock(
+          new ceres::AutoDiffCostFunction<batch::SpeedResidual, 1, batch::kParams, 2, 1, 2, 2>(
+              &*speed_[i], ceres::DO_NOT_TAKE_OWNERSHIP),
+          loss, params_.data(), lever_.data(), &latency_, count_error_[i].data(),
+          count_error_[i + 1].data());
+    }
+  }
+
   // The pre-integrated motion of segment i from its keyframe to time t_s (inside the segment),
   // with the reference point's velocity there (keyframe frame).
   struct MotionAt {
@@ -841,6 +943,10 @@ class BatchProblem {
   std::vector<std::size_t> keyframes_;
   // Per keyframe interval (odometry_interval); the problem's blocks point to these.
   std::vector<OdometryInterval> odometry_;
+  // Per keyframe interval: its Doppler speed residual, where the log has one that covers it.
+  std::vector<std::optional<batch::SpeedResidual>> speed_;
+  double speed_max_gap_s_ = 1.0;  // two Doppler fixes further apart leave the interval out
+  double speed_scale_ = 1.0;      // of the Doppler residuals' sigma (set_speed_noise)
   // Per keyframe interval; an empty factor: nothing measured there.
   std::vector<batch::FoldedGnssResidual> gnss_folds_;
   std::vector<batch::FoldedHeadingResidual> heading_folds_;
@@ -1068,10 +1174,19 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   std::tie(summary.odometry_intervals_used, summary.odometry_intervals) = batch.gentle_intervals();
   summary.keyframes = batch.keyframes();
   summary.gnss_fixes = batch.gnss_residuals();
+  summary.doppler_intervals = batch.speed_intervals();
 
+  const std::string doppler =
+      summary.doppler_intervals == 0 ? ""
+      : summary.doppler_sigma_scale > 1.0
+          ? fmt::format(
+                " and the Doppler speed over {} intervals (its noise {:.2g} times the "
+                "configured, as its residuals show)",
+                summary.doppler_intervals, summary.doppler_sigma_scale)
+          : fmt::format(" and the Doppler speed over {} intervals", summary.doppler_intervals);
   const std::string solved =
-      fmt::format("batch maximum likelihood over {} keyframes and {} GNSS fixes; {} solve(s); {}",
-                  summary.keyframes, summary.gnss_fixes, summary.solves,
+      fmt::format("batch maximum likelihood over {} keyframes and {} GNSS fixes{}; {} solve(s); {}",
+                  summary.keyframes, summary.gnss_fixes, doppler, summary.solves,
                   ceres::TerminationTypeToString(solver.termination_type));
   if (batch.tyre_fitted() && !batch.tyre_model().plain() && uncertainty) {
     summary.reference_circumference =
@@ -1230,6 +1345,28 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
   }
 }
 
+// The Doppler residuals' scatter (the RMS of the whitened residuals): where it is wider
+// than the configured noise (a receiver noisier than gnss_speed_sigma_mps, or a slip that the
+// tyre model does not follow), the problem is solved again with the noise it shows, so that the
+// Doppler speed weighs what it is worth beside the positions. Never narrowed: a receiver's
+// velocity errors are correlated over its filter, which one interval's residual does not show.
+void adapt_doppler_noise(BatchProblem& batch, const BatchOptions& options, BatchSummary& summary,
+                         ceres::Solver::Summary& solver) {
+  constexpr int kMaxRounds = 4;
+  constexpr double kTolerance = 1.25;
+  for (int round = 0; round < kMaxRounds && solver.IsSolutionUsable(); ++round) {
+    const std::vector<double> whitened = batch.speed_whitened();
+    if (whitened.empty()) break;
+    double sum = 0.0;
+    for (const double r : whitened) sum += r * r;
+    const double spread = std::sqrt(sum / static_cast<double>(whitened.size()));
+    if (!(spread > kTolerance)) break;
+    batch.set_speed_noise(batch.speed_noise_scale() * spread);
+    solver = solve_relinearised(batch, options, summary);
+  }
+  summary.doppler_sigma_scale = batch.speed_noise_scale();
+}
+
 // A coefficient this many sigma from zero is kept however wide its sigma: the log needs it, and
 // held at zero the others would bend to stand in for it.
 constexpr double kTyreSignificance = 3.0;
@@ -1301,6 +1438,7 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
     }
     if (!finish(facts)) return false;
   }
+  adapt_doppler_noise(batch, options, summary, solver);
   adapt_gnss_noise(batch, options, common, summary, solver);
   batch.add_body_uncertainty();
   summarise(run.log(), options, batch, solver, summary);

@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 31> kFields{{
+  static const std::array<OptionField<O>, 33> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -27,6 +27,13 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"adapt_gnss_noise", "", 0, 0,
        "re-solve with the GNSS noise the residuals show when it differs from the configured one",
        &O::adapt_gnss_noise},
+      {"gnss_speed_sigma_mps", "m/s", 0.0, 100.0,
+       "white noise per fix of gnss.csv's speed_mps (Doppler), fitted against the wheels' "
+       "distance per keyframe interval (e.g. 0.1 with tyre_model: physical); 0: not used",
+       &O::gnss_speed_sigma_mps},
+      {"gnss_speed_correlation_s", "s", 0.0, 100.0,
+       "Doppler errors of fixes closer than this are taken as one (the receiver's filter)",
+       &O::gnss_speed_correlation_s},
       {"use_heading", "", 0, 0, "heading.csv residuals", &O::use_heading},
       {"use_gyro", "", 0, 0, "imu.csv yaw-rate residuals", &O::use_gyro},
       {"estimate_track_width", "", 0, 0, "also estimate the rear track width",

@@ -182,6 +182,8 @@ void add_details(json& out, const BatchSummary& s) {
   out["solver_report"] = s.solver_report;
   out["keyframes"] = s.keyframes;
   out["gnss_fixes"] = s.gnss_fixes;
+  out["doppler_intervals"] = s.doppler_intervals;
+  out["doppler_sigma_scale"] = s.doppler_sigma_scale;
   out["solves"] = s.solves;
   const GnssNoiseReport& g = s.gnss_noise;
   out["gnss_noise"] = {{"configured_sigma_m", g.configured_sigma_m},

@@ -111,6 +111,10 @@ Log simulated_log(const sim::SimulatedDrive& drive, bool with_truth) {
     gnss_header.emplace_back("alt");
     gnss_columns.push_back(drive.gnss_alt);
   }
+  if (!drive.gnss_speed_mps.empty()) {
+    gnss_header.emplace_back("speed_mps");
+    gnss_columns.push_back(drive.gnss_speed_mps);
+  }
   log.gnss = gnss_stream_from_table(table("gnss.csv", gnss_header, gnss_columns));
   if (drive.gnss_sigma_m > 0.0) log.gnss.sigma_m.assign(log.gnss.size(), drive.gnss_sigma_m);
   log.imu = drive.imu;

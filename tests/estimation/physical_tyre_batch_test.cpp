@@ -118,6 +118,38 @@ TEST(PhysicalTyreBatch, CalibratesARealisticUrbanDriveToTheCircumferenceAtRest) 
   }
 }
 
+TEST(PhysicalTyreBatch, TheDopplerSpeedSharpensItsCircumferenceAtRest) {
+  // The realistic urban drive of a rear-driven car with a receiver's Doppler speed (0.05 m/s of
+  // white noise): against the wheels' distance over every keyframe interval it sees the drive
+  // slip within a second, where the positions see it through metres of noise (benchmark:
+  // 1.6 mm at sigma 3.1 mm without it, 0.4 mm at sigma 1.0 mm with it, over 3 seeds).
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.gnss.speed_sigma_mps = 0.05;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log log = simulated_log(drive);
+  ASSERT_EQ(log.gnss.speed_mps.size(), log.gnss.size());
+  const double truth_m = drive.true_params.circumference_rl_m;
+  BatchOptions options;
+  options.tyre_model = TyreModelChoice::kPhysical;
+  options.max_sigma_circumference_m = 0.01;
+  const BatchSummary without = calibrate_batch(log, options);
+  EXPECT_EQ(without.doppler_intervals, 0u);
+  options.gnss_speed_sigma_mps = 0.05;
+  const BatchSummary with = calibrate_batch(log, options);
+  ASSERT_TRUE(with.usable()) << with.full_report();
+  // Every interval but those at standstill (the urban drive stops at its lights).
+  EXPECT_GT(with.doppler_intervals, with.keyframes / 2) << with.full_report();
+  EXPECT_GE(with.doppler_sigma_scale, 1.0);
+  EXPECT_NE(with.full_report().find("the Doppler speed over"), std::string::npos);
+  for (const double estimate :
+       {with.estimate.circumference_rl_m, with.estimate.circumference_rr_m}) {
+    EXPECT_LT(std::abs(estimate - truth_m), 3.0 * with.sigma_rl_m()) << with.full_report();
+    EXPECT_LT(std::abs(estimate - truth_m), 0.001) << with.full_report();
+  }
+  EXPECT_LT(with.sigma_rl_m(), 0.6 * without.sigma_rl_m())
+      << with.sigma_rl_m() << " against " << without.sigma_rl_m();
+}
+
 TEST(PhysicalTyreBatch, CalibratesAHillyDriveWithTheForceThatClimbingTakes) {
   // The realistic urban drive on hills of up to 6 %, rear-driven: the rear wheels slip with the
   // slope's share of the weight, which the accelerometer feels but the hills' projection takes

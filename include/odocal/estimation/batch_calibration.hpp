@@ -93,6 +93,11 @@ struct BatchSummary : CalibrationSummary {
   std::string solver_report;                   // Ceres' brief report of the last solve
   std::size_t keyframes{};
   std::size_t gnss_fixes{};  // GNSS residuals in the problem
+  // Keyframe intervals whose Doppler speed (gnss.csv's speed_mps) is in the problem.
+  std::size_t doppler_intervals{};
+  // Their noise against the configured gnss_speed_sigma_mps: above 1 where the residuals showed
+  // more scatter and the fit was solved again with it.
+  double doppler_sigma_scale = 1.0;
   // Of the fit returned: the first, coarse one, the re-linearisations, the adapted one.
   int solves{};
   GnssNoiseReport gnss_noise;

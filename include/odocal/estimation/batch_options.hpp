@@ -53,6 +53,14 @@ struct BatchOptions {
   // and solve again with it when it differs from the configured noise (no Gauss-Markov error
   // configured): the sigma then covers the error when the configured noise is wrong.
   bool adapt_gnss_noise = true;
+  // gnss.csv's speed_mps column (Doppler speed over ground) against the wheels' distance over each
+  // keyframe interval, with this white noise per fix; errors of fixes closer than
+  // gnss_speed_correlation_s are taken as one (a receiver filters its velocity). 0: not used, the
+  // default: it sharpens the physical tyre terms (docs/tyre-model.md, "The Doppler speed"), but
+  // the regression terms' circumference at rest, an extrapolation along their fitted shape of
+  // the slip, comes out confidently wrong with it on hard driving.
+  double gnss_speed_sigma_mps = 0.0;
+  double gnss_speed_correlation_s = 0.1;
   bool use_heading = true;  // heading.csv residuals
   bool use_gyro = true;     // imu.csv yaw-rate residuals
   // Extra unknowns on request (else held at: nominal track width, zero bias/lever arm/latency).
