@@ -460,6 +460,10 @@ class BatchProblem {
   const Eigen::Matrix<double, batch::kParams, batch::kParams>& body_covariance() const {
     return body_covariance_;
   }
+  // The circumferences' gap to another tyre model's fit of this log, added to their variance:
+  // two models that extrapolate to rest differently say how sure either extrapolation is.
+  void set_model_spread(const std::array<double, 2>& spread_m) { model_spread_m_ = spread_m; }
+  const std::array<double, 2>& model_spread_m() const { return model_spread_m_; }
   // One body number moved by `step` of its uncertainty, and what that moved the parameters by.
   struct BodyResponse {
     VehicleBody body;
@@ -969,6 +973,7 @@ class BatchProblem {
   Eigen::Matrix<double, batch::kParams, batch::kParams> body_covariance_ =
       Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
   std::vector<BodyResponse> body_responses_;
+  std::array<double, 2> model_spread_m_{};
   std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};  // > 0: held at zero
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
@@ -1068,6 +1073,10 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   u.heading_bias *= scale;
   u.latency *= scale;
   u.params += batch.body_covariance();
+  const std::array<double, 2>& spread = batch.model_spread_m();
+  for (int w = 0; w < 2; ++w)
+    u.params(w, w) += spread[static_cast<std::size_t>(w)] * spread[static_cast<std::size_t>(w)];
+  summary.model_spread_m = spread;
   summary.body_sigma_m = {std::sqrt(batch.body_covariance()(0, 0)),
                           std::sqrt(batch.body_covariance()(1, 1))};
   summary.body_sigma_parts.clear();
@@ -1135,6 +1144,12 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                       "body's uncertainty, {:.2g} mm of it from {}: state vehicle.yaml's "
                       "body, or drive longer and more gently)",
                       body_mm, 1e3 * largest->sigma_m[i], largest->key)
+            : spread[i] > 0.0
+                ? fmt::format(
+                      "with the tyre model the circumference at rest is an extrapolation from "
+                      "this drive's slip and load, and the physical terms' fit puts it {:.3g} mm "
+                      "away (its sigma includes that gap): drive longer and more gently",
+                      1e3 * spread[i])
                 : "with the tyre model the circumference at rest is an extrapolation from this "
                   "drive's slip and load (drive longer and more gently)";
       }
@@ -1189,9 +1204,15 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                   summary.keyframes, summary.gnss_fixes, doppler, summary.solves,
                   ceres::TerminationTypeToString(solver.termination_type));
   if (batch.tyre_fitted() && !batch.tyre_model().plain() && uncertainty) {
-    summary.reference_circumference =
-        reference_circumference(batch, p, u.params - batch.body_covariance(), b.reference_speed_mps,
-                                b.max_sigma_circumference_m);
+    // The data's own covariance: the body's share is added back per body number inside, and the
+    // spread between models is the extrapolation to rest, which a rolling speed does not make.
+    Eigen::Matrix<double, batch::kParams, batch::kParams> data_covariance =
+        u.params - batch.body_covariance();
+    for (int w = 0; w < 2; ++w)
+      data_covariance(w, w) -=
+          spread[static_cast<std::size_t>(w)] * spread[static_cast<std::size_t>(w)];
+    summary.reference_circumference = reference_circumference(
+        batch, p, data_covariance, b.reference_speed_mps, b.max_sigma_circumference_m);
   }
   const bool circumferences_identified =
       uncertainty && summary.parameters[0].identified && summary.parameters[1].identified;
@@ -1418,11 +1439,21 @@ ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions&
 
 bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, std::optional<TyreTerms> terms,
-                      BatchSummary& summary, const FitDecision& finish) {
+                      BatchSummary& summary, const FitDecision& finish,
+                      const std::optional<std::array<double, 2>>& rival_circumference) {
   BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
   const bool extended = terms.has_value();
   ceres::Solver::Summary solver = extended ? solve_tyre_model(batch, options, summary, *terms)
                                            : solve_relinearised(batch, options, summary);
+  const auto spread = [&] {
+    std::array<double, 2> gap{};
+    if (rival_circumference) {
+      for (std::size_t w = 0; w < 2; ++w)
+        gap[w] = std::abs(batch.params()[w] - (*rival_circumference)[w]);
+    }
+    return gap;
+  };
+  batch.set_model_spread(spread());
   if (finish) {
     batch::FitFacts facts;
     if (solver.IsSolutionUsable()) {
@@ -1432,14 +1463,17 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
       facts.max_tyre_effect = max_tyre_effect(batch);
       facts.circumference = {batch.params()[0], batch.params()[1]};
       if (extended) {
+        const std::array<double, 2>& gap = batch.model_spread_m();
         if (const auto u = batch.uncertainty())
-          facts.circumference_variance = {u->params(0, 0), u->params(1, 1)};
+          facts.circumference_variance = {u->params(0, 0) + gap[0] * gap[0],
+                                          u->params(1, 1) + gap[1] * gap[1]};
       }
     }
     if (!finish(facts)) return false;
   }
   adapt_doppler_noise(batch, options, summary, solver);
   adapt_gnss_noise(batch, options, common, summary, solver);
+  batch.set_model_spread(spread());  // at the solution reported
   batch.add_body_uncertainty();
   summarise(run.log(), options, batch, solver, summary);
   return true;
@@ -1558,6 +1592,13 @@ std::string BatchSummary::full_report() const {
         "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the body's uncertainty "
         "(vehicle.yaml body: {}{})\n",
         "body", 1e3 * body_sigma_m[0], 1e3 * body_sigma_m[1], fmt::join(assumed, ", "), most);
+  }
+  if (model_spread_m[0] > 0.0 || model_spread_m[1] > 0.0) {
+    text += fmt::format(
+        "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm, their gap to the physical "
+        "terms' fit of this log: the regression terms extrapolate to rest no surer than the two "
+        "models agree\n",
+        "spread", 1e3 * model_spread_m[0], 1e3 * model_spread_m[1]);
   }
   text += fmt::format("{:<13}{}\n", "solver", usable() ? message : solver_report);
   return text + report_ending(*this);

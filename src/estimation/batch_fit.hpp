@@ -36,10 +36,13 @@ inline constexpr double kMaxSideSlipRad = 0.1;
 
 // Fits one model (the plain one, or a tyre model's family of terms); unless `finish` (when
 // given) declines the solved fit, adapts its GNSS noise and fills the summary. Returns whether it
-// did. The problem is freed on return.
+// did. With `rival_circumference` (another tyre model's fit of the log), the circumferences'
+// gap to it is added to their variance (BatchSummary::model_spread_m). The problem is freed on
+// return.
 bool fit_model(const CalibrationRun& run, const BatchOptions& options,
                const CalibrationOptions& common, std::optional<TyreTerms> terms,
-               BatchSummary& summary, const FitDecision& finish = {});
+               BatchSummary& summary, const FitDecision& finish = {},
+               const std::optional<std::array<double, 2>>& rival_circumference = std::nullopt);
 
 // tyre_model auto (tyre_model_selection.cpp). Returns whether it has scored the result
 // (run.finish) itself.

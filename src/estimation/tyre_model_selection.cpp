@@ -55,12 +55,19 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
                                 summary.parameters[1].identified;
   double best_bic = plain.bic;
   bool finished = false;  // run.finish has scored `summary`
+  // The physical terms' circumferences, where they were solved: the regression terms after them
+  // carry their gap to them in their sigma. Both extrapolate to rest from the same drive; where
+  // they disagree, neither extrapolation is surer than that (3 laps of Hockenheim, rear-driven,
+  // with the Doppler speed: the regression terms -11.7 mm at sigma 1.6 mm, the physical ones,
+  // no tyre there, +22.9 mm).
+  std::optional<std::array<double, 2>> physical_circumference;
   for (const TyreTerms terms : kCandidates) {
     if (selection.chosen != "none") break;
     TyreCandidate candidate{tyre_model_option(terms)};
     const auto choose = [&](const FitFacts& facts) {
       candidate.bic = facts.bic;
       if (!facts.usable) return false;
+      if (terms == TyreTerms::kPhysical) physical_circumference = facts.circumference;
       // Coefficients that change the circumference by percents at the log's typical driving
       // state are not a tyre: they are the model explaining something else (a skid-steer robot,
       // a wrong input), and so is a circumference that leaves the plausible band.
@@ -90,7 +97,9 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
       return better && candidate.needed;
     };
     BatchSummary fitted = unfitted;
-    const bool accepted = fit_model(run, options, common, terms, fitted, choose);
+    const bool accepted =
+        fit_model(run, options, common, terms, fitted, choose,
+                  terms == TyreTerms::kRegression ? physical_circumference : std::nullopt);
     candidate.solves = fitted.solves;
     all_solves += fitted.solves;
     // A tyre model that won the criterion and agrees with the plain fit confirms it: the

@@ -153,6 +153,8 @@ void add_details(json& out, const BatchSummary& s) {
                                       {"sigma_rr_m", number_or_null(r.sigma_rr_m)},
                                       {"identified", r.identified}};
   }
+  if (s.model_spread_m[0] > 0.0 || s.model_spread_m[1] > 0.0)
+    out["model_spread_m"] = {s.model_spread_m[0], s.model_spread_m[1]};
   if (s.body_sigma_m[0] > 0.0 || s.body_sigma_m[1] > 0.0) {
     out["body_sigma_m"] = {s.body_sigma_m[0], s.body_sigma_m[1]};
     nlohmann::json parts = nlohmann::json::object();

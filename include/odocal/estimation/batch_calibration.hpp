@@ -118,6 +118,9 @@ struct BatchSummary : CalibrationSummary {
     std::array<double, 2> sigma_m{};
   };
   std::vector<BodySigmaPart> body_sigma_parts;
+  // The regression terms' share of the circumferences' sigma under tyre_model auto: their gap to
+  // the physical terms' fit of the same log (zero otherwise; it is in sigma and covariance too).
+  std::array<double, 2> model_spread_m{};
   std::optional<ReferenceCircumference> reference_circumference;
   // Gentle segments (BatchOptions::gentle_max_*): keyframe intervals whose odometry is in the fit,
   // of all; equal without limits (gaps aside).
