@@ -9,7 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
+#include <optional>
 
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/drift_validation.hpp"
@@ -50,6 +50,17 @@ const EstimatedParameter& parameter(const BatchSummary& s, const std::string& na
   for (const EstimatedParameter& p : s.parameters)
     if (p.name == name) return p;
   throw std::runtime_error("no parameter " + name);
+}
+
+const std::string kHockenheimTrack =
+    std::string(ODOCAL_SOURCE_DIR) + "/../shared/data/tracks/hockenheim/track.csv";
+
+// The circuit scenario (3 laps) on ../shared's Hockenheim track; none where it is absent.
+std::optional<sim::Scenario> hockenheim_scenario() {
+  if (!std::filesystem::exists(kHockenheimTrack)) return std::nullopt;
+  sim::Scenario scenario = load_scenario("circuit");
+  use_track_file(scenario, kHockenheimTrack);
+  return scenario;
 }
 
 TEST(TyreModelBatch, RecoversKnownCoefficientsWhereThePlainModelIsBiased) {
@@ -277,11 +288,9 @@ TEST(TyreModelBatch, AdaptingTheGnssNoiseDoesNotCarryTheTyreModelIntoNonsense) {
   // (m/s)^2 (-100 % at 50 m/s) and c_RL to +45 mm, and the guard undid the adaptation. With the
   // slip's load terms the residuals match the configured noise and nothing is adapted; either
   // way the model must stay a tyre.
-  const std::string track =
-      std::string(ODOCAL_SOURCE_DIR) + "/../shared/data/tracks/hockenheim/track.csv";
-  if (!std::filesystem::exists(track)) GTEST_SKIP() << "shared data absent: " << track;
-  sim::Scenario scenario = load_scenario("circuit");
-  use_track_file(scenario, track);
+  std::optional<sim::Scenario> hockenheim = hockenheim_scenario();
+  if (!hockenheim) GTEST_SKIP() << "shared data absent: " << kHockenheimTrack;
+  sim::Scenario& scenario = *hockenheim;
   scenario.dynamics.drivetrain = sim::Drivetrain::kFront;
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   const Log log = simulated_log(drive);
@@ -305,11 +314,9 @@ TEST(TyreModelBatch, AutosRegressionFallbackCarriesItsGapToThePhysicalFitInItsSi
   // tyre there (their coefficients reach percents) and auto falls back to the regression terms,
   // whose circumference at rest is an extrapolation along the slip's shape that they fitted:
   // -11.7 mm at sigma 1.6 mm before their gap to the physical fit (+22.9 mm) counted.
-  const std::string track =
-      std::string(ODOCAL_SOURCE_DIR) + "/../shared/data/tracks/hockenheim/track.csv";
-  if (!std::filesystem::exists(track)) GTEST_SKIP() << "shared data absent: " << track;
-  sim::Scenario scenario = load_scenario("circuit");
-  use_track_file(scenario, track);
+  std::optional<sim::Scenario> hockenheim = hockenheim_scenario();
+  if (!hockenheim) GTEST_SKIP() << "shared data absent: " << kHockenheimTrack;
+  sim::Scenario& scenario = *hockenheim;
   scenario.vehicle.wear_rl_mm = 1.5;
   scenario.vehicle.wear_rr_mm = 1.0;
   scenario.gnss.speed_sigma_mps = 0.05;
