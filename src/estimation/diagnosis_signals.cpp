@@ -105,9 +105,12 @@ void append_diagnosis_signals(const Log& log, double from, double step_s, std::s
     const double gx1 = mean_over(log.gnss.t_s, log.gnss.x_m, lb - 1.0, lb + 1.0);
     const double gy0 = mean_over(log.gnss.t_s, log.gnss.y_m, la - 1.0, la + 1.0);
     const double gy1 = mean_over(log.gnss.t_s, log.gnss.y_m, lb - 1.0, lb + 1.0);
-    s.gnss_speed_long_mps.push_back(!log.gnss.speed_mps.empty()
-                                        ? at(log.gnss.t_s, log.gnss.speed_mps, t)
-                                        : std::hypot(gx1 - gx0, gy1 - gy0) / kLongS);
+    const double position_speed = std::hypot(gx1 - gx0, gy1 - gy0) / kLongS;
+    s.position_speed_long_mps.push_back(position_speed);
+    if (!log.gnss.speed_mps.empty())
+      s.doppler_speed_mps.push_back(at(log.gnss.t_s, log.gnss.speed_mps, t));
+    s.gnss_speed_long_mps.push_back(
+        !log.gnss.speed_mps.empty() ? at(log.gnss.t_s, log.gnss.speed_mps, t) : position_speed);
     // Course rate over 1 s where the GNSS moves (below 2 m/s its course is noise).
     double course_rate = kNaN;
     if (i >= lag && i + lag < rows) {

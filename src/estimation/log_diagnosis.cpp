@@ -85,6 +85,14 @@ class Doctor {
       if (signs_ok) check_yaw_rates();
       check_clock_offsets();
       if (signs_ok) check_imu_axes();
+      // The wheels were compared with the Doppler speed where there is one: in another unit it
+      // makes right wheels look wrong by its factor.
+      if (check_doppler_unit()) {
+        std::erase_if(out_.findings, [](const Finding& f) {
+          return f.check.starts_with("vehicle.") ||
+                 (f.check.starts_with("wheels.") && f.check.ends_with("_unit"));
+        });
+      }
       // A mirrored GNSS track (lat/lon swapped) also scales its distances by direction: the
       // wheel ratios then say nothing about units or circumferences.
       if (has("gnss.mirrored")) {
@@ -448,6 +456,39 @@ class Doctor {
           evidence, "a forward-right-down IMU read as forward-left-up",
           "negate ay (import map: imu frame: frd)");
     }
+  }
+
+  // The Doppler column against the positions' own speed over the 4 s baseline, driving straight
+  // (a chord cuts a turn short) above 5 m/s (the positions' noise then biases their speed by well
+  // under a per cent). Returns whether it found the column in another unit.
+  bool check_doppler_unit() {
+    const auto& doppler = signals_.doppler_speed_mps;
+    const auto& positions = signals_.position_speed_long_mps;
+    if (doppler.size() != signals_.size() || positions.size() != signals_.size()) return false;
+    std::vector<double> ratios;
+    for (std::size_t k = 0; k < doppler.size(); ++k) {
+      if (moving_[k] && !turning_[k] && positions[k] > 5.0 && std::isfinite(doppler[k]))
+        ratios.push_back(doppler[k] / positions[k]);
+    }
+    const std::size_t compared = ratios.size();
+    if (compared < 50) return false;
+    const double ratio = median(std::move(ratios));
+    if (std::abs(ratio - 1.0) <= 0.1) return false;
+    struct Unit {
+      const char* name;
+      double per_mps;
+    };
+    std::string likely = "the column is not a speed over ground in m/s";
+    for (const Unit unit : {Unit{"km/h", 3.6}, Unit{"mph", 2.2369}, Unit{"knots", 1.9438},
+                            Unit{"cm/s", 100.0}, Unit{"mm/s", 1000.0}}) {
+      if (std::abs(ratio / unit.per_mps - 1.0) < 0.05)
+        likely = fmt::format("the speed is in {} (x{:g})", unit.name, unit.per_mps);
+    }
+    add("gnss.speed_unit", FindingSeverity::kBlocking, "the GNSS Doppler speed is not in m/s",
+        fmt::format("median Doppler / position speed {:.3f} over {:.0f} s driving straight", ratio,
+                    seconds(compared)),
+        likely, "convert speed_mps to m/s (import map: speed unit), or drop the column");
+    return true;
   }
 
   void check_gnss_repeats() {

@@ -120,6 +120,8 @@ TEST(DoctorRealLog, Comma2k19IsCleanAndItsFaultsAreFound) {
        },
        "wheels.rl_unit"},
       {[&] { edit_csv(log / "gnss.csv", [](Row& r) { r["t"] += 0.7; }); }, "time.gnss_offset"},
+      {[&] { edit_csv(log / "gnss.csv", [](Row& r) { r["speed_mps"] *= 3.6; }); },
+       "gnss.speed_unit"},
       {[&] {
          int row = 0;
          Row fix;  // a logger repeating a fix repeats every column of it but the time
