@@ -557,10 +557,7 @@ class BatchProblem {
     const auto& t = log_.wheels.t_s;
     for (std::size_t f = 0; f < interval->fixes.size(); ++f) {
       const std::size_t j = interval->fixes[f];
-      const double when = std::clamp(log_.gnss.t_s[j], begin, end);
-      const auto after = std::upper_bound(t.begin() + static_cast<long>(seg.first_sample) + 1,
-                                          t.begin() + static_cast<long>(seg.last_sample), when);
-      const std::size_t s = static_cast<std::size_t>(after - t.begin()) - 1 - seg.first_sample;
+      const std::size_t s = segment_sample(seg, std::clamp(log_.gnss.t_s[j], begin, end));
       const double yaw_rate = (seg.delta[s + 1].z() - seg.delta[s].z()) /
                               (t[seg.first_sample + s + 1] - t[seg.first_sample + s]);
       r.shares.push_back({interval->weights_s[f], log_.gnss.speed_mps[j], yaw_rate});
@@ -588,13 +585,18 @@ class BatchProblem {
     batch::RelativeMotion motion;
     Eigen::Vector2d velocity;
   };
-  MotionAt motion_at(std::size_t i, const PreintegratedSegment& seg, double t_s) const {
+  // The segment's sample s whose increment to s + 1 spans t_s (inside the segment).
+  std::size_t segment_sample(const PreintegratedSegment& seg, double t_s) const {
     const auto& t = log_.wheels.t_s;
     const auto first = t.begin() + static_cast<long>(seg.first_sample);
     const auto last = t.begin() + static_cast<long>(seg.last_sample);
-    const std::size_t k =
-        static_cast<std::size_t>(std::upper_bound(first, last, t_s) - t.begin()) - 1;
-    const std::size_t s = k - seg.first_sample;
+    return static_cast<std::size_t>(std::upper_bound(first, last, t_s) - first) - 1;
+  }
+
+  MotionAt motion_at(std::size_t i, const PreintegratedSegment& seg, double t_s) const {
+    const auto& t = log_.wheels.t_s;
+    const std::size_t s = segment_sample(seg, t_s);
+    const std::size_t k = seg.first_sample + s;
     const double dt = t[k + 1] - t[k];
     const double w = (t_s - t[k]) / dt;
     MotionAt at;
@@ -1072,6 +1074,10 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   u.gyro_bias *= scale;
   u.heading_bias *= scale;
   u.latency *= scale;
+  // The data's own covariance, before the body's and the models' spread: a circumference rolling
+  // at a reference speed adds the body's share per body number itself, and makes no
+  // extrapolation to rest.
+  const Eigen::Matrix<double, batch::kParams, batch::kParams> data_covariance = u.params;
   u.params += batch.body_covariance();
   const std::array<double, 2>& spread = batch.model_spread_m();
   for (int w = 0; w < 2; ++w)
@@ -1204,13 +1210,6 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                   summary.keyframes, summary.gnss_fixes, doppler, summary.solves,
                   ceres::TerminationTypeToString(solver.termination_type));
   if (batch.tyre_fitted() && !batch.tyre_model().plain() && uncertainty) {
-    // The data's own covariance: the body's share is added back per body number inside, and the
-    // spread between models is the extrapolation to rest, which a rolling speed does not make.
-    Eigen::Matrix<double, batch::kParams, batch::kParams> data_covariance =
-        u.params - batch.body_covariance();
-    for (int w = 0; w < 2; ++w)
-      data_covariance(w, w) -=
-          spread[static_cast<std::size_t>(w)] * spread[static_cast<std::size_t>(w)];
     summary.reference_circumference = reference_circumference(
         batch, p, data_covariance, b.reference_speed_mps, b.max_sigma_circumference_m);
   }
