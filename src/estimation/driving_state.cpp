@@ -119,7 +119,9 @@ void fill_states(const WheelStream& wheels, const ImuStream* imu, const Odometry
     state.longitudinal_mps2 = stored(longitudinal);
     // The specific force the tyres push with: on a hill, with the slope's gravity that the
     // projection took out of the accelerometer (a wheel climbing slips as one accelerating does).
-    const double slope = wheels.grade.empty() ? 0.0 : slope_gravity_mps2(wheels.grade[k]);
+    // Where the grade is not known the projection left the increments alone: level, as without.
+    const bool graded = !wheels.grade.empty() && std::isfinite(wheels.grade[k]);
+    const double slope = graded ? slope_gravity_mps2(wheels.grade[k]) : 0.0;
     state.specific_force_x_mps2 = stored((imu_here ? forward.at(t, h) : longitudinal) + slope);
     state.specific_force_y_mps2 = stored(imu_here ? left.at(t, h) : speed * yaw_rate);
   }

@@ -78,6 +78,7 @@ LogDeadReckoning dead_reckon_log(LogBlockSource& source, const LogDeadReckoningO
       before.t_s = {carried->first};
       before.rev_rl = before.rev_rr = {0.0};
       if (!counted.rev_fl.empty()) before.rev_fl = before.rev_fr = {0.0};
+      if (!counted.side_slip_rad.empty()) before.side_slip_rad = {0.0F};
       append_stream(before, piece);
       piece = std::move(before);
     } else {

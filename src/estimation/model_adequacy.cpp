@@ -31,6 +31,14 @@ double partial_correlation(const std::vector<double>& y, const std::vector<doubl
   return denominator > 0.0 ? ry.dot(rx) / denominator : 0.0;
 }
 
+std::vector<double> rows_where(const std::vector<double>& values, const std::vector<bool>& keep) {
+  std::vector<double> kept;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (keep[i]) kept.push_back(values[i]);
+  }
+  return kept;
+}
+
 // What a dependence says about the tyre, in the verdict.
 std::string likely_cause(const ResidualDependence& d) {
   if (d.quantity == "lateral acceleration")
@@ -63,7 +71,6 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
   }
   std::vector<double> heading_per_m, along_per_m, lateral, longitudinal, speed_squared, curvature;
   std::vector<double> whitened_heading, grade;
-  bool grade_known = true;
   double chi2 = 0.0;
   for (std::size_t i = 1; i + 1 < samples.size(); ++i) {
     const OdometryResidualSample& s = samples[i];
@@ -79,7 +86,6 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
     speed_squared.push_back(speed[i] * speed[i]);
     whitened_heading.push_back(s.whitened(2));
     grade.push_back(s.grade);
-    grade_known = grade_known && std::isfinite(s.grade);
     chi2 += s.whitened.squaredNorm();
   }
   result.intervals = heading_per_m.size();
@@ -104,7 +110,7 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
                         const std::vector<double>& q,
                         const std::vector<const std::vector<double>*>& controls) {
     const double rho = partial_correlation(r, q, controls);
-    const double dof = n - 2.0 - static_cast<double>(controls.size());
+    const double dof = static_cast<double>(r.size()) - 2.0 - static_cast<double>(controls.size());
     const double t = std::abs(rho) * std::sqrt(dof / std::max(1.0 - rho * rho, 1e-12));
     result.dependences.push_back({residual, quantity, rho, t});
   };
@@ -113,9 +119,17 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
   test("along-track", along_per_m, "longitudinal acceleration", longitudinal, {&speed_squared});
   test("along-track", along_per_m, "speed squared", speed_squared, {&longitudinal});
   // Climbing takes a drive force that the horizontal acceleration does not show (m g grade):
-  // slip beyond what acceleration and speed explain.
-  if (grade_known) {
-    test("along-track", along_per_m, "grade", grade, {&longitudinal, &speed_squared});
+  // slip beyond what acceleration and speed explain. Only where the grade is known (a block of a
+  // long log without altitude has none).
+  std::vector<bool> graded(grade.size());
+  std::transform(grade.begin(), grade.end(), graded.begin(),
+                 [](double g) { return std::isfinite(g); });
+  if (std::count(graded.begin(), graded.end(), true) >= 10) {
+    const std::vector<double> graded_along = rows_where(along_per_m, graded);
+    const std::vector<double> graded_longitudinal = rows_where(longitudinal, graded);
+    const std::vector<double> graded_speed_squared = rows_where(speed_squared, graded);
+    test("along-track", graded_along, "grade", rows_where(grade, graded),
+         {&graded_longitudinal, &graded_speed_squared});
   }
 
   const ResidualDependence* strongest = nullptr;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 namespace odocal {
@@ -81,6 +82,15 @@ TEST(ModelAdequacy, NamesTheGradeWhereTheLogHasIt) {
   const ModelAdequacy unknown = assess_model_adequacy(drive(0.0, 0.0, 7, 1.5e-2, false));
   EXPECT_EQ(unknown.dependences.size(), 4u);
   EXPECT_EQ(unknown.verdict.find("grade"), std::string::npos) << unknown.verdict;
+  // No altitude for the first quarter of the log (a long log whose first block had none): the
+  // grade is tested where it is known.
+  std::vector<OdometryResidualSample> partly = drive(0.0, 0.0, 7, 1.5e-2, true);
+  for (std::size_t i = 0; i < partly.size() / 4; ++i)
+    partly[i].grade = std::numeric_limits<double>::quiet_NaN();
+  const ModelAdequacy known_later = assess_model_adequacy(partly);
+  ASSERT_EQ(known_later.dependences.size(), 5u);
+  EXPECT_NE(known_later.verdict.find("along-track residual follows grade"), std::string::npos)
+      << known_later.verdict;
 }
 
 TEST(ModelAdequacy, NamesTheModelItJudges) {

@@ -5,9 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
+#include "../support/hilly_urban.hpp"
 #include "odocal/estimation/calibration.hpp"
+#include "odocal/estimation/driving_state.hpp"
 #include "odocal/estimation/log_preparation.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
@@ -116,6 +119,40 @@ TEST(PreparedBlocks, AShortLogIsOneBlockAndALongOneCalibratesAlike) {
               0.2 * whole.sigma_rl_m());
   EXPECT_NEAR(in_blocks.estimate.circumference_rr_m, whole.estimate.circumference_rr_m,
               0.2 * whole.sigma_rr_m());
+}
+
+TEST(PreparedBlocks, ABlockWithoutAltitudeHasNoGradeRatherThanALevelOne) {
+  // The receiver gave no altitude for the first 300 s: the blocks there cannot fit a grade. Their
+  // rows must not read "level" (a grade of 0 the verdict would test against), only "not known".
+  Log log = simulated_log(sim::simulate(testing::hilly_urban()));
+  for (std::size_t j = 0; j < log.gnss.size(); ++j) {
+    if (log.gnss.t_s[j] < 300.0) log.gnss.altitude_m[j] = std::numeric_limits<double>::quiet_NaN();
+  }
+  LogPreparation done;
+  const std::optional<Log> prepared = prepare_log(log, in_blocks_of(120.0), done);
+  ASSERT_TRUE(prepared.has_value());
+  const WheelStream& wheels = prepared->wheels;
+  ASSERT_EQ(wheels.grade.size(), wheels.size());
+  std::size_t unknown_early = 0, early = 0, graded_late = 0, late = 0;
+  double steepest = 0.0;
+  for (std::size_t k = 0; k < wheels.size(); ++k) {
+    const bool known = std::isfinite(wheels.grade[k]);
+    if (wheels.t_s[k] < 200.0) {
+      ++early;
+      unknown_early += known ? 0 : 1;
+    } else if (wheels.t_s[k] > 400.0) {
+      ++late;
+      graded_late += known ? 1 : 0;
+      if (known) steepest = std::max(steepest, std::abs(static_cast<double>(wheels.grade[k])));
+    }
+  }
+  EXPECT_EQ(unknown_early, early);
+  EXPECT_EQ(graded_late, late);
+  EXPECT_GT(steepest, 0.03);
+  // The driving state takes an unknown grade as level, as the unprojected increments are.
+  for (const DrivingState& state : driving_states(*prepared, prepared->vehicle.nominal_params())) {
+    ASSERT_TRUE(std::isfinite(state.specific_force_x_mps2));
+  }
 }
 
 }  // namespace

@@ -78,7 +78,8 @@ struct WheelStream {
   std::vector<float> side_slip_rad;
   // The road's grade (dz/ds) under sample k's increment, from the GNSS altitude (road_grade.hpp's
   // projection, which made the increments horizontal); empty: not known. Rows of a block of a
-  // long log that had no altitude read 0. Never read from a log file.
+  // long log that had too little altitude for a fit read NaN: not known, and not projected.
+  // Never read from a log file.
   std::vector<float> grade;
 
   std::size_t size() const { return t_s.size(); }

@@ -4,6 +4,7 @@
 // (one stream, or several of the same type side by side). An optional column may be empty.
 
 #include <algorithm>
+#include <limits>
 #include <type_traits>
 
 #include "odocal/data/log.hpp"
@@ -86,8 +87,17 @@ void drop_rows_before(Stream& stream, std::size_t first) {
       stream);
 }
 
+// What a row of a column reads where the column was not known for it: NaN for a measured or
+// derived quantity (a grade where a block had no altitude), zero for a flag (no chain break).
+template <typename Column>
+typename Column::value_type unknown_row() {
+  using Value = typename Column::value_type;
+  if constexpr (std::is_floating_point_v<Value>) return std::numeric_limits<Value>::quiet_NaN();
+  return Value{};
+}
+
 // Appends every column of `tail` to `stream`. A column only one of them has gets the other's
-// rows at their default (a chain break found in the tail only).
+// rows as unknown_row (a chain break found in the tail only, a block without altitude).
 template <typename Stream>
 void append_stream(Stream& stream, const Stream& tail) {
   if (stream.t_s.empty()) copy_stream_attributes(stream, tail);
@@ -95,9 +105,10 @@ void append_stream(Stream& stream, const Stream& tail) {
   for_each_column(
       [&](auto& column, const auto& more) {
         if (column.empty() && more.empty()) return;
-        column.resize(rows);
+        using Column = std::remove_reference_t<decltype(column)>;
+        column.resize(rows, unknown_row<Column>());
         if (more.empty()) {
-          column.resize(rows + more_rows);
+          column.resize(rows + more_rows, unknown_row<Column>());
         } else {
           column.insert(column.end(), more.begin(), more.end());
         }

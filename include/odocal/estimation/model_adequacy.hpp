@@ -30,7 +30,7 @@ struct OdometryResidualSample {
 struct ResidualDependence {
   std::string residual;  // "heading" or "along-track"
   std::string quantity;  // "lateral acceleration", "curvature", "longitudinal acceleration",
-                         // "speed squared", "grade" (only with every interval's grade known)
+                         // "speed squared", "grade" (over the intervals whose grade is known)
   double correlation{};  // partial correlation over the moving intervals (model_adequacy.cpp)
   double t_statistic{};  // rho sqrt(n - 2) / sqrt(1 - rho^2)
 };
