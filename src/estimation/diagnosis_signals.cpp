@@ -109,8 +109,6 @@ void append_diagnosis_signals(const Log& log, double from, double step_s, std::s
     s.position_speed_long_mps.push_back(position_speed);
     if (!log.gnss.speed_mps.empty())
       s.doppler_speed_mps.push_back(at(log.gnss.t_s, log.gnss.speed_mps, t));
-    s.gnss_speed_long_mps.push_back(
-        !log.gnss.speed_mps.empty() ? at(log.gnss.t_s, log.gnss.speed_mps, t) : position_speed);
     // Course rate over 1 s where the GNSS moves (below 2 m/s its course is noise).
     double course_rate = kNaN;
     if (i >= lag && i + lag < rows) {

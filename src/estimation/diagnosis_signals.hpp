@@ -21,10 +21,14 @@ struct DiagnosisSignals {
   // Over a 4 s baseline, for the wheel/GNSS distance ratio on straight driving: the speed of a
   // noisy track is biased high (|v + n| > |v|), by 3 % at parking speeds with 3 m of noise over
   // the 1 s baseline above, by a tenth of that over this one.
-  std::vector<double> speed_long_rl_mps, speed_long_rr_mps, gnss_speed_long_mps;
+  std::vector<double> speed_long_rl_mps, speed_long_rr_mps;
   // The same baseline's speed from the GNSS positions alone, and the Doppler column at its centre
   // (empty without one): the Doppler speed's unit is judged against the positions.
   std::vector<double> position_speed_long_mps, doppler_speed_mps;
+  // The GNSS speed the wheels are compared with over that baseline: Doppler where the log has it.
+  const std::vector<double>& gnss_speed_long_mps() const {
+    return doppler_speed_mps.empty() ? position_speed_long_mps : doppler_speed_mps;
+  }
   std::vector<double> gyro_radps, ax_mps2, ay_mps2;  // empty without imu.csv
   std::vector<double> heading_rate_radps;            // empty without heading.csv
 

@@ -234,7 +234,8 @@ class Doctor {
     const auto& compared = long_baseline           ? straight_long
                            : count(straight) >= 50 ? straight
                                                    : moving_;
-    const auto& gnss_speed = long_baseline ? signals_.gnss_speed_long_mps : signals_.gnss_speed_mps;
+    const auto& gnss_speed =
+        long_baseline ? signals_.gnss_speed_long_mps() : signals_.gnss_speed_mps;
     const auto ratio_of = [&](const std::vector<double>& short_speed,
                               const std::vector<double>& long_speed) {
       const auto& speed = long_baseline ? long_speed : short_speed;
