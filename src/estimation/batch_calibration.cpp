@@ -21,6 +21,7 @@
 #include "batch_speed_residual.hpp"
 #include "calibration_report.hpp"
 #include "calibration_run.hpp"
+#include "doppler_scale.hpp"
 #include "gnss_noise_estimate.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/driving_state.hpp"
@@ -1507,6 +1508,9 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   require_valid("batch", options.validate());
   BatchSummary summary;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
+  // The Doppler fit reads the column (the reference has judged it already where it reads it too).
+  if (options.gnss_speed_sigma_mps > 0.0 && !common.reference.use_gnss_speed)
+    check_doppler_scale(run.log(), summary.nominal);
   bool finished = false;  // auto scores its candidates itself
   if (options.tyre_model == TyreModelChoice::kAuto) {
     finished = batch::fit_auto(run, options, common, summary);

@@ -9,6 +9,7 @@
 
 #include "diagnosis_facts.hpp"
 #include "diagnosis_signals.hpp"
+#include "doppler_scale.hpp"
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/median.hpp"
 #include "odocal/estimation/prepared_blocks.hpp"
@@ -475,16 +476,8 @@ class Doctor {
     if (compared < 50) return false;
     const double ratio = median(std::move(ratios));
     if (std::abs(ratio - 1.0) <= 0.1) return false;
-    struct Unit {
-      const char* name;
-      double per_mps;
-    };
-    std::string likely = "the column is not a speed over ground in m/s";
-    for (const Unit unit : {Unit{"km/h", 3.6}, Unit{"mph", 2.2369}, Unit{"knots", 1.9438},
-                            Unit{"cm/s", 100.0}, Unit{"mm/s", 1000.0}}) {
-      if (std::abs(ratio / unit.per_mps - 1.0) < 0.05)
-        likely = fmt::format("the speed is in {} (x{:g})", unit.name, unit.per_mps);
-    }
+    std::string likely = likely_speed_unit(ratio);
+    if (likely.empty()) likely = "the column is not a speed over ground in m/s";
     add("gnss.speed_unit", FindingSeverity::kBlocking, "the GNSS Doppler speed is not in m/s",
         fmt::format("median Doppler / position speed {:.3f} over {:.0f} s driving straight", ratio,
                     seconds(compared)),

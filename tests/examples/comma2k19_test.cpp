@@ -10,6 +10,8 @@
 #include <filesystem>
 
 #include "../support/temp_log_dir.hpp"
+#include "estimation/doppler_scale.hpp"
+#include "odocal/error.hpp"
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/io/csv_import.hpp"
@@ -76,6 +78,31 @@ TEST(Comma2k19, ImportedAndCalibratedScaleMatchesTheReferencePose) {
     EXPECT_FALSE(result.difference_identifiable);
     EXPECT_NE(result.identifiability.find("not identifiable"), std::string::npos);
     EXPECT_DOUBLE_EQ(scale_rl, scale_rr);
+  }
+}
+
+TEST(Comma2k19, TheReceiversDopplerSpeedHasTheScaleOfTheWheelsAndThePositions) {
+  if (!std::filesystem::exists(kData / "wheel_speeds.csv"))
+    GTEST_SKIP() << "shared data absent: " << kData;
+  const testing::TempLogDir out;
+  import_csv(kMap, kData, out.path());
+  Log log = read_log(out.path());
+  ASSERT_EQ(log.gnss.speed_mps.size(), log.gnss.size());
+  const OdometryParams nominal = log.vehicle.nominal_params();
+  const auto wheels = doppler_over_wheels(log, nominal);
+  const auto positions = doppler_over_positions(log, nominal);
+  ASSERT_TRUE(wheels && positions);
+  // The rear wheels at their nominal circumference are ~0.85 % short (the reference pose's scale).
+  EXPECT_NEAR(wheels->ratio, reference_scale(log), 0.005);
+  EXPECT_NEAR(positions->ratio, 1.0, 0.02);
+  EXPECT_NO_THROW(check_doppler_scale(log, nominal));
+  // The same column in mph: refused, with its unit.
+  for (double& v : log.gnss.speed_mps) v *= 2.2369;
+  try {
+    check_doppler_scale(log, nominal);
+    ADD_FAILURE() << "a Doppler column in mph passed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("mph"), std::string::npos) << e.what();
   }
 }
 
