@@ -8,7 +8,6 @@
 #include <limits>
 
 #include "batch_fit.hpp"
-#include "doppler_scale.hpp"
 #include "input_mistake_hint.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/driving_state.hpp"
@@ -19,8 +18,6 @@ namespace {
 
 ReferenceTrajectory checked_reference(const Log& log, const CalibrationOptions& options) {
   require_valid("calibration", options.validate());
-  // The reference's speed update reads the Doppler column: its unit is judged first.
-  if (options.reference.use_gnss_speed) check_doppler_scale(log, log.vehicle.nominal_params());
   ReferenceTrajectory reference = compute_reference(log, options.reference);
   if (reference.poses.size() < options.min_reference_samples) {
     throw InsufficientDataError(

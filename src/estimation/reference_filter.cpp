@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "covariance_update.hpp"
+#include "doppler_scale.hpp"
 #include "hot_loop.hpp"
 #include "odocal/error.hpp"
 #include "odocal/model/angle.hpp"
@@ -201,6 +202,8 @@ ReferenceTrajectory compute_reference(const Log& log, const ReferenceOptions& op
     throw InsufficientDataError(
         "no GNSS fix inside the wheel time span: no reference can be computed");
   }
+  // The speed update reads the Doppler column: its unit is judged first.
+  if (options.use_gnss_speed) check_doppler_scale(log, log.vehicle.nominal_params());
   const std::size_t first_fix = static_cast<std::size_t>(first_fix_it - log.gnss.t_s.begin());
   const auto [yaw0, yaw_sigma] = initial_yaw(log, first_fix, options.gnss_sigma_m);
 

@@ -8,6 +8,7 @@
 
 #include "odocal/error.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
+#include "odocal/estimation/reference_filter.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
@@ -89,8 +90,10 @@ TEST(DopplerScale, CalibrationRefusesAColumnInKilometresPerHourBeforeItReadsIt) 
       EXPECT_NE(what.find("km/h"), std::string::npos) << what;
     }
   };
-  // The layer-1 reference's speed update (on by default) reads it, for every method.
+  // The layer-1 reference's speed update (on by default) reads it, for every method and for
+  // validate's reference.
   expect_refused(BatchOptions{}, CalibrationOptions{});
+  EXPECT_THROW(compute_reference(log, ReferenceOptions{}), InputError);
   // The batch's Doppler fit reads it where the reference does not.
   CalibrationOptions no_speed_update;
   no_speed_update.reference.use_gnss_speed = false;
