@@ -7,21 +7,12 @@
 
 #include "odocal/error.hpp"
 #include "odocal/estimation/interpolation.hpp"
-#include "odocal/model/odometry_model.hpp"
+#include "odocal/estimation/rolled_distance.hpp"
 
 namespace odocal {
 namespace {
 
 constexpr double kMinComparedS = 30.0;
-
-// The wheels' distance rolled up to each wheel sample (reversing counts forward: the Doppler
-// speed has no sign either).
-std::vector<double> rolled_distance(const WheelStream& wheels, const OdometryParams& nominal) {
-  std::vector<double> rolled(wheels.size(), 0.0);
-  for (std::size_t k = 1; k < wheels.size(); ++k)
-    rolled[k] = rolled[k - 1] + std::abs(body_increment(wheels.increment(k), nominal).distance_m);
-  return rolled;
-}
 
 bool has_doppler(const Log& log) {
   return log.gnss.speed_mps.size() == log.gnss.size() && log.gnss.size() >= 2 &&
@@ -29,6 +20,7 @@ bool has_doppler(const Log& log) {
 }
 
 // Fixes j and j + 1 are compared: close enough, both speeds read, the wheels rolling fast enough.
+// `rolled` counts reversing forward: the Doppler speed has no sign either.
 struct FixPairs {
   const Log& log;
   std::vector<double> rolled;
@@ -56,42 +48,22 @@ std::optional<DopplerScale> scale_of(double doppler_m, double other_m, double co
   return DopplerScale{doppler_m / other_m, compared_s};
 }
 
-}  // namespace
-
-std::string likely_speed_unit(double ratio) {
-  struct Unit {
-    const char* name;
-    double per_mps;
-  };
-  for (const Unit unit : {Unit{"km/h", 3.6}, Unit{"mph", 2.2369}, Unit{"knots", 1.9438},
-                          Unit{"cm/s", 100.0}, Unit{"mm/s", 1000.0}}) {
-    if (std::abs(ratio / unit.per_mps - 1.0) < 0.05)
-      return fmt::format("the speed is in {} (x{:g})", unit.name, unit.per_mps);
-  }
-  return {};
-}
-
-std::optional<DopplerScale> doppler_over_wheels(const Log& log, const OdometryParams& nominal,
-                                                double min_speed_mps, double max_gap_s) {
-  if (!has_doppler(log)) return std::nullopt;
-  const FixPairs pairs{log, rolled_distance(log.wheels, nominal), min_speed_mps, max_gap_s};
+std::optional<DopplerScale> over_wheels(const FixPairs& pairs) {
+  const GnssStream& gnss = pairs.log.gnss;
   double doppler_m = 0.0, wheels_m = 0.0, compared_s = 0.0;
-  for (std::size_t j = 0; j + 1 < log.gnss.size(); ++j) {
+  for (std::size_t j = 0; j + 1 < gnss.size(); ++j) {
     const std::optional<double> rolled = pairs.wheels_m(j);
     if (!rolled) continue;
     doppler_m += pairs.doppler_m(j);
     wheels_m += *rolled;
-    compared_s += log.gnss.t_s[j + 1] - log.gnss.t_s[j];
+    compared_s += gnss.t_s[j + 1] - gnss.t_s[j];
   }
   return scale_of(doppler_m, wheels_m, compared_s);
 }
 
-std::optional<DopplerScale> doppler_over_positions(const Log& log, const OdometryParams& nominal,
-                                                   double min_speed_mps, double max_gap_s) {
+std::optional<DopplerScale> over_positions(const FixPairs& pairs) {
   constexpr double kStretchS = 5.0;
-  if (!has_doppler(log)) return std::nullopt;
-  const GnssStream& gnss = log.gnss;
-  const FixPairs pairs{log, rolled_distance(log.wheels, nominal), min_speed_mps, max_gap_s};
+  const GnssStream& gnss = pairs.log.gnss;
   double doppler_m = 0.0, chords_m = 0.0, compared_s = 0.0;
   std::size_t start = 0;
   double stretch_m = 0.0;
@@ -113,13 +85,43 @@ std::optional<DopplerScale> doppler_over_positions(const Log& log, const Odometr
   return scale_of(doppler_m, chords_m, compared_s);
 }
 
+}  // namespace
+
+std::string likely_speed_unit(double ratio) {
+  struct Unit {
+    const char* name;
+    double per_mps;
+  };
+  for (const Unit unit : {Unit{"km/h", 3.6}, Unit{"mph", 2.2369}, Unit{"knots", 1.9438},
+                          Unit{"cm/s", 100.0}, Unit{"mm/s", 1000.0}}) {
+    if (std::abs(ratio / unit.per_mps - 1.0) < 0.05)
+      return fmt::format("the speed is in {} (x{:g})", unit.name, unit.per_mps);
+  }
+  return {};
+}
+
+std::optional<DopplerScale> doppler_over_wheels(const Log& log, const OdometryParams& nominal,
+                                                double min_speed_mps, double max_gap_s) {
+  if (!has_doppler(log)) return std::nullopt;
+  return over_wheels({log, rolled_distance_m(log.wheels, nominal), min_speed_mps, max_gap_s});
+}
+
+std::optional<DopplerScale> doppler_over_positions(const Log& log, const OdometryParams& nominal,
+                                                   double min_speed_mps, double max_gap_s) {
+  if (!has_doppler(log)) return std::nullopt;
+  return over_positions({log, rolled_distance_m(log.wheels, nominal), min_speed_mps, max_gap_s});
+}
+
 void check_doppler_scale(const Log& log, const OdometryParams& nominal) {
   const auto off = [](const std::optional<DopplerScale>& s) {
     return s && std::abs(s->ratio - 1.0) > 0.1;
   };
-  const std::optional<DopplerScale> wheels = doppler_over_wheels(log, nominal);
+  if (!has_doppler(log)) return;
+  const FixPairs pairs{log, rolled_distance_m(log.wheels, nominal), kDopplerJudgedSpeedMps,
+                       kDopplerMaxFixGapS};
+  const std::optional<DopplerScale> wheels = over_wheels(pairs);
   if (!off(wheels)) return;
-  const std::optional<DopplerScale> positions = doppler_over_positions(log, nominal);
+  const std::optional<DopplerScale> positions = over_positions(pairs);
   if (positions && !off(positions)) return;
   const DopplerScale& judged = positions ? *positions : *wheels;
   const std::string unit = likely_speed_unit(judged.ratio);
@@ -127,9 +129,10 @@ void check_doppler_scale(const Log& log, const OdometryParams& nominal) {
       {"gnss.csv", 0, "speed_mps"},
       fmt::format(
           "the Doppler speed reads {:.3f} times the {} speed over {:.0f} s of driving above "
-          "5 m/s ({:.3f} times the wheels' at the nominal circumferences): {}; convert it "
+          "{:g} m/s ({:.3f} times the wheels' at the nominal circumferences): {}; convert it "
           "to m/s or drop the column",
-          judged.ratio, positions ? "positions'" : "wheels'", judged.compared_s, wheels->ratio,
+          judged.ratio, positions ? "positions'" : "wheels'", judged.compared_s,
+          kDopplerJudgedSpeedMps, wheels->ratio,
           unit.empty() ? "it is not a speed over ground in m/s" : unit));
 }
 

@@ -22,18 +22,23 @@ struct DopplerScale {
   double compared_s{};
 };
 
+// The driving compared by default: the wheels above this speed, fixes at most this far apart.
+inline constexpr double kDopplerJudgedSpeedMps = 5.0;
+inline constexpr double kDopplerMaxFixGapS = 1.0;
+
 // Against the wheels at `nominal`: between consecutive fixes at most max_gap_s apart while the
 // wheels roll at least min_speed_mps (the wheels' speed, not the column's, whose scale is judged).
 // None without a Doppler column or with less than 30 s of such driving.
 std::optional<DopplerScale> doppler_over_wheels(const Log& log, const OdometryParams& nominal,
-                                                double min_speed_mps = 5.0, double max_gap_s = 1.0);
+                                                double min_speed_mps = kDopplerJudgedSpeedMps,
+                                                double max_gap_s = kDopplerMaxFixGapS);
 
 // Against the positions: the chord of each 5 s stretch at the same speeds. The fixes' noise
 // averages out over the stretches but lengthens each chord by about sigma^2 / length (1 % with
 // 3 m on 25 m), and a turn shortens it by a few per cent at most: well inside the 10 % judged.
 std::optional<DopplerScale> doppler_over_positions(const Log& log, const OdometryParams& nominal,
-                                                   double min_speed_mps = 5.0,
-                                                   double max_gap_s = 1.0);
+                                                   double min_speed_mps = kDopplerJudgedSpeedMps,
+                                                   double max_gap_s = kDopplerMaxFixGapS);
 
 // Throws InputError naming gnss.csv's speed_mps where the column is further than 10 % from both the
 // wheels and the positions (from the wheels alone where the positions cover too little): wear and

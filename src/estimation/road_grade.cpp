@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "odocal/estimation/interpolation.hpp"
+#include "odocal/estimation/rolled_distance.hpp"
 
 namespace odocal {
 namespace {
@@ -70,11 +71,7 @@ std::optional<GradeProfile> grade_from_gnss_altitude(const Log& log, const Odome
   if (gnss.altitude_m.empty() || wheels.size() < 2) return std::nullopt;
   GradeProfile profile;
   profile.step_m = std::max(1.0, window_m / 20.0);
-  profile.wheel_distance_m.assign(wheels.size(), 0.0);
-  for (std::size_t k = 1; k < wheels.size(); ++k) {
-    profile.wheel_distance_m[k] = profile.wheel_distance_m[k - 1] +
-                                  std::abs(body_increment(wheels.increment(k), nominal).distance_m);
-  }
+  profile.wheel_distance_m = rolled_distance_m(wheels, nominal);
   const double total_m = profile.wheel_distance_m.back();
   if (total_m < window_m) return std::nullopt;
   // Each fix placed at the distance driven when it was taken.
