@@ -20,7 +20,7 @@ of Hockenheim, with `auto` and the issue's targets, is a section of docs/results
     ODOCAL_CLI=build/apps/odocal/odocal /usr/bin/python3 bench/tyre_model_bench.py \\
         --seeds 10 --work /tmp/tyre-bench [--drives circuit urban] [--cars scenario low-heavy]
         [--models none extended physical auto] [--max-sigma-m 0.001] [--doppler-sigma-mps 0.05]
-        [--json FILE]
+        [--fit-doppler-sigma-mps -1] [--json FILE]
 """
 import argparse
 import json
@@ -128,10 +128,14 @@ def main():
     # The circumferences' sigma is what is measured: by default no refusal for a sigma above 1 mm.
     # At 0.001 (odocal's default) auto's rules for unidentified candidates come into play.
     parser.add_argument("--max-sigma-m", type=float, default=0.01)
-    # A Doppler speed column with this white noise (m/s), fitted with the same sigma.
+    # A Doppler speed column with this white noise (m/s), fitted with the same sigma unless
+    # --fit-doppler-sigma-mps says otherwise (-1: odocal's default, 0.1 m/s).
     parser.add_argument("--doppler-sigma-mps", type=float)
+    parser.add_argument("--fit-doppler-sigma-mps", type=float)
     parser.add_argument("--json", help="write every row here")
     args = parser.parse_args()
+    fit_doppler = (args.fit_doppler_sigma_mps if args.fit_doppler_sigma_mps is not None
+                   else args.doppler_sigma_mps)
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     print("| drive | drivetrain | car | tyre_model | mean \\|error\\| [mm] | inside 3σ | mean σ [mm] "
@@ -152,7 +156,7 @@ def main():
                     assert made.returncode == 0, made.stderr
                     logs.append(log)
                 for model in args.models:
-                    rows = [calibrate(log, model, args.work, args.max_sigma_m, args.doppler_sigma_mps)
+                    rows = [calibrate(log, model, args.work, args.max_sigma_m, fit_doppler)
                             for log in logs]
                     errors = [abs(e) for r in rows for e in r["errors"]]
                     inside = [abs(e) <= 3 * s for r in rows

@@ -108,6 +108,7 @@ class BatchProblem {
         batch_(options),
         body_(log.vehicle.body_geometry()),
         nominal_(nominal) {
+    doppler_sigma_mps_ = options.doppler_sigma_mps(!log.gnss.speed_mps.empty());
     keyframes_ =
         keyframe_samples(log.wheels, reference.first_wheel_index, batch_.keyframe_interval_s);
     if (keyframes_.size() < 3) {
@@ -507,9 +508,7 @@ class BatchProblem {
   }
 
  private:
-  bool use_speed() const {
-    return batch_.gnss_speed_sigma_mps > 0.0 && !log_.gnss.speed_mps.empty();
-  }
+  bool use_speed() const { return doppler_sigma_mps_ > 0.0; }
 
   // Segment i's Doppler speed against its wheels (none where the fixes do not cover it or a wheel
   // turns backwards: the Doppler speed has no sign).
@@ -518,9 +517,8 @@ class BatchProblem {
     // Below this the speed's magnitude is biased by its own noise (and reversing would hide).
     constexpr double kMinSpeedMps = 1.0;
     const double begin = log_.wheels.t_s[keyframes_[i]], end = log_.wheels.t_s[keyframes_[i + 1]];
-    const auto interval =
-        batch::doppler_interval(log_.gnss, begin, end, speed_max_gap_s_,
-                                std::max(kMinSpeedMps, 5.0 * batch_.gnss_speed_sigma_mps));
+    const auto interval = batch::doppler_interval(log_.gnss, begin, end, speed_max_gap_s_,
+                                                  std::max(kMinSpeedMps, 5.0 * doppler_sigma_mps_));
     if (!interval) return std::nullopt;
     batch::SpeedResidual r;
     for (std::size_t k = keyframes_[i] + 1; k <= keyframes_[i + 1]; ++k) {
@@ -539,7 +537,7 @@ class BatchProblem {
     }
     const double duration = end - begin;
     const double doppler_variance =
-        square(batch_.gnss_speed_sigma_mps) *
+        square(doppler_sigma_mps_) *
         std::max(interval->sum_squared_weights_s2, batch_.gnss_speed_correlation_s * duration);
     // The slip noise of the two arcs, each half the distance.
     const double slip_variance = 0.25 * square(noise_.slip_sigma_m_per_sqrt_m) *
@@ -952,8 +950,9 @@ class BatchProblem {
   std::vector<OdometryInterval> odometry_;
   // Per keyframe interval: its Doppler speed residual, where the log has one that covers it.
   std::vector<std::optional<batch::SpeedResidual>> speed_;
-  double speed_max_gap_s_ = 1.0;  // two Doppler fixes further apart leave the interval out
-  double speed_scale_ = 1.0;      // of the Doppler residuals' sigma (set_speed_noise)
+  double speed_max_gap_s_ = 1.0;    // two Doppler fixes further apart leave the interval out
+  double doppler_sigma_mps_ = 0.0;  // 0: no Doppler residuals
+  double speed_scale_ = 1.0;        // of the Doppler residuals' sigma (set_speed_noise)
   // Per keyframe interval; an empty factor: nothing measured there.
   std::vector<batch::FoldedGnssResidual> gnss_folds_;
   std::vector<batch::FoldedHeadingResidual> heading_folds_;
@@ -1509,7 +1508,8 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   BatchSummary summary;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
   // The Doppler fit reads the column (the reference has judged it already where it reads it too).
-  if (options.gnss_speed_sigma_mps > 0.0 && !common.reference.use_gnss_speed)
+  if (options.doppler_sigma_mps(!run.log().gnss.speed_mps.empty()) > 0.0 &&
+      !common.reference.use_gnss_speed)
     check_doppler_scale(run.log(), summary.nominal);
   bool finished = false;  // auto scores its candidates itself
   if (options.tyre_model == TyreModelChoice::kAuto) {

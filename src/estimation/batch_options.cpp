@@ -27,9 +27,10 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"adapt_gnss_noise", "", 0, 0,
        "re-solve with the GNSS noise the residuals show when it differs from the configured one",
        &O::adapt_gnss_noise},
-      {"gnss_speed_sigma_mps", "m/s", 0.0, 100.0,
+      {"gnss_speed_sigma_mps", "m/s", -1.0, 100.0,
        "white noise per fix of gnss.csv's speed_mps (Doppler), fitted against the wheels' "
-       "distance per keyframe interval (e.g. 0.1 with tyre_model: physical); 0: not used",
+       "distance per keyframe interval; 0: not used; negative: 0.05 where the log has the column, "
+       "except with tyre_model: extended",
        &O::gnss_speed_sigma_mps},
       {"gnss_speed_correlation_s", "s", 0.0, 100.0,
        "Doppler errors of fixes closer than this are taken as one (the receiver's filter)",
@@ -91,5 +92,11 @@ OptionTable<BatchOptions> BatchOptions::fields() {
 }
 
 std::string BatchOptions::validate() const { return check_option_ranges(fields(), *this); }
+
+double BatchOptions::doppler_sigma_mps(bool log_has_speed) const {
+  if (!log_has_speed) return 0.0;
+  if (gnss_speed_sigma_mps >= 0.0) return gnss_speed_sigma_mps;
+  return tyre_model == TyreModelChoice::kExtended ? 0.0 : kDefaultDopplerSigmaMps;
+}
 
 }  // namespace odocal

@@ -94,14 +94,17 @@ TEST(DopplerScale, CalibrationRefusesAColumnInKilometresPerHourBeforeItReadsIt) 
   // validate's reference.
   expect_refused(BatchOptions{}, CalibrationOptions{});
   EXPECT_THROW(compute_reference(log, ReferenceOptions{}), InputError);
-  // The batch's Doppler fit reads it where the reference does not.
+  // The batch's Doppler fit reads it where the reference does not: by default, or when asked.
   CalibrationOptions no_speed_update;
   no_speed_update.reference.use_gnss_speed = false;
+  expect_refused(BatchOptions{}, no_speed_update);
   BatchOptions doppler_fit;
   doppler_fit.gnss_speed_sigma_mps = 0.1;
   expect_refused(doppler_fit, no_speed_update);
   // Where nothing reads the column, the log calibrates.
-  const BatchSummary s = calibrate_batch(log, BatchOptions{}, no_speed_update);
+  BatchOptions no_doppler_fit;
+  no_doppler_fit.gnss_speed_sigma_mps = 0.0;
+  const BatchSummary s = calibrate_batch(log, no_doppler_fit, no_speed_update);
   EXPECT_TRUE(s.usable()) << s.full_report();
 }
 

@@ -132,8 +132,16 @@ TEST(PhysicalTyreBatch, TheDopplerSpeedSharpensItsCircumferenceAtRest) {
   BatchOptions options;
   options.tyre_model = TyreModelChoice::kPhysical;
   options.max_sigma_circumference_m = 0.01;
+  options.gnss_speed_sigma_mps = 0.0;
   const BatchSummary without = calibrate_batch(log, options);
   EXPECT_EQ(without.doppler_intervals, 0u);
+  // The default fits the column (at 0.05 m/s, widened where the residuals ask).
+  const BatchSummary by_default = calibrate_batch(log, [&] {
+    BatchOptions automatic = options;
+    automatic.gnss_speed_sigma_mps = BatchOptions{}.gnss_speed_sigma_mps;
+    return automatic;
+  }());
+  EXPECT_GT(by_default.doppler_intervals, by_default.keyframes / 2) << by_default.full_report();
   options.gnss_speed_sigma_mps = 0.05;
   const BatchSummary with = calibrate_batch(log, options);
   ASSERT_TRUE(with.usable()) << with.full_report();

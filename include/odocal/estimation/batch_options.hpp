@@ -55,11 +55,15 @@ struct BatchOptions {
   bool adapt_gnss_noise = true;
   // gnss.csv's speed_mps column (Doppler speed over ground) against the wheels' distance over each
   // keyframe interval, with this white noise per fix; errors of fixes closer than
-  // gnss_speed_correlation_s are taken as one (a receiver filters its velocity). 0: not used, the
-  // default: it sharpens the physical tyre terms (docs/tyre-model.md, "The Doppler speed"), but
-  // the regression terms' circumference at rest, an extrapolation along their fitted shape of
-  // the slip, comes out confidently wrong with it on hard driving.
-  double gnss_speed_sigma_mps = 0.0;
+  // gnss_speed_correlation_s are taken as one (a receiver filters its velocity). 0: not used.
+  // Negative (the default): kDefaultDopplerSigmaMps where the log has the column, widened by the
+  // residuals where the receiver is noisier; it sharpens the physical tyre terms and is what
+  // brings a realistic log's circumference at rest under the 1 mm threshold (docs/tyre-model.md,
+  // "The Doppler speed"). Not by default under tyre_model: extended chosen by hand: the
+  // regression terms' circumference at rest, an extrapolation along their fitted shape of the
+  // slip, comes out confidently wrong with it on hard driving (auto carries that gap in its sigma).
+  static constexpr double kDefaultDopplerSigmaMps = 0.05;
+  double gnss_speed_sigma_mps = -1.0;
   double gnss_speed_correlation_s = 0.1;
   bool use_heading = true;  // heading.csv residuals
   bool use_gyro = true;     // imu.csv yaw-rate residuals
@@ -100,6 +104,9 @@ struct BatchOptions {
 
   static OptionTable<BatchOptions> fields();
   std::string validate() const;  // empty when valid
+  // gnss_speed_sigma_mps for a log with (or without) gnss.csv's speed_mps column: the default
+  // resolved, 0 where the column is missing.
+  double doppler_sigma_mps(bool log_has_speed) const;
 };
 
 }  // namespace odocal
