@@ -305,6 +305,8 @@ class BatchProblem {
       // The grade the preparation projected with (none: not known, and not tested).
       if (!log_.wheels.grade.empty())
         sample.grade = interval_mean(log_.wheels.grade, keyframes_[i], keyframes_[i + 1]);
+      if (i < speed_.size() && speed_[i])
+        sample.doppler_error_m = -speed_whitened(i) * speed_[i]->sigma_m;  // Doppler - wheels
       if (i < gyro_turns_.size() && gyro_turns_[i]) {
         const batch::GyroResidual& gyro = *gyro_turns_[i];
         const double wheels_turn = sample.pose1(2) - sample.pose0(2) - sample.error(2);
@@ -492,14 +494,17 @@ class BatchProblem {
   // Every Doppler residual at the current unknowns, whitened (robust loss not applied).
   std::vector<double> speed_whitened() const {
     std::vector<double> whitened;
-    for (std::size_t i = 0; i < speed_.size(); ++i) {
-      if (!speed_[i]) continue;
-      double r = 0.0;
-      (*speed_[i])(params_.data(), lever_.data(), &latency_, count_error_[i].data(),
-                   count_error_[i + 1].data(), &r);
-      whitened.push_back(r);
-    }
+    for (std::size_t i = 0; i < speed_.size(); ++i)
+      if (speed_[i]) whitened.push_back(speed_whitened(i));
     return whitened;
+  }
+  // Keyframe interval i's Doppler residual (it must have one), whitened: (wheels - Doppler) /
+  // sigma.
+  double speed_whitened(std::size_t i) const {
+    double r = 0.0;
+    (*speed_[i])(params_.data(), lever_.data(), &latency_, count_error_[i].data(),
+                 count_error_[i + 1].data(), &r);
+    return r;
   }
   // Keyframe intervals whose Doppler speed is in the fit.
   std::size_t speed_intervals() const {

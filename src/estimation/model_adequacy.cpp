@@ -5,6 +5,7 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace odocal {
 namespace {
@@ -43,6 +44,10 @@ std::vector<double> rows_where(const std::vector<double>& values, const std::vec
 std::string likely_cause(const ResidualDependence& d) {
   if (d.quantity == "lateral acceleration")
     return "the rolling radius changes with load (load transfer in turns)";
+  if (d.quantity == "longitudinal acceleration" && d.residual == "Doppler speed")
+    return "the wheels slip or roll on a radius that the load moves (drive and brake slip, "
+           "longitudinal load transfer), or the Doppler speed and the wheels are not simultaneous "
+           "(a receiver's velocity filter, a wheel-speed latency: estimate_latency)";
   if (d.quantity == "longitudinal acceleration")
     return "the driven or braked wheels slip (drive and brake slip), or the wheel speeds lag the "
            "other sensors (a latency makes an along-track error of -latency x a_x)";
@@ -70,7 +75,7 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
     speed[i] = distance[i] / std::max(s.t1_s - s.t0_s, 1e-9);
   }
   std::vector<double> heading_per_m, along_per_m, lateral, longitudinal, speed_squared, curvature;
-  std::vector<double> whitened_heading, grade;
+  std::vector<double> whitened_heading, grade, doppler_per_m;
   double chi2 = 0.0;
   for (std::size_t i = 1; i + 1 < samples.size(); ++i) {
     const OdometryResidualSample& s = samples[i];
@@ -86,6 +91,7 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
     speed_squared.push_back(speed[i] * speed[i]);
     whitened_heading.push_back(s.whitened(2));
     grade.push_back(s.grade);
+    doppler_per_m.push_back(s.doppler_error_m / distance[i]);
     chi2 += s.whitened.squaredNorm();
   }
   result.intervals = heading_per_m.size();
@@ -118,18 +124,33 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
   test("heading", heading_per_m, "curvature", curvature, {});
   test("along-track", along_per_m, "longitudinal acceleration", longitudinal, {&speed_squared});
   test("along-track", along_per_m, "speed squared", speed_squared, {&longitudinal});
+  // The rows where `known` is finite, of it and of the driving state, when there are enough.
+  struct KnownRows {
+    std::vector<bool> keep;
+    std::vector<double> values, longitudinal, speed_squared;
+  };
+  const auto rows_known = [&](const std::vector<double>& known) -> std::optional<KnownRows> {
+    std::vector<bool> keep(known.size());
+    std::transform(known.begin(), known.end(), keep.begin(),
+                   [](double v) { return std::isfinite(v); });
+    if (std::count(keep.begin(), keep.end(), true) < 10) return std::nullopt;
+    return KnownRows{keep, rows_where(known, keep), rows_where(longitudinal, keep),
+                     rows_where(speed_squared, keep)};
+  };
   // Climbing takes a drive force that the horizontal acceleration does not show (m g grade):
   // slip beyond what acceleration and speed explain. Only where the grade is known (a block of a
   // long log without altitude has none).
-  std::vector<bool> graded(grade.size());
-  std::transform(grade.begin(), grade.end(), graded.begin(),
-                 [](double g) { return std::isfinite(g); });
-  if (std::count(graded.begin(), graded.end(), true) >= 10) {
-    const std::vector<double> graded_along = rows_where(along_per_m, graded);
-    const std::vector<double> graded_longitudinal = rows_where(longitudinal, graded);
-    const std::vector<double> graded_speed_squared = rows_where(speed_squared, graded);
-    test("along-track", graded_along, "grade", rows_where(grade, graded),
-         {&graded_longitudinal, &graded_speed_squared});
+  if (const auto graded = rows_known(grade)) {
+    test("along-track", rows_where(along_per_m, graded->keep), "grade", graded->values,
+         {&graded->longitudinal, &graded->speed_squared});
+  }
+  // The Doppler speed against the wheels: the slip that the poses, following the wheels between
+  // fixes, keep only a sliver of in the along-track residual.
+  if (const auto doppler = rows_known(doppler_per_m)) {
+    test("Doppler speed", doppler->values, "longitudinal acceleration", doppler->longitudinal,
+         {&doppler->speed_squared});
+    test("Doppler speed", doppler->values, "speed squared", doppler->speed_squared,
+         {&doppler->longitudinal});
   }
 
   const ResidualDependence* strongest = nullptr;

@@ -59,6 +59,28 @@ TEST(ModelAdequacyBatch, RearWheelsThatClimbAreNamedByTheGrade) {
   EXPECT_LT(std::abs(front.dependences.back().correlation), 0.3);
 }
 
+// The realistic urban drive of a rear-driven car with a receiver's Doppler speed: the plain fit's
+// along-track residual keeps only a sliver of the drive slip (the poses follow the wheels between
+// fixes), the Doppler speed sees it in every interval. The ideal car's is white.
+TEST(ModelAdequacyBatch, TheDopplerSpeedNamesTheSlipOfADrivenWheel) {
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.gnss.speed_sigma_mps = 0.05;
+  BatchOptions plain;
+  plain.tyre_model = TyreModelChoice::kNone;
+  const ModelAdequacy slipping =
+      calibrate_batch(simulated_log(sim::simulate(scenario)), plain).model_adequacy;
+  EXPECT_FALSE(slipping.explains);
+  EXPECT_NE(slipping.verdict.find("Doppler speed residual follows longitudinal acceleration"),
+            std::string::npos)
+      << slipping.verdict;
+  EXPECT_NE(slipping.verdict.find("tyre_model: physical"), std::string::npos) << slipping.verdict;
+  scenario.ideal = true;
+  const ModelAdequacy rolling =
+      calibrate_batch(simulated_log(sim::simulate(scenario)), plain).model_adequacy;
+  EXPECT_EQ(rolling.dependences.size(), 6u);
+  EXPECT_TRUE(rolling.explains) << rolling.verdict;
+}
+
 TEST(ModelAdequacyBatch, EveryMethodIsJudgedUnlessAskedNotTo) {
   const Log ideal = simulated_log(ideal_lap(0.0));
   const Log wide = simulated_log(ideal_lap(1.76));

@@ -1,6 +1,7 @@
 // Model adequacy against residuals with a known dependence: drawn white residuals are explained;
 // a heading error per metre proportional to lateral acceleration, or an along-track error
-// proportional to longitudinal acceleration or to the grade, is named.
+// proportional to longitudinal acceleration or to the grade, or a Doppler distance short of the
+// wheels' under acceleration, is named.
 
 #include "odocal/estimation/model_adequacy.hpp"
 
@@ -91,6 +92,32 @@ TEST(ModelAdequacy, NamesTheGradeWhereTheLogHasIt) {
   ASSERT_EQ(known_later.dependences.size(), 5u);
   EXPECT_NE(known_later.verdict.find("along-track residual follows grade"), std::string::npos)
       << known_later.verdict;
+}
+
+TEST(ModelAdequacy, NamesTheSlipTheDopplerSpeedSees) {
+  // The poses follow the wheels between fixes, so the along-track residual stays white; the
+  // Doppler distance per interval falls short of the wheels' by 2 per mille per m/s^2.
+  std::vector<OdometryResidualSample> samples = drive(0.0, 0.0, 8);
+  std::mt19937_64 rng(8);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  for (std::size_t i = 1; i + 1 < samples.size(); ++i) {
+    const double distance = (samples[i].pose1 - samples[i].pose0).head<2>().norm();
+    const double ax = (samples[i + 1].pose1 - samples[i + 1].pose0).head<2>().norm() - distance;
+    samples[i].doppler_error_m = -2e-3 * ax * distance + noise(rng);
+  }
+  const ModelAdequacy slip = assess_model_adequacy(samples);
+  EXPECT_EQ(slip.dependences.size(), 6u);
+  EXPECT_FALSE(slip.explains);
+  EXPECT_NE(slip.verdict.find("Doppler speed residual follows longitudinal acceleration"),
+            std::string::npos)
+      << slip.verdict;
+  EXPECT_NE(slip.verdict.find("not simultaneous"), std::string::npos) << slip.verdict;
+  // White Doppler residuals are explained; where the log has none, the Doppler is not tested.
+  for (OdometryResidualSample& s : samples) s.doppler_error_m = noise(rng);
+  const ModelAdequacy white = assess_model_adequacy(samples);
+  EXPECT_EQ(white.dependences.size(), 6u);
+  EXPECT_TRUE(white.explains) << white.verdict;
+  EXPECT_EQ(assess_model_adequacy(drive(0.0, 0.0, 8)).dependences.size(), 4u);
 }
 
 TEST(ModelAdequacy, NamesTheModelItJudges) {

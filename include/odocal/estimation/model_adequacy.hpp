@@ -5,8 +5,9 @@
 // driving state there. A model that fits leaves white residuals that depend on nothing; a tyre
 // whose rolling radius moves with load, slip or speed leaves residuals that follow lateral
 // acceleration (load transfer in turns: the heading residual), longitudinal acceleration
-// (drive and brake slip: the along-track residual), speed (radius growth) or the road's grade
-// (the drive force that climbing takes, beyond acceleration).
+// (drive and brake slip: the along-track residual, and the Doppler speed's where the log has one),
+// speed (radius growth) or the road's grade (the drive force that climbing takes, beyond
+// acceleration).
 // docs/model-adequacy.md.
 
 #include <Eigen/Core>
@@ -24,11 +25,15 @@ struct OdometryResidualSample {
   Eigen::Vector3d whitened;  // the same, whitened by the interval's odometry covariance
   // dz/ds fitted from GNSS altitude (road_grade.hpp); NaN where the log has no altitude.
   double grade{std::numeric_limits<double>::quiet_NaN()};
+  // The GNSS Doppler speed's distance over the interval minus the wheels' (m); NaN where it is
+  // not in the fit. Unlike the along-track error it does not come from poses that follow the
+  // wheels between fixes: it sees the slip within a second.
+  double doppler_error_m{std::numeric_limits<double>::quiet_NaN()};
 };
 
 // A residual's linear dependence on one driving quantity.
 struct ResidualDependence {
-  std::string residual;  // "heading" or "along-track"
+  std::string residual;  // "heading", "along-track" or "Doppler speed"
   std::string quantity;  // "lateral acceleration", "curvature", "longitudinal acceleration",
                          // "speed squared", "grade" (over the intervals whose grade is known)
   double correlation{};  // partial correlation over the moving intervals (model_adequacy.cpp)
