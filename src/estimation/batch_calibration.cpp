@@ -326,9 +326,14 @@ class BatchProblem {
   // odometry chain would take the solver many small steps.
   // `remeasure_states`: false for a round that only re-weights (the driving state stays as the
   // last re-linearisation measured it).
-  void preintegrate_all(double slip_floor = 0.0, bool remeasure_states = true) {
-    folded_fixes_ = 0;
-    folded_headings_ = 0;
+  // Folds::kKeep keeps the GNSS and heading folds of the last pre-integration (they must be at
+  // the same unknowns): only the odometry and the Doppler speed, the residuals that the body's
+  // numbers reach at the scale of the whole log, are pre-integrated again.
+  enum class Folds { kRebuild, kKeep };
+  void preintegrate_all(double slip_floor = 0.0, bool remeasure_states = true,
+                        Folds folds = Folds::kRebuild) {
+    const bool refold = folds == Folds::kRebuild;
+    if (refold) folded_fixes_ = folded_headings_ = 0;
     const OdometryParams at{params_[0], params_[1], params_[2]};
     problem_.reset();  // its blocks point to the folds replaced here; freed before the states
     if (remeasure_states && tyre_fitted() && !tyre_model().plain()) {
@@ -344,11 +349,13 @@ class BatchProblem {
     params_lin_ = Eigen::Map<const batch::ParamsVector>(params_.data());
     odometry_.clear();
     speed_.clear();
-    gnss_folds_.assign(keyframes_.size() - 1, {});
-    heading_folds_.assign(keyframes_.size() - 1, {});
-    max_weight_change_ = 0.0f;
-    gnss_columns_ = gnss_columns();
-    heading_columns_ = heading_columns();
+    if (refold) {
+      gnss_folds_.assign(keyframes_.size() - 1, {});
+      heading_folds_.assign(keyframes_.size() - 1, {});
+      max_weight_change_ = 0.0f;
+      gnss_columns_ = gnss_columns();
+      heading_columns_ = heading_columns();
+    }
     std::size_t next_fix = 0, next_heading = 0;
     for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
       const PreintegratedSegment segment =
@@ -358,6 +365,7 @@ class BatchProblem {
       speed_.push_back(std::nullopt);
       if (gap_segment(i)) continue;
       if (use_speed() && rough_segment_[i] == 0) speed_.back() = speed_residual(i, segment, at);
+      if (!refold) continue;
       fold_gnss(i, segment, next_fix);
       if (batch_.use_heading && log_.heading) fold_heading(i, segment, next_heading);
     }
@@ -436,7 +444,10 @@ class BatchProblem {
   // the log cannot identify, docs/tyre-model.md): per body parameter, one Gauss-Newton step from
   // the solution with the parameter moved by a quarter of its uncertainty, scaled to the whole
   // (the linear sensitivity, without solving again); the outer products summed, as for
-  // independent errors. The solution and its problem are restored after.
+  // independent errors. The GNSS and heading folds are built once, at the solution: the body
+  // reaches them only through the wheels' motion within one keyframe interval, while it moves
+  // the odometry and the Doppler speed over the whole log. The solution and its problem are
+  // restored after.
   void add_body_uncertainty() {
     body_covariance_.setZero();
     body_responses_.clear();
@@ -444,12 +455,13 @@ class BatchProblem {
     const Unknowns solution = unknowns();
     const VehicleBody stated = body_;
     const batch::ParamsVector at = Eigen::Map<const batch::ParamsVector>(params_.data());
+    preintegrate_all(0.0, false);
     for (const BodyUncertainty& uncertainty : kBodyUncertainties) {
       const double sigma = uncertainty.sigma(stated);
       constexpr double kStep = 0.25;
       body_ = stated;
       body_.*(uncertainty.member) += kStep * sigma;
-      preintegrate_all(0.0, false);
+      preintegrate_all(0.0, false, Folds::kKeep);
       solve(1);
       const batch::ParamsVector moved =
           (Eigen::Map<const batch::ParamsVector>(params_.data()) - at) / kStep;
@@ -458,7 +470,7 @@ class BatchProblem {
       set_unknowns(solution);
     }
     body_ = stated;
-    preintegrate_all(0.0, false);
+    preintegrate_all(0.0, false, Folds::kKeep);
     solve();  // the solution's own problem again, for the summary (it starts converged)
   }
   const Eigen::Matrix<double, batch::kParams, batch::kParams>& body_covariance() const {

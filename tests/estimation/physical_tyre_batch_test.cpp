@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "../support/hilly_urban.hpp"
@@ -156,6 +157,33 @@ TEST(PhysicalTyreBatch, TheDopplerSpeedSharpensItsCircumferenceAtRest) {
   }
   EXPECT_LT(with.sigma_rl_m(), 0.6 * without.sigma_rl_m())
       << with.sigma_rl_m() << " against " << without.sigma_rl_m();
+}
+
+TEST(PhysicalTyreBatch, TheBodysShareOfSigmaIsWhatRefittingWithTheBodyMovedGives) {
+  // The body's share of sigma is a linear response (one Gauss-Newton step per body number, with
+  // the GNSS folds kept at the solution). Against the independent truth of a whole second fit
+  // with vehicle.yaml's rolling resistance (most of the share on the urban drive) moved by its
+  // stated uncertainty, 0.004: the circumference moves by what the share says.
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.gnss.speed_sigma_mps = 0.05;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  Log log = simulated_log(drive);
+  const BatchSummary stated = calibrate(log, TyreModelChoice::kPhysical);
+  ASSERT_TRUE(stated.usable()) << stated.full_report();
+  const auto part = std::find_if(stated.body_sigma_parts.begin(), stated.body_sigma_parts.end(),
+                                 [](const auto& p) { return p.key == "rolling_resistance"; });
+  ASSERT_NE(part, stated.body_sigma_parts.end());
+  log.vehicle.body.rolling_resistance += 0.004;
+  const BatchSummary moved = calibrate(log, TyreModelChoice::kPhysical);
+  ASSERT_TRUE(moved.usable()) << moved.full_report();
+  const std::array<double, 2> refitted = {
+      moved.estimate.circumference_rl_m - stated.estimate.circumference_rl_m,
+      moved.estimate.circumference_rr_m - stated.estimate.circumference_rr_m};
+  for (std::size_t wheel = 0; wheel < 2; ++wheel) {
+    EXPECT_GT(part->sigma_m[wheel], 3e-4) << "the share is not the drive's largest";
+    EXPECT_NEAR(std::abs(refitted[wheel]), part->sigma_m[wheel], 0.15 * part->sigma_m[wheel])
+        << "wheel " << wheel;
+  }
 }
 
 TEST(PhysicalTyreBatch, CalibratesAHillyDriveWithTheForceThatClimbingTakes) {
