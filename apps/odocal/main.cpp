@@ -11,6 +11,7 @@
 #include "exit_codes.hpp"
 #include "experiment_command.hpp"
 #include "import_command.hpp"
+#include "large_buffers.hpp"
 #include "message_text.hpp"
 #include "odocal/error.hpp"
 #include "report_command.hpp"
@@ -19,6 +20,7 @@
 
 int main(int argc, char** argv) {
   using namespace odocal::cli;
+  return_large_buffers_to_the_system();
   CLI::App app{"odocal: off-line calibration of wheel odometry from logged drives"};
   app.require_subcommand(1);
   add_calibrate_command(app);

@@ -179,17 +179,26 @@ class BatchProblem {
     params_[static_cast<std::size_t>(kTyreOffset + j)] = 0.0;
   }
   // Every unknown, and the robust loss's weights, to be put back.
+  enum class Folds { kRebuild, kKeep };  // preintegrate_all's
   struct Unknowns {
     std::vector<Block3> poses;
     ParamsBlock params;
     Block2 lever;
     double latency, heading_bias, gyro_bias;
     std::vector<Block2> gnss_bias, count_error;
-    std::vector<float> gnss_weights;
+    std::optional<std::vector<float>> gnss_weights;  // none: they stay as they are
   };
-  Unknowns unknowns() const {
-    return {poses_,     params_,    lever_,       latency_,     heading_bias_,
-            gyro_bias_, gnss_bias_, count_error_, gnss_weights_};
+  // kKeep leaves out the robust weights (a float per fix): only a fold of the fixes changes them.
+  Unknowns unknowns(Folds folds = Folds::kRebuild) const {
+    return {poses_,
+            params_,
+            lever_,
+            latency_,
+            heading_bias_,
+            gyro_bias_,
+            gnss_bias_,
+            count_error_,
+            folds == Folds::kRebuild ? std::optional(gnss_weights_) : std::nullopt};
   }
   void set_unknowns(const Unknowns& u) {
     poses_ = u.poses;
@@ -200,7 +209,7 @@ class BatchProblem {
     gyro_bias_ = u.gyro_bias;
     gnss_bias_ = u.gnss_bias;
     count_error_ = u.count_error;
-    gnss_weights_ = u.gnss_weights;
+    if (u.gnss_weights) gnss_weights_ = *u.gnss_weights;
   }
 
   // Every unknown back to where the first solve started (the layer-1 reference's poses, the
@@ -329,7 +338,6 @@ class BatchProblem {
   // Folds::kKeep keeps the GNSS and heading folds of the last pre-integration (they must be at
   // the same unknowns): only the odometry and the Doppler speed, the residuals that the body's
   // numbers reach at the scale of the whole log, are pre-integrated again.
-  enum class Folds { kRebuild, kKeep };
   void preintegrate_all(double slip_floor = 0.0, bool remeasure_states = true,
                         Folds folds = Folds::kRebuild) {
     const bool refold = folds == Folds::kRebuild;
@@ -452,10 +460,10 @@ class BatchProblem {
     body_covariance_.setZero();
     body_responses_.clear();
     if (!tyre_terms_ || *tyre_terms_ != TyreTerms::kPhysical || tyre_model().plain()) return;
-    const Unknowns solution = unknowns();
+    preintegrate_all(0.0, false);
+    const Unknowns solution = unknowns(Folds::kKeep);
     const VehicleBody stated = body_;
     const batch::ParamsVector at = Eigen::Map<const batch::ParamsVector>(params_.data());
-    preintegrate_all(0.0, false);
     for (const BodyUncertainty& uncertainty : kBodyUncertainties) {
       const double sigma = uncertainty.sigma(stated);
       constexpr double kStep = 0.25;
