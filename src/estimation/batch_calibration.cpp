@@ -178,8 +178,9 @@ class BatchProblem {
     tyre_held_sigma_[static_cast<std::size_t>(j)] = sigma;
     params_[static_cast<std::size_t>(kTyreOffset + j)] = 0.0;
   }
+  // Whether a pre-integration rebuilds the GNSS and heading folds or keeps the last ones.
+  enum class Folds { kRebuild, kKeep };
   // Every unknown, and the robust loss's weights, to be put back.
-  enum class Folds { kRebuild, kKeep };  // preintegrate_all's
   struct Unknowns {
     std::vector<Block3> poses;
     ParamsBlock params;
