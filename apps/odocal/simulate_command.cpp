@@ -27,6 +27,7 @@ struct SimulateArgs {
   std::optional<std::uint64_t> noise_seed;
   std::optional<std::uint64_t> trajectory_seed;
   std::optional<double> gnss_sigma_m;
+  std::optional<double> gnss_speed_sigma_mps;
   std::optional<std::string> gnss_output;
   std::optional<std::string> gnss_altitude;
   std::optional<std::string> wheel_output;
@@ -48,6 +49,7 @@ void run_simulate(const SimulateArgs& args) {
   if (args.noise_seed) scenario.seeds.noise = *args.noise_seed;
   if (args.trajectory_seed) scenario.seeds.trajectory = *args.trajectory_seed;
   if (args.gnss_sigma_m) scenario.gnss.sigma_m = *args.gnss_sigma_m;
+  if (args.gnss_speed_sigma_mps) scenario.gnss.speed_sigma_mps = *args.gnss_speed_sigma_mps;
   if (args.gnss_output) scenario.gnss.output_latlon = *args.gnss_output == "latlon";
   if (args.gnss_altitude) {
     using Altitude = sim::GnssSimConfig::Altitude;
@@ -105,6 +107,11 @@ void add_simulate_command(CLI::App& app) {
                       "Trajectory seed (driver variation)");
   command->add_option("--gnss-sigma", args->gnss_sigma_m, "GNSS white noise per axis, m")
       ->check(finite_in(0.0, 1e3));
+  command
+      ->add_option("--gnss-speed-sigma", args->gnss_speed_sigma_mps,
+                   "Doppler speed column speed_mps with this white noise, m/s (0: exact); the "
+                   "scenario's otherwise (none built in)")
+      ->check(finite_in(0.0, 10.0));
   command->add_option("--gnss-output", args->gnss_output, "GNSS as local x,y or lat,lon")
       ->check(CLI::IsMember({"local", "latlon"}));
   command

@@ -54,6 +54,10 @@ def main(argv=None):
                             help="inflation after a pressure loss, relative (default 0.75)")
     sim_parser.add_argument("--gap-km", type=float, default=5.0,
                             help="most driving not logged between two drives, km (default 5)")
+    sim_parser.add_argument("--doppler-sigma", type=float, default=0.05,
+                            help="noise of the receiver's Doppler speed column, m/s (default 0.05)")
+    sim_parser.add_argument("--no-doppler", action="store_true",
+                            help="drives without a Doppler speed column")
     sim_parser.add_argument("--workers", type=int, default=2, help="simulations in parallel")
     args = parser.parse_args(argv)
     if args.command == "run":
@@ -69,6 +73,8 @@ def main(argv=None):
             parser.error("--vehicles, --drives, --laps and --workers must be 1 or more")
         if not 0 <= args.event_share <= 1 or not 0.3 <= args.pressure <= 1.5 or args.gap_km < 0:
             parser.error("--event-share in [0, 1], --pressure in [0.3, 1.5], --gap-km >= 0")
+        if not 0 <= args.doppler_sigma <= 10:
+            parser.error("--doppler-sigma in [0, 10] m/s")
         return simulate.simulate(args)
     return 2
 

@@ -68,13 +68,15 @@ def plan_vehicle(index, args):
 
 
 def simulate_drive(args_tuple):
-    cli, out, vehicle, drive, scenario, laps, ideal = args_tuple
+    cli, out, vehicle, drive, scenario, laps, ideal, doppler_sigma = args_tuple
     command = [cli, "simulate", "--scenario", scenario, "--laps", str(laps), "--out", out,
                "--seed", str(drive["seed"]), "--trajectory-seed", str(drive["seed"]),
                "--vehicle-id", vehicle,
                "--wear-rl", f"{drive['wear_mm']['rl']:.6f}", "--wear-rr", f"{drive['wear_mm']['rr']:.6f}",
                "--pressure-rl", f"{drive['pressure']['rl']:.4f}",
                "--pressure-rr", f"{drive['pressure']['rr']:.4f}"] + (["--ideal"] if ideal else [])
+    if doppler_sigma is not None:
+        command += ["--gnss-speed-sigma", f"{doppler_sigma:g}"]
     done = subprocess.run(command, capture_output=True, text=True)
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(command)}: {done.stderr.strip()}")
@@ -113,8 +115,11 @@ def simulate(args):
     cli = odocal_cli()
     args.lap_km = lap_km(cli, args.scenario, args.ideal)
     plans = [plan_vehicle(v, args) for v in range(args.vehicles)]
+    # A receiver's Doppler speed, as automotive receivers report it: without it, the tyre model
+    # cannot tell a driven rear wheel's slip from its circumference (docs/fleet.md#simulate).
+    doppler = None if args.no_doppler else args.doppler_sigma
     jobs = [(cli, os.path.join(args.out, p["vehicle_id"], d["name"]), p["vehicle_id"], d,
-             args.scenario, args.laps, args.ideal) for p in plans for d in p["drives"]]
+             args.scenario, args.laps, args.ideal, doppler) for p in plans for d in p["drives"]]
     with ProcessPoolExecutor(max_workers=max(args.workers, 1)) as pool:
         truths = list(pool.map(simulate_drive, jobs, chunksize=4))
     it = iter(truths)
@@ -122,6 +127,7 @@ def simulate(args):
         for drive in plan["drives"]:
             drive.update(next(it))
     truth = {"scenario": args.scenario, "laps": args.laps, "ideal": args.ideal, "seed": args.seed,
+             "doppler_sigma_mps": doppler,
              "vehicles": plans}
     with open(os.path.join(args.out, "fleet_truth.json"), "w") as f:
         json.dump(truth, f, indent=1)

@@ -1506,9 +1506,10 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
 
 ModelAdequacy batch::judge_model_adequacy(const CalibrationRun& run, const OdometryParams& start,
                                           const CalibrationOptions& common) {
-  // The batch's defaults (the plain model, its 1 s keyframes), its GNSS noise adapted as its own
-  // fit's is: under a configured sigma far above the receiver's the poses follow the wheels and
-  // hide their slip (comma2k19: 3 m configured, 0.13 m found).
+  // The plain model (no tyre terms are given) with the batch's defaults (its 1 s keyframes, its
+  // noises), its GNSS noise adapted as its own fit's is: under a configured sigma far above the
+  // receiver's the poses follow the wheels and hide their slip (comma2k19: 3 m configured,
+  // 0.13 m found).
   const BatchOptions options;
   BatchProblem batch(run.log(), run.reference(), options, common, start);
   BatchSummary scratch;

@@ -30,6 +30,9 @@ CalibrationConfig method_options(CalibrationMethod method, SimMode mode) {
   // The paper's comparison scores and times the estimators; judging the model after the
   // iterative ones is a batch fit of its own (docs/model-adequacy.md).
   options.common.judge_model_adequacy = false;
+  // The paper's model (eqs. 1-2) against the paper's methods; the tyre models have their own
+  // section (tyre_model_experiment.cpp).
+  options.batch.tyre_model = TyreModelChoice::kNone;
   if (method == CalibrationMethod::kBatch && mode == SimMode::kIdeal) {
     options.batch.slip_sigma_m_per_sqrt_m = 1e-6;
     options.batch.lateral_sigma_m_per_sqrt_m = 1e-6;

@@ -49,11 +49,18 @@ TEST(ModelAdequacyBatch, RearWheelsThatClimbAreNamedByTheGrade) {
   const auto drive = [](sim::Drivetrain drivetrain) {
     return simulated_log(sim::simulate(testing::hilly_urban(drivetrain)));
   };
-  const ModelAdequacy rear = calibrate_batch(drive(sim::Drivetrain::kRear)).model_adequacy;
+  BatchOptions plain;
+  plain.tyre_model = TyreModelChoice::kNone;
+  const Log rear_log = drive(sim::Drivetrain::kRear);
+  const ModelAdequacy rear = calibrate_batch(rear_log, plain).model_adequacy;
   EXPECT_FALSE(rear.explains);
   EXPECT_NE(rear.verdict.find("along-track residual follows grade"), std::string::npos)
       << rear.verdict;
-  const ModelAdequacy front = calibrate_batch(drive(sim::Drivetrain::kFront)).model_adequacy;
+  // By default (auto) the physical terms take the climbing force's slip, and the log is explained.
+  const BatchSummary chosen = calibrate_batch(rear_log);
+  EXPECT_EQ(chosen.tyre_selection.chosen, "physical");
+  EXPECT_TRUE(chosen.model_adequacy.explains) << chosen.model_adequacy.verdict;
+  const ModelAdequacy front = calibrate_batch(drive(sim::Drivetrain::kFront), plain).model_adequacy;
   ASSERT_EQ(front.dependences.size(), 5u);
   EXPECT_EQ(front.dependences.back().quantity, "grade");
   EXPECT_LT(std::abs(front.dependences.back().correlation), 0.3);

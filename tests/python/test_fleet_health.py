@@ -111,9 +111,23 @@ def test_simulated_fleet_events_found_at_their_drives(simulated_fleet, tmp_path)
     drive = out / "car-000" / "drive-000"
     assert "vehicle_id: car-000" in (drive / "vehicle.yaml").read_text()
     assert "odometer_km:" in (drive / "drive.yaml").read_text()
+    assert (drive / "gnss.csv").read_text().splitlines()[0].endswith(",speed_mps")
     with sqlite3.connect(db) as connection:
         assert connection.execute("SELECT count(*) FROM drives WHERE odometer_km IS NOT NULL "
                                   "AND start_time IS NOT NULL").fetchone() == (21,)
+        calibrated = connection.execute(
+            "SELECT d.path, c.circumference_rl_m, c.sigma_rl_m, c.circumference_rr_m, "
+            "c.sigma_rr_m FROM calibrations c JOIN drives d USING (drive_key) "
+            "WHERE c.usable = 1").fetchall()
+    # Every drive usable under the batch's default (tyre_model: auto, the Doppler speed beside
+    # the fixes), its circumferences at rest within 3 sigma of the truth.
+    assert len(calibrated) == 21
+    true_drives = {os.path.join(v["vehicle_id"], d["name"]): d
+                   for v in truth["vehicles"] for d in v["drives"]}
+    for path, rl, sigma_rl, rr, sigma_rr in calibrated:
+        true_drive = true_drives[os.path.relpath(path, out)]
+        assert abs(rl - true_drive["circumference_rl_m"]) < 3 * sigma_rl, path
+        assert abs(rr - true_drive["circumference_rr_m"]) < 3 * sigma_rr, path
     report_file = tmp_path / "health.json"
     assert cli.main(["health", "--db", str(db), "--json", str(report_file)]) == 0
     report = {v["vehicle_id"]: v for v in json.loads(report_file.read_text())["vehicles"]}
@@ -125,6 +139,21 @@ def test_simulated_fleet_events_found_at_their_drives(simulated_fleet, tmp_path)
         assert at == {f"drive-{event['drive_index']:03d}"}
         wheels = {e["wheel"] for e in found}
         assert wheels == ({"rl", "rr"} if event["wheel"] == "both" else {event["wheel"]})
+
+
+def test_a_rear_driven_drive_without_a_doppler_column_is_refused_not_guessed(tmp_path):
+    out, db = tmp_path / "fleet", tmp_path / "fleet.sqlite"
+    assert cli.main(["simulate", "--vehicles", "1", "--drives", "1", "--out", str(out),
+                     "--laps", "2", "--no-doppler"]) == 0
+    assert json.loads((out / "fleet_truth.json").read_text())["doppler_sigma_mps"] is None
+    gnss = out / "car-000" / "drive-000" / "gnss.csv"
+    assert "speed_mps" not in gnss.read_text().splitlines()[0]
+    assert cli.main(["run", str(out), "--db", str(db), "--workers", "0"]) == 0
+    with sqlite3.connect(db) as connection:
+        usable, termination, message = connection.execute(
+            "SELECT usable, termination, message FROM calibrations").fetchone()
+    assert (usable, termination) == (0, "not_identifiable")
+    assert "extrapolation" in message, message
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="Debian's chromium is not installed")

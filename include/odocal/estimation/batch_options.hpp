@@ -79,10 +79,11 @@ struct BatchOptions {
   double gentle_max_speed_mps = 0.0;
   double gentle_max_longitudinal_mps2 = 0.0;
   double gentle_max_lateral_mps2 = 0.0;
-  // none by default: auto fits both models one after the other, 2.5x the time on long logs,
-  // and its peak memory is the extended fit's (the 10-hour drive: 1.2 GB against 0.89 GB, past
-  // the 1 GB that docs/batch-calibration.md promises; docs/tyre-model.md).
-  TyreModelChoice tyre_model = TyreModelChoice::kNone;
+  // auto by default: a log the plain model explains calibrates as under none, and one that it
+  // does not (a driven rear wheel's slip, load transfer) gets the tyre model or, where the log
+  // cannot pin the circumference at rest, a refusal instead of a confident wrong answer
+  // (docs/tyre-model.md, "auto as the default").
+  TyreModelChoice tyre_model = TyreModelChoice::kAuto;
   // Beside a tyre model, the steady straight speed whose effective circumference is reported
   // (BatchSummary::reference_circumference) and exported to ROS 2: gentle driving's.
   double reference_speed_mps = kDefaultReferenceSpeedMps;
