@@ -63,16 +63,33 @@ void BM_Calibrate(benchmark::State& state) {
   CalibrationConfig options;
   options.method = static_cast<CalibrationMethod>(state.range(0));
   options.common.judge_model_adequacy = false;
-  std::size_t iterations = 0;
+  std::string label;
   for (auto _ : state) {
     const AnyCalibrationSummary summary = calibrate(three_lap_log(), options);
-    const auto* iterative = std::get_if<IterativeSummary>(&summary);
-    iterations = iterative ? iterative->iterations.size() : 0;
+    label = std::string(method_name(options.method));
+    if (const auto* iterative = std::get_if<IterativeSummary>(&summary)) {
+      label += ", " + std::to_string(iterative->iterations.size()) + " iterations";
+    } else if (const auto* batch = std::get_if<BatchSummary>(&summary);
+               batch && batch->tyre_selection.compared) {
+      // The default tyre_model auto fits the tyre models too: say what it kept after how many.
+      const TyreModelSelection& selection = batch->tyre_selection;
+      label += ", tyre_model auto: " +
+               (selection.chosen == "none" ? std::string("plain") : selection.chosen) +
+               " kept of " + std::to_string(1 + selection.candidates.size()) + " fits";
+    }
   }
-  state.SetLabel(std::string(method_name(options.method)) + ", " + std::to_string(iterations) +
-                 " iterations");
+  state.SetLabel(label);
 }
 BENCHMARK(BM_Calibrate)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+
+// The batch with the paper's model alone (tyre_model none, the default until 2026-11-27).
+void BM_CalibrateBatchPlain(benchmark::State& state) {
+  CalibrationConfig options;
+  options.method = CalibrationMethod::kBatch;
+  options.batch.tyre_model = TyreModelChoice::kNone;
+  for (auto _ : state) benchmark::DoNotOptimize(core(calibrate(three_lap_log(), options)).usable());
+}
+BENCHMARK(BM_CalibrateBatchPlain)->Unit(benchmark::kMillisecond);
 
 // The iterative method as `odocal calibrate` runs it by default: with the model-adequacy judge.
 void BM_CalibrateJudged(benchmark::State& state) {

@@ -488,6 +488,9 @@ def speed(report, command):
         if name in runs:
             report.write(f"| whole calibration, {runs[name].get('label', method)} | `{name}` | "
                          f"{fmt(ms(name), 1)} ms |")
+    if "BM_CalibrateBatchPlain" in runs:
+        report.write("| whole calibration, batch with the plain model alone (`tyre_model: none`) | "
+                     f"`BM_CalibrateBatchPlain` | {fmt(ms('BM_CalibrateBatchPlain'), 1)} ms |")
     if "BM_CalibrateJudged" in runs:
         report.write("| whole calibration, iterative with the model-adequacy judge (a batch fit; "
                      "the default) | `BM_CalibrateJudged` | "
