@@ -38,9 +38,12 @@ def score(truth, report):
             rows["clean_vehicles"] += 1
             rows["false_vehicles"] += bool(found["events"])
             for wheel, w in found["wheels"].items():
+                # Of the drives' own errors: the shared one (the body's) floors the level and
+                # does not average out.
                 n = len(w["sigma_m"])
-                single = w["sigma_scale"] * float(np.median(w["measured_sigma_m"]))
-                rows["sigma_ratio"].append(w["sigma_m"][-1] / (single / math.sqrt(n)))
+                single = w["sigma_scale"] * float(np.median(w["drive_sigma_m"]))
+                own = math.sqrt(max(w["sigma_m"][-1] ** 2 - w["common_sigma_m"][-1] ** 2, 0.0))
+                rows["sigma_ratio"].append(own / (single / math.sqrt(n)))
             continue
         index = event["drive_index"]
         wheels = {"rl", "rr"} if event["wheel"] == "both" else {event["wheel"]}
@@ -83,11 +86,11 @@ def summarise(rows, seconds):
 
 
 def synthetic_vehicles(report, vehicles, drives, seed, step_at=None, step_m=0.0, km=7.3):
-    """Vehicles drawn with the noise the simulated fleet showed (each wheel's sigma times its
-    scale), `km` apart, optionally with a step on RL: detection and false-alarm rates over many
+    """Vehicles drawn with the noise the simulated fleet showed (each wheel's own drive sigma,
+    without the body's shared share, times its scale), `km` apart, optionally with a step on RL: detection and false-alarm rates over many
     more vehicles than were simulated. Returns (vehicles with any event, RL steps found within
     50 km of their drive)."""
-    sigmas = [w["sigma_scale"] * float(np.median(w["measured_sigma_m"]))
+    sigmas = [w["sigma_scale"] * float(np.median(w["drive_sigma_m"]))
               for v in report["vehicles"] for w in v["wheels"].values()]
     rng = np.random.default_rng(seed)
     model = health.HealthModel()

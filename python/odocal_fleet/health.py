@@ -57,7 +57,8 @@ class Drive:
     start_time: str
     path: str
     value_m: float
-    sigma_m: float
+    sigma_m: float            # of this drive's own error: what moves from drive to drive
+    common_sigma_m: float = 0.0  # of an error every drive of the vehicle shares (its body's)
 
 
 @dataclass
@@ -259,7 +260,8 @@ def wheel_health(model, wheel, drives, paired=frozenset(), forced=frozenset()):
     return WheelHealth(
         wheel=wheel, odometer_km=np.array([d.odometer_km for d in drives]),
         circumference_m=np.array([x[0] for x in xs_s]),
-        sigma_m=np.array([math.sqrt(P[0, 0]) for P in Ps_s]),
+        # A shared error does not average out over the drives: it floors the level's sigma.
+        sigma_m=np.array([math.sqrt(P[0, 0] + d.common_sigma_m ** 2) for P, d in zip(Ps_s, drives)]),
         wear_rate_m_per_km=float(xs_s[-1][1]),
         wear_rate_sigma_m_per_km=math.sqrt(Ps_s[-1][1, 1]), sigma_scale=scale, events=events)
 

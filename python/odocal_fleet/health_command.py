@@ -13,10 +13,14 @@ WHEELS = ("rl", "rr")
 
 def vehicle_drives(db, method):
     """{vehicle: [row]} of the usable calibrations by `method`, in driving order: by odometer
-    when every drive states one, else by start time, else by path."""
+    when every drive states one, else by start time, else by path. Each row ends with the
+    share of each wheel's sigma that the vehicle's body numbers make (the batch's
+    body_sigma_m; None where the calibration has none)."""
     rows = db.execute(
         """SELECT d.vehicle_id, d.path, d.start_time, d.odometer_km, d.distance_m,
-                  c.circumference_rl_m, c.circumference_rr_m, c.sigma_rl_m, c.sigma_rr_m
+                  c.circumference_rl_m, c.circumference_rr_m, c.sigma_rl_m, c.sigma_rr_m,
+                  json_extract(c.result_json, '$.body_sigma_m[0]'),
+                  json_extract(c.result_json, '$.body_sigma_m[1]')
            FROM drives d JOIN calibrations c USING (drive_key)
            WHERE c.method = ? AND c.usable = 1""", (method,)).fetchall()
     by_vehicle = {}
@@ -38,10 +42,19 @@ def has_estimate(row):
     return all(row[i] is not None for i in (5, 6, 7, 8)) and row[7] > 0 and row[8] > 0
 
 
+def drive_of(row, i):
+    """Wheel i's measurement of one drive. The body's share of its sigma is the same error on
+    every drive of the vehicle (its body numbers, driven alike): it leaves the drive-to-drive
+    changes that health tracks and stays in the level's sigma (a drive's own error is never
+    taken as nil: at least 0.31 of its sigma)."""
+    sigma, common = row[7 + i], min(row[9 + i] or 0.0, 0.95 * row[7 + i])
+    return health.Drive(odometer_km=row[3], start_time=row[2] or "", path=row[1],
+                        value_m=row[5 + i], sigma_m=math.sqrt(sigma * sigma - common * common),
+                        common_sigma_m=common)
+
+
 def assess_vehicle(model, rows):
-    drives = {wheel: [health.Drive(odometer_km=r[3], start_time=r[2] or "", path=r[1],
-                                   value_m=r[5 + i], sigma_m=r[7 + i]) for r in rows]
-              for i, wheel in enumerate(WHEELS)}
+    drives = {wheel: [drive_of(r, i) for r in rows] for i, wheel in enumerate(WHEELS)}
     return health.vehicle_health(model, drives)
 
 
@@ -53,6 +66,9 @@ def to_json(vehicle, rows, wheels, events):
             "circumference_m": h.circumference_m.tolist(), "sigma_m": h.sigma_m.tolist(),
             "measured_m": [r[5 + WHEELS.index(wheel)] for r in rows],
             "measured_sigma_m": [r[7 + WHEELS.index(wheel)] for r in rows],
+            # The measured sigma split: each drive's own error, and the vehicle's shared one.
+            "drive_sigma_m": [drive_of(r, WHEELS.index(wheel)).sigma_m for r in rows],
+            "common_sigma_m": [drive_of(r, WHEELS.index(wheel)).common_sigma_m for r in rows],
             "start_time": [r[2] for r in rows],
             "wear_mm_radius_per_10000_km": -1e4 * 1e3 * h.wear_rate_m_per_km / (2 * math.pi),
             "wear_sigma_mm_radius_per_10000_km": 1e4 * 1e3 * h.wear_rate_sigma_m_per_km / (2 * math.pi),

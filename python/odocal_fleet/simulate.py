@@ -116,7 +116,8 @@ def simulate(args):
     args.lap_km = lap_km(cli, args.scenario, args.ideal)
     plans = [plan_vehicle(v, args) for v in range(args.vehicles)]
     # A receiver's Doppler speed, as automotive receivers report it: without it, the tyre model
-    # cannot tell a driven rear wheel's slip from its circumference (docs/fleet.md#simulate).
+    # cannot tell a driven rear wheel's slip from its circumference (docs/fleet.md, "odocal-fleet
+    # simulate").
     doppler = None if args.no_doppler else args.doppler_sigma
     jobs = [(cli, os.path.join(args.out, p["vehicle_id"], d["name"]), p["vehicle_id"], d,
              args.scenario, args.laps, args.ideal, doppler) for p in plans for d in p["drives"]]
