@@ -87,9 +87,9 @@ def summarise(rows, seconds):
 
 def synthetic_vehicles(report, vehicles, drives, seed, step_at=None, step_m=0.0, km=7.3):
     """Vehicles drawn with the noise the simulated fleet showed (each wheel's own drive sigma,
-    without the body's shared share, times its scale), `km` apart, optionally with a step on RL: detection and false-alarm rates over many
-    more vehicles than were simulated. Returns (vehicles with any event, RL steps found within
-    50 km of their drive)."""
+    without the body's shared share, times its scale), `km` apart, optionally with a step on
+    RL: detection and false-alarm rates over many more vehicles than were simulated. Returns
+    (vehicles with any event, RL steps found within 50 km of their drive)."""
     sigmas = [w["sigma_scale"] * float(np.median(w["drive_sigma_m"]))
               for v in report["vehicles"] for w in v["wheels"].values()]
     rng = np.random.default_rng(seed)
