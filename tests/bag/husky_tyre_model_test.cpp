@@ -29,10 +29,11 @@ TEST(HuskyBag, TyreModelIsNoModelForASkidSteer) {
   bag::import_bag(kSource / "examples/husky/topics.yaml", kHuskyBag, log_dir);
   std::ifstream robot(kSource / "examples/robot/calibrate.yaml");
   const std::string robot_config((std::istreambuf_iterator<char>(robot)), {});
-  ASSERT_NE(robot_config.find("\nbatch:\n"), std::string::npos);
+  const std::string robots_choice = "tyre_model: none";
+  ASSERT_NE(robot_config.find(robots_choice), std::string::npos);
   const auto calibrate = [&](const std::string& model) {
     std::string text = robot_config;
-    text.replace(text.find("\nbatch:\n"), 8, "\nbatch:\n  tyre_model: " + model + "\n");
+    text.replace(text.find(robots_choice), robots_choice.size(), "tyre_model: " + model);
     const fs::path config = dir.path() / (model + ".yaml"), json = dir.path() / (model + ".json");
     std::ofstream(config) << text;
     const CliRun run = run_cli("calibrate " + log_dir.string() + " --config " + config.string() +
