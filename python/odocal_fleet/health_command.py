@@ -53,12 +53,12 @@ def drive_of(row, i):
                         common_sigma_m=common)
 
 
-def assess_vehicle(model, rows):
-    drives = {wheel: [drive_of(r, i) for r in rows] for i, wheel in enumerate(WHEELS)}
-    return health.vehicle_health(model, drives)
+def wheel_drives(rows):
+    """{wheel: [health.Drive]} of one vehicle's rows."""
+    return {wheel: [drive_of(r, i) for r in rows] for i, wheel in enumerate(WHEELS)}
 
 
-def to_json(vehicle, rows, wheels, events):
+def to_json(vehicle, rows, drives, wheels, events):
     out = {"vehicle_id": vehicle, "drives": len(rows), "wheels": {}, "events": []}
     for wheel, h in wheels.items():
         out["wheels"][wheel] = {
@@ -67,8 +67,8 @@ def to_json(vehicle, rows, wheels, events):
             "measured_m": [r[5 + WHEELS.index(wheel)] for r in rows],
             "measured_sigma_m": [r[7 + WHEELS.index(wheel)] for r in rows],
             # The measured sigma split: each drive's own error, and the vehicle's shared one.
-            "drive_sigma_m": [drive_of(r, WHEELS.index(wheel)).sigma_m for r in rows],
-            "common_sigma_m": [drive_of(r, WHEELS.index(wheel)).common_sigma_m for r in rows],
+            "drive_sigma_m": [d.sigma_m for d in drives[wheel]],
+            "common_sigma_m": [d.common_sigma_m for d in drives[wheel]],
             "start_time": [r[2] for r in rows],
             "wear_mm_radius_per_10000_km": -1e4 * 1e3 * h.wear_rate_m_per_km / (2 * math.pi),
             "wear_sigma_mm_radius_per_10000_km": 1e4 * 1e3 * h.wear_rate_sigma_m_per_km / (2 * math.pi),
@@ -93,8 +93,9 @@ def assess(db_path, method, model):
         rows = [r for r in by_vehicle[vehicle] if has_estimate(r)]
         if not rows:
             continue
-        wheels, events = assess_vehicle(model, rows)
-        report["vehicles"].append(to_json(vehicle, rows, wheels, events))
+        drives = wheel_drives(rows)
+        wheels, events = health.vehicle_health(model, drives)
+        report["vehicles"].append(to_json(vehicle, rows, drives, wheels, events))
     return report
 
 

@@ -76,7 +76,7 @@ def test_the_bodys_shared_error_is_kept_out_of_the_changes_and_in_the_level():
         offset = common * rng.standard_normal()
         rows = [("car", d.path, d.start_time, d.odometer_km, None, d.value_m + offset,
                  d.value_m + offset, total, total, common, common) for d in drives]
-        wheels, events = health_command.assess_vehicle(model, rows)
+        wheels, events = health.vehicle_health(model, health_command.wheel_drives(rows))
         rl = [e for e in events if e.wheel == "rl"]
         assert [e.drive_index for e in rl] == [12]
         found_at_once += rl[0].detected_at_index == 12
