@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <tuple>
+#include <utility>
 
 #include "batch_covariance.hpp"
 #include "batch_fit.hpp"
@@ -410,13 +411,16 @@ class BatchProblem {
 
   // Largest relative change of the parameters since the last pre-integration (for the tyre
   // coefficients: of the circumference they make at the log's RMS driving state).
-  double relative_change() const {
+  double relative_change() const { return change_from(params_lin_); }
+
+  // The same measure of the parameters' change since `earlier`.
+  double change_from(const Eigen::Ref<const batch::ParamsVector>& earlier) const {
     double change = 0.0;
     for (int p = 0; p < 3; ++p)
-      change = std::max(change, std::abs(params_[p] - params_lin_(p)) / std::abs(params_lin_(p)));
+      change = std::max(change, std::abs(params_[p] - earlier(p)) / std::abs(earlier(p)));
     for (int j = 0; j < TyreModel::kCoefficients; ++j) {
       const int p = kTyreOffset + j;
-      change = std::max(change, std::abs(params_[p] - params_lin_(p)) * regressor_rms_(j));
+      change = std::max(change, std::abs(params_[p] - earlier(p)) * regressor_rms_(j));
     }
     return change;
   }
@@ -1275,16 +1279,26 @@ ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOption
   ceres::Solver::Summary solver;
   constexpr double kCoarseNoise = 1e-3;  // m per sqrt(m), slip and lateral
   bool relinearise = true;
+  // Re-weighting that creeps moves on from solve to solve. One that returns to where it was two
+  // solves before alternates between two solutions (a model far from the log: the physical tyre
+  // terms on a skid-steer robot), and more rounds only repeat them (the Husky bag: 20 rounds of a
+  // two-cycle, three times over, in one tyre_model auto).
+  batch::ParamsVector last(batch.params().data()), before_last = last;
   while (true) {
     batch.preintegrate_all(summary.solves == 0 ? kCoarseNoise : 0.0, relinearise);
     const bool reweighted = batch.max_weight_change() > kWeightTolerance;
     solver = batch.solve();
     ++summary.solves;
     const int again = summary.solves - before;
+    const double step = batch.change_from(last);
+    const bool alternating = !relinearise && step > options.relinearise_relative_change &&
+                             batch.change_from(before_last) < 0.1 * step;
+    before_last = std::exchange(last, batch::ParamsVector(batch.params().data()));
     if (summary.solves == 1) continue;
     relinearise = batch.relative_change() > options.relinearise_relative_change &&
                   again <= options.max_relinearisations;
-    const bool reweight = reweighted && again <= options.max_relinearisations + kMaxReweightings;
+    const bool reweight =
+        reweighted && !alternating && again <= options.max_relinearisations + kMaxReweightings;
     if (!relinearise && !reweight) break;
   }
   return solver;

@@ -55,6 +55,12 @@ TEST(HuskyBag, TyreModelIsNoModelForASkidSteer) {
               plain.at("circumference_rl_m").get<double>(), 1e-6);
   const nlohmann::json chosen = calibrate("auto");
   EXPECT_EQ(chosen.at("tyre_selection").at("chosen"), "none");
+  // The physical terms' re-weighting alternates between two solutions here: stopped there, not
+  // repeated to the re-weighting limit at each of its fits (72 solves).
+  const nlohmann::json& physical = chosen.at("tyre_selection").at("candidates").at(0);
+  EXPECT_EQ(physical.at("model"), "physical");
+  EXPECT_FALSE(physical.at("tyre").get<bool>());
+  EXPECT_LE(physical.at("solves").get<int>(), 10);
 }
 
 }  // namespace
