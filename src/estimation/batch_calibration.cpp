@@ -1271,8 +1271,11 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
 // Hockenheim drive; three stopped 1.3 mm short). A round that only re-weights keeps the driving
 // state: measuring it again and again from the model being fitted walks the tyre coefficients
 // off (8 sigma in TyreModelBatch.RecoversKnownCoefficientsWhereThePlainModelIsBiased).
+//
+// With `wandered`, re-weighting also stops where it does not settle, and says so: a step no
+// smaller than the one two solves before, after the last re-linearisation.
 ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOptions& options,
-                                          BatchSummary& summary) {
+                                          BatchSummary& summary, bool* wandered = nullptr) {
   constexpr double kWeightTolerance = 0.01;
   constexpr int kMaxReweightings = 20;
   const int before = summary.solves;
@@ -1284,6 +1287,8 @@ ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOption
   // terms on a skid-steer robot), and more rounds only repeat them (the Husky bag: 20 rounds of a
   // two-cycle, three times over, in one tyre_model auto).
   batch::ParamsVector last(batch.params().data()), before_last = last;
+  double last_step = std::numeric_limits<double>::infinity(), step_before_last = last_step;
+  if (wandered) *wandered = false;
   while (true) {
     batch.preintegrate_all(summary.solves == 0 ? kCoarseNoise : 0.0, relinearise);
     const bool reweighted = batch.max_weight_change() > kWeightTolerance;
@@ -1293,12 +1298,16 @@ ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOption
     const double step = batch.change_from(last);
     const bool alternating = !relinearise && step > options.relinearise_relative_change &&
                              batch.change_from(before_last) < 0.1 * step;
+    const bool wandering = wandered && !relinearise && step > options.relinearise_relative_change &&
+                           step >= 0.9 * step_before_last;
     before_last = std::exchange(last, batch::ParamsVector(batch.params().data()));
+    step_before_last = std::exchange(last_step, step);
+    if (wandering) *wandered = true;
     if (summary.solves == 1) continue;
     relinearise = batch.relative_change() > options.relinearise_relative_change &&
                   again <= options.max_relinearisations;
-    const bool reweight =
-        reweighted && !alternating && again <= options.max_relinearisations + kMaxReweightings;
+    const bool reweight = reweighted && !alternating && !wandering &&
+                          again <= options.max_relinearisations + kMaxReweightings;
     if (!relinearise && !reweight) break;
   }
   return solver;
@@ -1438,7 +1447,24 @@ constexpr double kTyreSignificance = 3.0;
 ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions& options,
                                         BatchSummary& summary, TyreTerms terms) {
   batch.set_tyre_terms(terms);
-  ceres::Solver::Summary solver = solve_relinearised(batch, options, summary);
+  bool wandered = false;
+  ceres::Solver::Summary solver = solve_relinearised(batch, options, summary, &wandered);
+  if (wandered && solver.IsSolutionUsable()) {
+    // Coefficients whose fit does not settle are not what this log identifies: all of them are
+    // held at zero (the Husky bag's regression terms wandered by up to 700 times the
+    // circumference at its driving state; stopped where they stood, a fit that kept one of them
+    // moved the circumference 21 mm). Their sigma is the one where the fit stopped.
+    const auto uncertainty = batch.uncertainty();
+    for (int j = 0; j < TyreModel::kCoefficients; ++j) {
+      if (!batch.tyre_in_fit(j) || batch.tyre_held(j)) continue;
+      const double variance =
+          uncertainty ? uncertainty->params(kTyreOffset + j, kTyreOffset + j) : -1.0;
+      batch.hold_tyre_coefficient(
+          j, variance > 0.0 ? std::sqrt(variance) : std::numeric_limits<double>::infinity());
+    }
+    batch.restart();
+    return solve_relinearised(batch, options, summary);
+  }
   for (int round = 0; round < TyreModel::kCoefficients && solver.IsSolutionUsable(); ++round) {
     const auto uncertainty = batch.uncertainty();
     // The coefficients the log does not identify, each with its sigma while free.
