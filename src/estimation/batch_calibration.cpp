@@ -1505,8 +1505,13 @@ ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions&
 bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, std::optional<TyreTerms> terms,
                       BatchSummary& summary, const FitDecision& finish,
-                      const std::optional<std::array<double, 2>>& rival_circumference) {
+                      const std::optional<std::array<double, 2>>& rival_circumference,
+                      const std::optional<GnssNoiseModel>& noise) {
   BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
+  if (noise) {
+    batch.set_gnss_noise(noise->white_scale, noise->gauss_markov_sigma_m,
+                         noise->gauss_markov_tau_s);
+  }
   const bool extended = terms.has_value();
   ceres::Solver::Summary solver = extended ? solve_tyre_model(batch, options, summary, *terms)
                                            : solve_relinearised(batch, options, summary);

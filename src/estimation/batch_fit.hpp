@@ -27,6 +27,17 @@ struct FitFacts {
 
 using FitDecision = std::function<bool(const FitFacts&)>;
 
+// A GNSS noise model to solve under from the start: every fix's white sigma scaled, and a
+// Gauss-Markov error (sigma 0: none).
+struct GnssNoiseModel {
+  double white_scale = 1.0;
+  double gauss_markov_sigma_m = 0.0;
+  double gauss_markov_tau_s = 60.0;
+};
+
+// The noise the plain fit's adaptation settled on, when it adapted (and kept) one.
+std::optional<GnssNoiseModel> adapted_noise(const GnssNoiseReport& report);
+
 // Tyre coefficients that change the circumference by more than this at the log's typical driving
 // state (RMS of each regressor) are not a tyre: they are the model explaining something else.
 inline constexpr double kMaxTyreEffect = 0.03;
@@ -37,12 +48,13 @@ inline constexpr double kMaxSideSlipRad = 0.1;
 // Fits one model (the plain one, or a tyre model's family of terms); unless `finish` (when
 // given) declines the solved fit, adapts its GNSS noise and fills the summary. Returns whether it
 // did. With `rival_circumference` (another tyre model's fit of the log), the circumferences'
-// gap to it is added to their variance (BatchSummary::model_spread_m). The problem is freed on
-// return.
+// gap to it is added to their variance (BatchSummary::model_spread_m). With `noise`, the fit is
+// solved under that GNSS noise model from the start. The problem is freed on return.
 bool fit_model(const CalibrationRun& run, const BatchOptions& options,
                const CalibrationOptions& common, std::optional<TyreTerms> terms,
                BatchSummary& summary, const FitDecision& finish = {},
-               const std::optional<std::array<double, 2>>& rival_circumference = std::nullopt);
+               const std::optional<std::array<double, 2>>& rival_circumference = std::nullopt,
+               const std::optional<GnssNoiseModel>& noise = std::nullopt);
 
 // tyre_model auto (tyre_model_selection.cpp). Returns whether it has scored the result
 // (run.finish) itself.
