@@ -9,7 +9,7 @@ sample (an upper bound: the program and its libraries are in it too). Run from t
 after `make build` (the 10-hour log takes a few minutes to simulate and ~600 MB):
 
     ODOCAL_CLI=build/apps/odocal/odocal /usr/bin/python3 bench/long_drive_bench.py \\
-        --work /tmp/long-drive [--laps 1 3 10 30 100] [--urban-hours 10]
+        --work /tmp/long-drive [--laps 1 3 10 30 100] [--urban-hours 10] [--doppler-sigma 0.05]
 """
 import argparse
 import json
@@ -22,10 +22,11 @@ SOURCE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def measured(*args):
-    """Seconds and peak resident MiB of one odocal command (its exit status must be 0)."""
+    """Seconds and peak resident MiB of one odocal command: its exit status must be 0, or 3 (a
+    result it refuses, whose JSON is still written)."""
     result = subprocess.run(["/usr/bin/time", "-f", "%e %M", CLI, *args],
                             capture_output=True, text=True)
-    if result.returncode != 0:
+    if result.returncode not in (0, 3):
         raise SystemExit(f"odocal {' '.join(args)} failed:\n{result.stderr}")
     seconds, kilobytes = result.stderr.strip().splitlines()[-1].split()
     return float(seconds), float(kilobytes) / 1024.0
@@ -78,10 +79,21 @@ def row(name, log):
         figures[f"{method}_bytes_per_sample"] = (mb - log_mib) * 1024.0 * 1024.0 / samples
         result = json.load(open(os.path.join(log, f"{method}.json")))
         figures[f"{method}_sigma_rl_mm"] = 1e3 * result["sigma_circumference_rl_m"]
+        figures[f"{method}_usable"] = result["usable"]
+        figures[f"{method}_termination"] = result["termination"]
+        figures[f"{method}_tyre_model"] = result.get("tyre_selection", {}).get("chosen", "")
+
+    def outcome(method):
+        chosen = figures[f"{method}_tyre_model"]
+        model = f"{'plain' if chosen == 'none' else chosen}, " if chosen else ""
+        usable = "usable" if figures[f"{method}_usable"] else figures[f"{method}_termination"]
+        return model + usable
+
     print(f"| {name} | {samples} | {log_mib:.0f} MiB | {figures['batch_s']:.2f} s | "
           f"{figures['batch_mb']:.0f} MiB | {figures['batch_bytes_per_sample']:.0f} | "
-          f"{figures['iterative_s']:.2f} s | {figures['iterative_mb']:.0f} MiB | "
-          f"{figures['iterative_bytes_per_sample']:.0f} |", flush=True)
+          f"{outcome('batch')} | {figures['iterative_s']:.2f} s | "
+          f"{figures['iterative_mb']:.0f} MiB | {figures['iterative_bytes_per_sample']:.0f} |",
+          flush=True)
     return figures
 
 
@@ -90,12 +102,15 @@ def main():
     parser.add_argument("--work", required=True)
     parser.add_argument("--laps", type=int, nargs="*", default=[1, 3, 10, 30, 100])
     parser.add_argument("--urban-hours", type=float, default=10.0)
+    parser.add_argument("--doppler-sigma", type=float, default=0.0,
+                        help="give the urban drive a Doppler speed column with this noise, m/s "
+                             "(0: none)")
     parser.add_argument("--json")
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
     print("| log | wheel samples | loaded log | batch: time | peak | beyond the log, B/sample | "
-          "iterative: time | peak | beyond the log, B/sample |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "batch: model, outcome | iterative: time | peak | beyond the log, B/sample |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     rows = []
     for laps in args.laps:
         log = os.path.join(args.work, f"circuit-{laps}")
@@ -103,9 +118,14 @@ def main():
         rows.append(row(f"circuit, ideal, 50 Hz, {laps} laps", log))
     if args.urban_hours > 0:
         scenario, laps = urban_scenario(args.work, args.urban_hours)
-        log = os.path.join(args.work, f"urban-100hz-{laps}")
-        simulate(log, "--scenario", scenario, "--laps", str(laps))
-        rows.append(row(f"urban, 100 Hz, {args.urban_hours:g} h ({laps} laps)", log))
+        doppler = ["--gnss-speed-sigma", str(args.doppler_sigma)] if args.doppler_sigma else []
+        suffix = f"-doppler-{args.doppler_sigma:g}" if doppler else ""
+        log = os.path.join(args.work, f"urban-100hz-{laps}{suffix}")
+        simulate(log, "--scenario", scenario, "--laps", str(laps), *doppler)
+        name = f"urban, 100 Hz, {args.urban_hours:g} h ({laps} laps)"
+        if doppler:
+            name += f", Doppler {args.doppler_sigma:g} m/s"
+        rows.append(row(name, log))
     if args.json:
         json.dump(rows, open(args.json, "w"), indent=1)
 
