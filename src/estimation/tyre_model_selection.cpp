@@ -10,6 +10,8 @@
 // a blend (a log the plain model explains calibrates exactly as under none). One problem lives at a
 // time (a long log's memory is its problem's): the plain fit is finished and freed first, and a
 // candidate is finished (noise adaptation, covariance) only when it beats the best fit so far.
+// The criteria are compared under one GNSS noise model: the configured one, or the one the plain
+// fit's residuals showed where it adapted it (each model then solved once more, for its criterion).
 
 #include <fmt/format.h>
 
