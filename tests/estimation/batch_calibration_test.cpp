@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "../support/drifting_gnss.hpp"
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/estimation/cramer_rao.hpp"
 #include "odocal/io/scenario_io.hpp"
@@ -143,15 +144,7 @@ TEST(BatchCalibrationOutcome, CircumferencesLooserThanRequiredAreNotIdentifiedAn
 
 TEST(BatchCalibrationNoise, AWronglyConfiguredGnssNoiseIsEstimatedAndTheSigmaCoversTheError) {
   // The GNSS drifts (Gauss-Markov, 1.5 m over 30 s) while the configuration claims 0.1 m white.
-  sim::Scenario scenario = ideal_lap();
-  scenario.gnss.sigma_m = 0.05;
-  scenario.gnss.gauss_markov_sigma_m = 1.5;
-  scenario.gnss.gauss_markov_tau_s = 30.0;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
-  Log log = simulated_log(drive);
-  log.gnss.sigma_m.clear();
-  CalibrationOptions claimed;
-  claimed.reference.gnss_sigma_m = 0.1;
+  const auto [drive, log, claimed] = testing::drifting_gnss_drive(ideal_lap(), 1.5, 30.0);
   const BatchSummary adapted = calibrate_batch(log, {}, claimed);
   BatchOptions fixed;
   fixed.adapt_gnss_noise = false;

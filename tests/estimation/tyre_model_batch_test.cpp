@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "../support/drifting_gnss.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/drift_validation.hpp"
 #include "odocal/estimation/driving_state.hpp"
@@ -270,14 +271,7 @@ TEST(TyreModelBatch, AutoComparesUnderTheGnssNoiseTheResidualsShow) {
   scenario.vehicle.wear_rl_mm = 1.5;
   scenario.vehicle.wear_rr_mm = 1.0;
   scenario.seeds.noise = 28;
-  scenario.gnss.sigma_m = 0.05;
-  scenario.gnss.gauss_markov_sigma_m = 0.5;
-  scenario.gnss.gauss_markov_tau_s = 30.0;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
-  Log log = simulated_log(drive);
-  log.gnss.sigma_m.clear();
-  CalibrationOptions claimed;
-  claimed.reference.gnss_sigma_m = 0.1;
+  const auto [drive, log, claimed] = testing::drifting_gnss_drive(scenario, 0.5, 30.0);
   BatchOptions options;
   options.tyre_model = TyreModelChoice::kAuto;
   const BatchSummary chosen = calibrate_batch(log, options, claimed);
