@@ -1444,6 +1444,11 @@ constexpr double kTyreSignificance = 3.0;
 // exceeds its threshold is held at zero and the rest solved again (a drive at one speed cannot
 // tell k_speed from the circumference; left free, it would carry the circumference's sigma away
 // with it).
+// Tyre coefficient j's variance in `uncertainty`; -1 where there is none (singular information).
+double tyre_variance(const std::optional<BatchProblem::Uncertainty>& uncertainty, int j) {
+  return uncertainty ? uncertainty->params(kTyreOffset + j, kTyreOffset + j) : -1.0;
+}
+
 ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions& options,
                                         BatchSummary& summary, TyreTerms terms) {
   batch.set_tyre_terms(terms);
@@ -1457,8 +1462,7 @@ ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions&
     const auto uncertainty = batch.uncertainty();
     for (int j = 0; j < TyreModel::kCoefficients; ++j) {
       if (!batch.tyre_in_fit(j) || batch.tyre_held(j)) continue;
-      const double variance =
-          uncertainty ? uncertainty->params(kTyreOffset + j, kTyreOffset + j) : -1.0;
+      const double variance = tyre_variance(uncertainty, j);
       batch.hold_tyre_coefficient(
           j, variance > 0.0 ? std::sqrt(variance) : std::numeric_limits<double>::infinity());
     }
@@ -1471,8 +1475,7 @@ ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions&
     std::vector<std::pair<int, double>> unidentified;
     for (int j = 0; j < TyreModel::kCoefficients; ++j) {
       if (!batch.tyre_in_fit(j) || batch.tyre_held(j)) continue;
-      const double variance =
-          uncertainty ? uncertainty->params(kTyreOffset + j, kTyreOffset + j) : -1.0;
+      const double variance = tyre_variance(uncertainty, j);
       const double sigma = variance >= 0.0 ? std::sqrt(variance) : 0.0;
       const double rms = batch.regressor_rms()(j);
       const double value = batch.params()[static_cast<std::size_t>(kTyreOffset + j)];
