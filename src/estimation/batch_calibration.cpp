@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 
 #include "batch_covariance.hpp"
@@ -243,21 +244,23 @@ class BatchProblem {
   // The Bayesian information criterion of the last solve: its cost (robust where the loss is)
   // as -log-likelihood, and the unknowns that the model choice adds.
   double information_criterion(const ceres::Solver::Summary& solver) const {
-    // The folded blocks' cost is the re-weighted one: the fixes' own (robust) cost replaces it,
-    // and their rows count as the measurements they are.
-    double folded_cost = 0.0, fixes_cost = 0.0;
-    for (const ceres::ResidualBlockId block : gnss_fold_blocks_) {
+    // The folded blocks' cost is the re-weighted one: the fixes' own (robust) cost and the
+    // heading samples' replace it, and their rows count as the measurements they are.
+    double folded_cost = 0.0, measured_cost = 0.0;
+    for (const ceres::ResidualBlockId block : fold_blocks_) {
       double cost = 0.0;
       problem_->EvaluateResidualBlock(block, false, &cost, nullptr, nullptr);
       folded_cost += cost;
     }
-    for_each_fix([&](std::size_t, std::size_t, const Eigen::Vector2d& whitened) {
-      fixes_cost += 0.5 * robust(whitened.squaredNorm())[0];
-    });
+    for_each_measurement(
+        [&](std::size_t, std::size_t, const Eigen::Vector2d& whitened) {
+          measured_cost += 0.5 * robust(whitened.squaredNorm())[0];
+        },
+        [&](double whitened) { measured_cost += 0.5 * whitened * whitened; });
     const double residuals = static_cast<double>(problem_->NumResiduals()) -
                              static_cast<double>(folded_rows_) +
                              static_cast<double>(measurement_rows_);
-    return 2.0 * (solver.final_cost - folded_cost + fixes_cost) +
+    return 2.0 * (solver.final_cost - folded_cost + measured_cost) +
            free_tyre_coefficients() * std::log(residuals);
   }
 
@@ -337,9 +340,9 @@ class BatchProblem {
   // odometry chain would take the solver many small steps.
   // `remeasure_states`: false for a round that only re-weights (the driving state stays as the
   // last re-linearisation measured it).
-  // Folds::kKeep keeps the GNSS and heading folds of the last pre-integration (they must be at
-  // the same unknowns): only the odometry and the Doppler speed, the residuals that the body's
-  // numbers reach at the scale of the whole log, are pre-integrated again.
+  // Folds::kKeep keeps the folds of GNSS fixes and heading samples of the last pre-integration
+  // (they must be at the same unknowns): only the odometry and the Doppler speed, the residuals
+  // that the body's numbers reach at the scale of the whole log, are pre-integrated again.
   void preintegrate_all(double slip_floor = 0.0, bool remeasure_states = true,
                         Folds folds = Folds::kRebuild) {
     const bool refold = folds == Folds::kRebuild;
@@ -360,11 +363,9 @@ class BatchProblem {
     odometry_.clear();
     speed_.clear();
     if (refold) {
-      gnss_folds_.assign(keyframes_.size() - 1, {});
-      heading_folds_.assign(keyframes_.size() - 1, {});
+      folds_.assign(keyframes_.size() - 1, {});
       max_weight_change_ = 0.0f;
-      gnss_columns_ = gnss_columns();
-      heading_columns_ = heading_columns();
+      fold_columns_ = fold_columns();
     }
     std::size_t next_fix = 0, next_heading = 0;
     for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
@@ -376,8 +377,7 @@ class BatchProblem {
       if (gap_segment(i)) continue;
       if (use_speed() && rough_segment_[i] == 0) speed_.back() = speed_residual(i, segment, at);
       if (!refold) continue;
-      fold_gnss(i, segment, next_fix);
-      if (batch_.use_heading && log_.heading) fold_heading(i, segment, next_heading);
+      fold_interval(i, segment, next_fix, next_heading);
     }
   }
 
@@ -388,8 +388,7 @@ class BatchProblem {
     measurement_rows_ = 0;
     add_odometry();
     add_count_priors();
-    add_gnss();
-    if (batch_.use_heading && log_.heading) add_heading();
+    add_folds();
     if (batch_.use_gyro && log_.imu) add_gyro();
     if (use_speed()) add_speed();
     if (gauss_markov()) add_gauss_markov();
@@ -670,53 +669,71 @@ class BatchProblem {
     return rho;
   }
 
-  // The fixes of segment i folded into one residual, each weighted by the robust loss at the
-  // current unknowns.
-  void fold_gnss(std::size_t i, const PreintegratedSegment& seg, std::size_t& next) {
-    batch::RowFold<batch::kFoldedGnssColumns> fold;
+  bool use_heading() const { return batch_.use_heading && log_.heading; }
+
+  // The fixes of segment i, each weighted by the robust loss at the current unknowns, and its
+  // heading samples folded into one residual.
+  void fold_interval(std::size_t i, const PreintegratedSegment& seg, std::size_t& next_fix,
+                     std::size_t& next_heading) {
+    batch::RowFold<batch::kFoldedColumns> fold;
     const Eigen::Vector2d origin(poses_[i][0], poses_[i][1]);
-    visit_fixes(i, seg, log_.gnss.t_s, next, [&](std::size_t j, const MotionAt& at) {
+    visit_fixes(i, seg, log_.gnss.t_s, next_fix, [&](std::size_t j, const MotionAt& at) {
       const float weight = static_cast<float>(robust(whitened_fix(j, i, at).squaredNorm())[1]);
       max_weight_change_ = std::max(max_weight_change_, std::abs(weight - gnss_weights_[j]));
       gnss_weights_[j] = weight;
       ++folded_fixes_;
-      batch::FoldedGnssResidual::add_fix(
+      batch::FoldedIntervalResidual::add_fix(
           fold, at.motion, at.velocity,
           Eigen::Vector2d(log_.gnss.x_m[j], log_.gnss.y_m[j]) - origin, white_gnss_sigma(j),
           weight);
     });
-    if (!fold.empty()) gnss_folds_[i] = {origin, fold.factor(gnss_columns_), &params_lin_};
+    if (use_heading()) {
+      const HeadingStream& heading = *log_.heading;
+      visit_fixes(i, seg, heading.t_s, next_heading, [&](std::size_t j, const MotionAt& at) {
+        const double predicted = poses_[i][2] + at.motion.delta(2) + heading_bias_;
+        const double measured = predicted + batch::wrapped(heading.heading_rad[j] - predicted);
+        ++folded_headings_;
+        batch::FoldedIntervalResidual::add_heading(fold, at.motion, measured,
+                                                   sensors_.heading_sigma_rad);
+      });
+    }
+    if (!fold.empty()) folds_[i] = {origin, fold.factor(fold_columns_), &params_lin_};
   }
 
-  void fold_heading(std::size_t i, const PreintegratedSegment& seg, std::size_t& next) {
-    batch::RowFold<batch::kFoldedHeadingColumns> fold;
-    const HeadingStream& heading = *log_.heading;
-    visit_fixes(i, seg, heading.t_s, next, [&](std::size_t j, const MotionAt& at) {
-      const double predicted = poses_[i][2] + at.motion.delta(2) + heading_bias_;
-      const double measured = predicted + batch::wrapped(heading.heading_rad[j] - predicted);
-      ++folded_headings_;
-      batch::FoldedHeadingResidual::add_sample(fold, at.motion, measured,
-                                               sensors_.heading_sigma_rad);
-    });
-    if (!fold.empty()) heading_folds_[i] = {fold.factor(heading_columns_), &params_lin_};
-  }
-
-  // Calls visit(fix, segment, whitened residual) for every fix in the problem, at the current
-  // unknowns, pre-integrating again segment by segment (memory stays per segment).
-  template <typename Visit>
-  void for_each_fix(Visit&& visit) const {
+  // Calls visit_fix(fix, segment, whitened residual) for every fix in the problem and
+  // visit_heading(whitened residual) for every heading sample, at the current unknowns and as the
+  // folds linearise them, pre-integrating again segment by segment (memory stays per segment).
+  template <typename VisitFix, typename VisitHeading>
+  void for_each_measurement(VisitFix&& visit_fix, VisitHeading&& visit_heading) const {
     const OdometryParams at{params_lin_(0), params_lin_(1), params_lin_(2)};
     const TyreConditions tyre{states_,
                               TyreModel::from(params_lin_.tail<TyreModel::kCoefficients>()), body_};
-    std::size_t next = 0;
+    constexpr bool kHeadings = !std::is_same_v<std::decay_t<VisitHeading>, std::nullptr_t>;
+    std::size_t next_fix = 0, next_heading = 0;
     for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
       if (gap_segment(i)) continue;
       const PreintegratedSegment seg = preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1],
                                                     at, noise_, tyre_fitted() ? &tyre : nullptr);
-      visit_fixes(i, seg, log_.gnss.t_s, next, [&](std::size_t j, const MotionAt& motion) {
-        visit(j, i, whitened_fix(j, i, motion));
+      visit_fixes(i, seg, log_.gnss.t_s, next_fix, [&](std::size_t j, const MotionAt& motion) {
+        visit_fix(j, i, whitened_fix(j, i, motion));
       });
+      if constexpr (kHeadings) {
+        if (!use_heading()) continue;
+        visit_fixes(i, seg, log_.heading->t_s, next_heading,
+                    [&](std::size_t j, const MotionAt& motion) {
+                      const batch::HeadingResidual residual{
+                          motion.motion, log_.heading->heading_rad[j], sensors_.heading_sigma_rad};
+                      double whitened = 0.0;
+                      residual(poses_[i].data(), params_.data(), &heading_bias_,
+                               count_error_[i].data(), &whitened);
+                      visit_heading(whitened);
+                    });
+      }
     }
+  }
+  template <typename Visit>
+  void for_each_fix(Visit&& visit) const {
+    for_each_measurement(std::forward<Visit>(visit), nullptr);
   }
 
   // A segment that is a wheel gap: no odometry links its keyframes (GNSS and the gyro do).
@@ -729,14 +746,13 @@ class BatchProblem {
     return tyre_in_fit(p - kTyreOffset) && !tyre_held(p - kTyreOffset);
   }
 
-  // The entries of a GNSS fold's phi (batch_folded_residuals.hpp) that this solve can move.
-  batch::ColumnSelection<batch::kFoldedGnssColumns> gnss_columns() const {
-    batch::ColumnSelection<batch::kFoldedGnssColumns> selection;
-    selection.constant_column = 4;
+  // The entries of a fold's phi (batch_folded_residuals.hpp) that this solve can move.
+  batch::ColumnSelection<batch::kFoldedColumns> fold_columns() const {
+    batch::ColumnSelection<batch::kFoldedColumns> selection;
+    selection.constant_column = batch::kFoldedConstantColumn;
     for (int c = 0; c < 5; ++c) selection.kept.push_back(static_cast<std::uint8_t>(c));
     for (int p = 0; p < batch::kParams; ++p)
       if (param_free(p)) selection.kept.push_back(static_cast<std::uint8_t>(5 + p));
-    constexpr int kCount = 5 + batch::kParams, kLever = kCount + 2, kLatency = kLever + 2;
     const auto keep_or_hold = [&](int column, bool free, double value) {
       if (free) {
         selection.kept.push_back(static_cast<std::uint8_t>(column));
@@ -744,23 +760,15 @@ class BatchProblem {
         selection.held_values(column) = value;
       }
     };
-    for (int w = 0; w < 2; ++w) keep_or_hold(kCount + w, quantisation_sigma_rev_ > 0.0, 0.0);
-    for (int a = 0; a < 2; ++a)
-      keep_or_hold(kLever + a, batch_.estimate_lever_arm, lever_[static_cast<std::size_t>(a)]);
-    keep_or_hold(kLatency, batch_.estimate_latency, latency_);
-    return selection;
-  }
-
-  batch::ColumnSelection<batch::kFoldedHeadingColumns> heading_columns() const {
-    batch::ColumnSelection<batch::kFoldedHeadingColumns> selection;
-    selection.constant_column = 1;
-    selection.kept = {0, 1};
-    for (int p = 0; p < batch::kParams; ++p)
-      if (param_free(p)) selection.kept.push_back(static_cast<std::uint8_t>(2 + p));
-    if (quantisation_sigma_rev_ > 0.0) {
-      selection.kept.push_back(static_cast<std::uint8_t>(2 + batch::kParams));
-      selection.kept.push_back(static_cast<std::uint8_t>(3 + batch::kParams));
+    for (int w = 0; w < 2; ++w)
+      keep_or_hold(batch::kFoldedCountColumn + w, quantisation_sigma_rev_ > 0.0, 0.0);
+    for (int a = 0; a < 2; ++a) {
+      keep_or_hold(batch::kFoldedLeverColumn + a, batch_.estimate_lever_arm,
+                   lever_[static_cast<std::size_t>(a)]);
     }
+    keep_or_hold(batch::kFoldedLatencyColumn, batch_.estimate_latency, latency_);
+    // Without heading samples the column is zero in every row.
+    keep_or_hold(batch::kFoldedHeadingColumn, use_heading(), 0.0);
     return selection;
   }
 
@@ -875,40 +883,26 @@ class BatchProblem {
     return nullptr;
   }
 
-  void add_gnss() {
+  void add_folds() {
     gnss_residuals_ = 0;
-    gnss_fold_blocks_.clear();
-    for (std::size_t i = 0; i < gnss_folds_.size(); ++i) {
-      batch::FoldedGnssResidual& fold = gnss_folds_[i];
+    fold_blocks_.clear();
+    for (std::size_t i = 0; i < folds_.size(); ++i) {
+      batch::FoldedIntervalResidual& fold = folds_[i];
       if (fold.factor.rows == 0) continue;
       double* bias = gauss_markov() ? gnss_bias_[i].data() : zero_bias_.data();
-      gnss_fold_blocks_.push_back(problem_->AddResidualBlock(
-          new ceres::AutoDiffCostFunction<batch::FoldedGnssResidual, ceres::DYNAMIC, 3,
-                                          batch::kParams, 2, 1, 2, 2>(
+      fold_blocks_.push_back(problem_->AddResidualBlock(
+          new ceres::AutoDiffCostFunction<batch::FoldedIntervalResidual, ceres::DYNAMIC, 3,
+                                          batch::kParams, 2, 1, 2, 2, 1>(
               &fold, static_cast<int>(fold.factor.rows), ceres::DO_NOT_TAKE_OWNERSHIP),
           nullptr, poses_[i].data(), params_.data(), lever_.data(), &latency_, bias,
-          count_error_[i].data()));
+          count_error_[i].data(), &heading_bias_));
       folded_rows_ += static_cast<std::size_t>(fold.factor.rows);
     }
     gnss_residuals_ = folded_fixes_;
-    measurement_rows_ += 2 * folded_fixes_;
+    measurement_rows_ += 2 * folded_fixes_ + folded_headings_;
     if (gnss_residuals_ == 0) {
       throw InsufficientDataError("no GNSS fix inside the wheel time span: nothing to fit");
     }
-  }
-
-  void add_heading() {
-    for (std::size_t i = 0; i < heading_folds_.size(); ++i) {
-      batch::FoldedHeadingResidual& fold = heading_folds_[i];
-      if (fold.factor.rows == 0) continue;
-      problem_->AddResidualBlock(
-          new ceres::AutoDiffCostFunction<batch::FoldedHeadingResidual, ceres::DYNAMIC, 3,
-                                          batch::kParams, 1, 2>(
-              &fold, static_cast<int>(fold.factor.rows), ceres::DO_NOT_TAKE_OWNERSHIP),
-          nullptr, poses_[i].data(), params_.data(), &heading_bias_, count_error_[i].data());
-      folded_rows_ += static_cast<std::size_t>(fold.factor.rows);
-    }
-    measurement_rows_ += folded_headings_;
   }
 
   // Zero-order hold of the yaw rate over each keyframe interval the IMU covers.
@@ -962,7 +956,7 @@ class BatchProblem {
     hold(zero_bias_.data(), false);
     hold(lever_.data(), batch_.estimate_lever_arm);
     hold(&latency_, batch_.estimate_latency);
-    hold(&heading_bias_, batch_.estimate_heading_bias);
+    hold(&heading_bias_, batch_.estimate_heading_bias && use_heading());
     hold(&gyro_bias_, batch_.estimate_gyro_bias);
     std::vector<int> held;
     for (int p = 0; p < batch::kParams; ++p)
@@ -984,10 +978,8 @@ class BatchProblem {
   double doppler_sigma_mps_ = 0.0;  // 0: no Doppler residuals
   double speed_scale_ = 1.0;        // of the Doppler residuals' sigma (set_speed_noise)
   // Per keyframe interval; an empty factor: nothing measured there.
-  std::vector<batch::FoldedGnssResidual> gnss_folds_;
-  std::vector<batch::FoldedHeadingResidual> heading_folds_;
-  batch::ColumnSelection<batch::kFoldedGnssColumns> gnss_columns_;  // of the folds being built
-  batch::ColumnSelection<batch::kFoldedHeadingColumns> heading_columns_;
+  std::vector<batch::FoldedIntervalResidual> folds_;
+  batch::ColumnSelection<batch::kFoldedColumns> fold_columns_;  // of the folds being built
   std::size_t folded_fixes_ = 0, folded_headings_ = 0;
   std::vector<float> gnss_weights_;  // per fix: the robust loss's weight in the last fold
   float max_weight_change_ = 0.0f;   // ... and its largest change there
@@ -1009,7 +1001,7 @@ class BatchProblem {
   std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};  // > 0: held at zero
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
-  std::vector<ceres::ResidualBlockId> gnss_fold_blocks_;
+  std::vector<ceres::ResidualBlockId> fold_blocks_;
   struct OdometryBlock {
     ceres::ResidualBlockId id;
     std::size_t segment;

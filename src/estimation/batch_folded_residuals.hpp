@@ -1,18 +1,21 @@
 #pragma once
-// Every GNSS fix (and every heading sample) inside one keyframe interval folded into a single
+// Every GNSS fix and every heading sample inside one keyframe interval folded into a single
 // residual block (docs/batch-calibration.md, "Memory and time"). A fix's whitened error, turned
-// into the keyframe's frame (the norm is the same: a fix's sigma is the same along x and y), is
-// linear in a short vector phi of functions of the block's unknowns:
+// into the keyframe's frame (the norm is the same: a fix's sigma is the same along x and y), and
+// a heading sample's are linear in a short vector phi of functions of the block's unknowns:
 //
 //   e_j = P_j phi,  phi = [R(yaw)^T (xy + bias - origin), cos yaw, sin yaw, 1,
-//                          params - params_lin, count, lever, latency]
+//                          params - params_lin, count, lever, latency, yaw + heading_bias]
 //
 // so the interval's cost sum_j |e_j|^2 is |R phi|^2 with R the triangular factor of the stacked
-// rows P_j: the same cost with one block of at most 18 rows in place of two rows per fix. Two
-// things are held at the linearisation point: the antenna's turn within the interval (the lever
-// arm is rotated by the pre-integrated yaw at the parameters integrated with; a change of the
-// parameters turns it by microradians) and a robust loss's weight per fix (iteratively
-// re-weighted at every re-linearisation, which reaches the same estimate).
+// rows P_j: the same cost with one block of at most one row per column of phi in place of two
+// rows per fix and one per heading sample. One block for both streams, not one each: the factor
+// needs only the union of their columns (the pose's, the parameters' and the count errors' are
+// common), which cuts the folded rows that Ceres holds by about two fifths. Two things are held at
+// the linearisation point: the antenna's turn within the interval (the lever arm is rotated by the
+// pre-integrated yaw at the parameters integrated with; a change of the parameters turns it by
+// microradians) and a robust loss's weight per fix (iteratively re-weighted at every
+// re-linearisation, which reaches the same estimate).
 
 #include <ceres/ceres.h>
 
@@ -27,8 +30,12 @@
 
 namespace odocal::batch {
 
-inline constexpr int kFoldedGnssColumns = 5 + kParams + 2 + 2 + 1;
-inline constexpr int kFoldedHeadingColumns = 2 + kParams + 2;
+inline constexpr int kFoldedColumns = 5 + kParams + 2 + 2 + 1 + 1;
+inline constexpr int kFoldedConstantColumn = 4;
+inline constexpr int kFoldedCountColumn = 5 + kParams;             // and the next
+inline constexpr int kFoldedLeverColumn = kFoldedCountColumn + 2;  // and the next
+inline constexpr int kFoldedLatencyColumn = kFoldedLeverColumn + 2;
+inline constexpr int kFoldedHeadingColumn = kFoldedLatencyColumn + 1;
 
 // An upper triangular (or trapezoidal) factor over the entries `kept` of phi, packed: row r
 // holds its columns r.. only.
@@ -103,8 +110,9 @@ class RowFold {
   std::vector<Row, Eigen::aligned_allocator<Row>> rows_;
 };
 
-// The GNSS fixes of one keyframe interval. Blocks: pose, params, lever, latency, bias, count.
-struct FoldedGnssResidual {
+// The GNSS fixes and heading samples of one keyframe interval. Blocks: pose, params, lever,
+// latency, bias, count, heading_bias.
+struct FoldedIntervalResidual {
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  // the fixes are taken relative to it
   PackedFactor factor;
   // The parameters the fold was linearised at: one for every fold of a solve, so pointed to,
@@ -112,63 +120,48 @@ struct FoldedGnssResidual {
   const ParamsVector* params_lin = nullptr;
 
   // Fix j's whitened row pair (x, y) with weight `weight` (a robust loss's, 1 without one).
-  static void add_fix(RowFold<kFoldedGnssColumns>& fold, const RelativeMotion& motion,
+  static void add_fix(RowFold<kFoldedColumns>& fold, const RelativeMotion& motion,
                       const Eigen::Vector2d& velocity, const Eigen::Vector2d& measured_from_origin,
                       double sigma_m, double weight) {
     const double scale = std::sqrt(weight) / sigma_m;
     const double z_x = measured_from_origin.x(), z_y = measured_from_origin.y();
     const double c = std::cos(motion.delta(2)), s = std::sin(motion.delta(2));
-    Eigen::Matrix<double, 2, kFoldedGnssColumns> rows;
+    Eigen::Matrix<double, 2, kFoldedColumns> rows;
     rows.setZero();
     rows.block<2, 2>(0, 0).setIdentity();
     rows.block<2, 2>(0, 2) << -z_x, -z_y, -z_y, z_x;
-    rows.col(4) = motion.delta.head<2>();
+    rows.col(kFoldedConstantColumn) = motion.delta.head<2>();
     rows.block<2, kParams>(0, 5) = motion.J_delta_params.topRows<2>();
-    rows.block<2, 2>(0, 5 + kParams) = -motion.J_delta_first_increment.topRows<2>();
-    rows.block<2, 2>(0, 7 + kParams) << c, -s, s, c;
-    rows.col(9 + kParams) = -velocity;
+    rows.block<2, 2>(0, kFoldedCountColumn) = -motion.J_delta_first_increment.topRows<2>();
+    rows.block<2, 2>(0, kFoldedLeverColumn) << c, -s, s, c;
+    rows.col(kFoldedLatencyColumn) = -velocity;
     fold.add(scale * rows.row(0));
     fold.add(scale * rows.row(1));
   }
 
-  template <typename T>
-  bool operator()(const T* pose, const T* params, const T* lever, const T* latency, const T* bias,
-                  const T* count, T* residual) const {
-    using std::cos, std::sin;
-    const T c = cos(pose[2]), s = sin(pose[2]);
-    const T x = pose[0] + bias[0] - origin.x(), y = pose[1] + bias[1] - origin.y();
-    Eigen::Matrix<T, kFoldedGnssColumns, 1> phi;
-    phi << c * x + s * y, -s * x + c * y, c, s, T(1.0), Eigen::Matrix<T, kParams, 1>::Zero(),
-        count[0], count[1], lever[0], lever[1], latency[0];
-    for (int p = 0; p < kParams; ++p) phi(5 + p) = params[p] - (*params_lin)(p);
-    factor.multiply(phi, residual);
-    return true;
-  }
-};
-
-// The heading samples of one keyframe interval. Blocks: pose, params, heading_bias, count.
-struct FoldedHeadingResidual {
-  PackedFactor factor;
-  const ParamsVector* params_lin = nullptr;  // as the GNSS fold's
-
-  // `measured_rad` is the sample unwrapped to within pi of its prediction.
-  static void add_sample(RowFold<kFoldedHeadingColumns>& fold, const RelativeMotion& motion,
-                         double measured_rad, double sigma_rad) {
-    Eigen::Matrix<double, 1, kFoldedHeadingColumns> row;
-    row << 1.0, motion.delta(2) - measured_rad, motion.J_delta_params.row(2),
-        -motion.J_delta_first_increment.row(2);
+  // A heading sample's row; `measured_rad` is the sample unwrapped to within pi of its
+  // prediction.
+  static void add_heading(RowFold<kFoldedColumns>& fold, const RelativeMotion& motion,
+                          double measured_rad, double sigma_rad) {
+    Eigen::Matrix<double, 1, kFoldedColumns> row;
+    row.setZero();
+    row(kFoldedHeadingColumn) = 1.0;
+    row(kFoldedConstantColumn) = motion.delta(2) - measured_rad;
+    row.segment<kParams>(5) = motion.J_delta_params.row(2);
+    row.segment<2>(kFoldedCountColumn) = -motion.J_delta_first_increment.row(2);
     fold.add(row / sigma_rad);
   }
 
   template <typename T>
-  bool operator()(const T* pose, const T* params, const T* heading_bias, const T* count,
-                  T* residual) const {
-    Eigen::Matrix<T, kFoldedHeadingColumns, 1> phi;
-    phi(0) = pose[2] + heading_bias[0];
-    phi(1) = T(1.0);
-    for (int p = 0; p < kParams; ++p) phi(2 + p) = params[p] - (*params_lin)(p);
-    phi(2 + kParams) = count[0];
-    phi(3 + kParams) = count[1];
+  bool operator()(const T* pose, const T* params, const T* lever, const T* latency, const T* bias,
+                  const T* count, const T* heading_bias, T* residual) const {
+    using std::cos, std::sin;
+    const T c = cos(pose[2]), s = sin(pose[2]);
+    const T x = pose[0] + bias[0] - origin.x(), y = pose[1] + bias[1] - origin.y();
+    Eigen::Matrix<T, kFoldedColumns, 1> phi;
+    phi << c * x + s * y, -s * x + c * y, c, s, T(1.0), Eigen::Matrix<T, kParams, 1>::Zero(),
+        count[0], count[1], lever[0], lever[1], latency[0], pose[2] + heading_bias[0];
+    for (int p = 0; p < kParams; ++p) phi(5 + p) = params[p] - (*params_lin)(p);
     factor.multiply(phi, residual);
     return true;
   }

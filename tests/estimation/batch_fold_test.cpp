@@ -55,7 +55,7 @@ TEST(FoldedGnss, HasTheCostOfTheFixesItFolds) {
   Unknowns u;
   Eigen::Map<batch::ParamsVector>(u.params.data()) = p_lin;
   const Eigen::Vector2d origin(100.0, -40.0);
-  batch::RowFold<batch::kFoldedGnssColumns> fold;
+  batch::RowFold<batch::kFoldedColumns> fold;
   std::vector<batch::GnssResidual> fixes;
   for (int j = 0; j < 7; ++j) {
     const batch::RelativeMotion motion = random.motion(p_lin);
@@ -63,10 +63,10 @@ TEST(FoldedGnss, HasTheCostOfTheFixesItFolds) {
     const Eigen::Vector2d measured = origin + Eigen::Vector2d(random.draw(20.0), random.draw(20.0));
     const double sigma = 1.0 + 0.5 * j;
     fixes.push_back({motion, velocity, measured, sigma});
-    batch::FoldedGnssResidual::add_fix(fold, motion, velocity, measured - origin, sigma, 1.0);
+    batch::FoldedIntervalResidual::add_fix(fold, motion, velocity, measured - origin, sigma, 1.0);
   }
-  const batch::FoldedGnssResidual folded{origin, fold.factor(), &p_lin};
-  ASSERT_EQ(folded.factor.rows, 14);  // 7 fixes: fewer rows than the 18 columns
+  const batch::FoldedIntervalResidual folded{origin, fold.factor(), &p_lin};
+  ASSERT_EQ(folded.factor.rows, 14);  // 7 fixes: fewer rows than the 25 columns
   const auto costs = [&](const Unknowns& at) {
     double per_fix = 0.0;
     for (const batch::GnssResidual& fix : fixes) {
@@ -77,7 +77,7 @@ TEST(FoldedGnss, HasTheCostOfTheFixesItFolds) {
     }
     Eigen::VectorXd r(folded.factor.rows);
     folded(at.pose.data(), at.params.data(), at.lever.data(), &at.latency, at.bias.data(),
-           at.count.data(), r.data());
+           at.count.data(), &at.heading_bias, r.data());
     return std::pair{per_fix, r.squaredNorm()};
   };
   // At the parameters integrated with and zero count errors, exact (the lever arm turns with
@@ -98,31 +98,32 @@ TEST(FoldedGnss, HasTheCostOfTheFixesItFolds) {
 TEST(FoldedGnss, HeldEntriesGoIntoTheConstantColumn) {
   RandomMotion random;
   const batch::ParamsVector p_lin = lin_params();
-  batch::RowFold<batch::kFoldedGnssColumns> fold;
+  batch::RowFold<batch::kFoldedColumns> fold;
   for (int j = 0; j < 9; ++j) {
-    batch::FoldedGnssResidual::add_fix(
+    batch::FoldedIntervalResidual::add_fix(
         fold, random.motion(p_lin), Eigen::Vector2d(random.draw(10.0), random.draw(1.0)),
         Eigen::Vector2d(random.draw(20.0), random.draw(20.0)), 2.0, 1.0);
   }
   Unknowns u;
   Eigen::Map<batch::ParamsVector>(u.params.data()) = p_lin;
   // Free: c_RL, c_RR, count errors; held: the rest, the lever arm and latency at their values.
-  batch::ColumnSelection<batch::kFoldedGnssColumns> selection;
+  batch::ColumnSelection<batch::kFoldedColumns> selection;
   selection.constant_column = 4;
   selection.kept = {0, 1, 2, 3, 4, 5, 6, 5 + kParams, 6 + kParams};
   selection.held_values(7 + kParams) = u.lever[0];
   selection.held_values(8 + kParams) = u.lever[1];
   selection.held_values(9 + kParams) = u.latency;
-  const batch::FoldedGnssResidual full{Eigen::Vector2d::Zero(), fold.factor(), &p_lin};
-  const batch::FoldedGnssResidual reduced{Eigen::Vector2d::Zero(), fold.factor(selection), &p_lin};
-  EXPECT_EQ(reduced.factor.rows, 9);  // from 18
+  const batch::FoldedIntervalResidual full{Eigen::Vector2d::Zero(), fold.factor(), &p_lin};
+  const batch::FoldedIntervalResidual reduced{Eigen::Vector2d::Zero(), fold.factor(selection),
+                                              &p_lin};
+  EXPECT_EQ(reduced.factor.rows, 9);  // from 24 (the heading column is zero: no samples)
   u.params[0] += 0.004;
   u.params[1] -= 0.002;
   u.pose = {3.0, -4.0, 0.7};
-  const auto cost = [&](const batch::FoldedGnssResidual& folded) {
+  const auto cost = [&](const batch::FoldedIntervalResidual& folded) {
     Eigen::VectorXd r(folded.factor.rows);
     folded(u.pose.data(), u.params.data(), u.lever.data(), &u.latency, u.bias.data(),
-           u.count.data(), r.data());
+           u.count.data(), &u.heading_bias, r.data());
     return r.squaredNorm();
   };
   EXPECT_NEAR(cost(reduced), cost(full), 1e-9 * cost(full));
@@ -133,49 +134,77 @@ TEST(FoldedGnss, AWeightScalesAFixsCost) {
   const batch::ParamsVector p_lin = lin_params();
   const batch::RelativeMotion motion = random.motion(p_lin);
   const Eigen::Vector2d velocity(3.0, 0.0), measured(4.0, -2.0);
-  batch::RowFold<batch::kFoldedGnssColumns> whole, quarter;
-  batch::FoldedGnssResidual::add_fix(whole, motion, velocity, measured, 2.0, 1.0);
-  batch::FoldedGnssResidual::add_fix(quarter, motion, velocity, measured, 2.0, 0.25);
-  const batch::FoldedGnssResidual a{Eigen::Vector2d::Zero(), whole.factor(), &p_lin};
-  const batch::FoldedGnssResidual b{Eigen::Vector2d::Zero(), quarter.factor(), &p_lin};
+  batch::RowFold<batch::kFoldedColumns> whole, quarter;
+  batch::FoldedIntervalResidual::add_fix(whole, motion, velocity, measured, 2.0, 1.0);
+  batch::FoldedIntervalResidual::add_fix(quarter, motion, velocity, measured, 2.0, 0.25);
+  const batch::FoldedIntervalResidual a{Eigen::Vector2d::Zero(), whole.factor(), &p_lin};
+  const batch::FoldedIntervalResidual b{Eigen::Vector2d::Zero(), quarter.factor(), &p_lin};
   Unknowns u;
   Eigen::Map<batch::ParamsVector>(u.params.data()) = p_lin;
   Eigen::Vector2d ra, rb;
   a(u.pose.data(), u.params.data(), u.lever.data(), &u.latency, u.bias.data(), u.count.data(),
-    ra.data());
+    &u.heading_bias, ra.data());
   b(u.pose.data(), u.params.data(), u.lever.data(), &u.latency, u.bias.data(), u.count.data(),
-    rb.data());
+    &u.heading_bias, rb.data());
   EXPECT_NEAR(rb.squaredNorm(), 0.25 * ra.squaredNorm(), 1e-12 * ra.squaredNorm());
 }
 
-TEST(FoldedHeading, HasTheCostOfTheSamplesItFolds) {
+TEST(FoldedInterval, HasTheCostOfTheFixesAndHeadingSamplesItFolds) {
   RandomMotion random;
   const batch::ParamsVector p_lin = lin_params();
   Unknowns u;
   Eigen::Map<batch::ParamsVector>(u.params.data()) = p_lin;
-  u.params[1] += 0.003;
-  batch::RowFold<batch::kFoldedHeadingColumns> fold;
+  u.lever = {0.0, 0.0};
+  const Eigen::Vector2d origin(100.0, -40.0);
+  batch::RowFold<batch::kFoldedColumns> fold;
+  std::vector<batch::GnssResidual> fixes;
   std::vector<batch::HeadingResidual> samples;
   for (int j = 0; j < 30; ++j) {
     const batch::RelativeMotion motion = random.motion(p_lin);
+    if (j % 3 == 0) {
+      const Eigen::Vector2d velocity(random.draw(10.0), random.draw(1.0));
+      const Eigen::Vector2d measured =
+          origin + Eigen::Vector2d(random.draw(20.0), random.draw(20.0));
+      fixes.push_back({motion, velocity, measured, 1.5});
+      batch::FoldedIntervalResidual::add_fix(fold, motion, velocity, measured - origin, 1.5, 1.0);
+    }
     // The sample as logged (wrapped), and unwrapped to near its prediction for the fold.
     const double predicted = u.pose[2] + motion.delta(2) + u.heading_bias;
     const double unwrapped = predicted + random.draw(0.05);
     const double logged = std::atan2(std::sin(unwrapped), std::cos(unwrapped));
     samples.push_back({motion, logged, 0.02});
-    batch::FoldedHeadingResidual::add_sample(fold, motion, unwrapped, 0.02);
+    batch::FoldedIntervalResidual::add_heading(fold, motion, unwrapped, 0.02);
   }
-  const batch::FoldedHeadingResidual folded{fold.factor(), &p_lin};
-  ASSERT_EQ(folded.factor.rows, batch::kFoldedHeadingColumns);
-  double per_sample = 0.0;
-  for (const batch::HeadingResidual& sample : samples) {
-    double r = 0.0;
-    sample(u.pose.data(), u.params.data(), &u.heading_bias, u.count.data(), &r);
-    per_sample += r * r;
-  }
-  Eigen::VectorXd r(folded.factor.rows);
-  folded(u.pose.data(), u.params.data(), &u.heading_bias, u.count.data(), r.data());
-  EXPECT_NEAR(r.squaredNorm(), per_sample, 1e-8 * per_sample);
+  const batch::FoldedIntervalResidual folded{origin, fold.factor(), &p_lin};
+  // One row per column: 20 rows of fixes and 30 of heading samples share the pose's, the
+  // parameters' and the count errors' columns.
+  ASSERT_EQ(folded.factor.rows, batch::kFoldedColumns);
+  const auto costs = [&](const Unknowns& at) {
+    double per_measurement = 0.0;
+    for (const batch::GnssResidual& fix : fixes) {
+      Eigen::Vector2d r;
+      fix(at.pose.data(), at.params.data(), at.lever.data(), &at.latency, at.bias.data(),
+          at.count.data(), r.data());
+      per_measurement += r.squaredNorm();
+    }
+    for (const batch::HeadingResidual& sample : samples) {
+      double r = 0.0;
+      sample(at.pose.data(), at.params.data(), &at.heading_bias, at.count.data(), &r);
+      per_measurement += r * r;
+    }
+    Eigen::VectorXd r(folded.factor.rows);
+    folded(at.pose.data(), at.params.data(), at.lever.data(), &at.latency, at.bias.data(),
+           at.count.data(), &at.heading_bias, r.data());
+    return std::pair{per_measurement, r.squaredNorm()};
+  };
+  const auto [per_measurement, folded_cost] = costs(u);
+  EXPECT_NEAR(folded_cost, per_measurement, 1e-8 * per_measurement);
+  u.params[1] += 0.003;
+  u.count = {0.002, -0.001};
+  u.heading_bias = -0.02;
+  u.pose[2] += 0.1;
+  const auto [per_measurement_moved, folded_moved] = costs(u);
+  EXPECT_NEAR(folded_moved, per_measurement_moved, 1e-8 * per_measurement_moved);
 }
 
 // r = A [a; b; c; x] - y: a small linear problem with every kind of block.
