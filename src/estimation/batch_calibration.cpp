@@ -750,9 +750,12 @@ class BatchProblem {
   batch::ColumnSelection<batch::kFoldedColumns> fold_columns() const {
     batch::ColumnSelection<batch::kFoldedColumns> selection;
     selection.constant_column = batch::kFoldedConstantColumn;
-    for (int c = 0; c < 5; ++c) selection.kept.push_back(static_cast<std::uint8_t>(c));
-    for (int p = 0; p < batch::kParams; ++p)
-      if (param_free(p)) selection.kept.push_back(static_cast<std::uint8_t>(5 + p));
+    for (int c = 0; c < batch::kFoldedParamsColumn; ++c)
+      selection.kept.push_back(static_cast<std::uint8_t>(c));
+    for (int p = 0; p < batch::kParams; ++p) {
+      if (param_free(p))
+        selection.kept.push_back(static_cast<std::uint8_t>(batch::kFoldedParamsColumn + p));
+    }
     const auto keep_or_hold = [&](int column, bool free, double value) {
       if (free) {
         selection.kept.push_back(static_cast<std::uint8_t>(column));

@@ -32,8 +32,9 @@ namespace odocal::batch {
 
 inline constexpr int kFoldedColumns = 5 + kParams + 2 + 2 + 1 + 1;
 inline constexpr int kFoldedConstantColumn = 4;
-inline constexpr int kFoldedCountColumn = 5 + kParams;             // and the next
-inline constexpr int kFoldedLeverColumn = kFoldedCountColumn + 2;  // and the next
+inline constexpr int kFoldedParamsColumn = 5;  // and the next kParams - 1
+inline constexpr int kFoldedCountColumn = kFoldedParamsColumn + kParams;  // and the next
+inline constexpr int kFoldedLeverColumn = kFoldedCountColumn + 2;         // and the next
 inline constexpr int kFoldedLatencyColumn = kFoldedLeverColumn + 2;
 inline constexpr int kFoldedHeadingColumn = kFoldedLatencyColumn + 1;
 
@@ -131,7 +132,7 @@ struct FoldedIntervalResidual {
     rows.block<2, 2>(0, 0).setIdentity();
     rows.block<2, 2>(0, 2) << -z_x, -z_y, -z_y, z_x;
     rows.col(kFoldedConstantColumn) = motion.delta.head<2>();
-    rows.block<2, kParams>(0, 5) = motion.J_delta_params.topRows<2>();
+    rows.block<2, kParams>(0, kFoldedParamsColumn) = motion.J_delta_params.topRows<2>();
     rows.block<2, 2>(0, kFoldedCountColumn) = -motion.J_delta_first_increment.topRows<2>();
     rows.block<2, 2>(0, kFoldedLeverColumn) << c, -s, s, c;
     rows.col(kFoldedLatencyColumn) = -velocity;
@@ -147,7 +148,7 @@ struct FoldedIntervalResidual {
     row.setZero();
     row(kFoldedHeadingColumn) = 1.0;
     row(kFoldedConstantColumn) = motion.delta(2) - measured_rad;
-    row.segment<kParams>(5) = motion.J_delta_params.row(2);
+    row.segment<kParams>(kFoldedParamsColumn) = motion.J_delta_params.row(2);
     row.segment<2>(kFoldedCountColumn) = -motion.J_delta_first_increment.row(2);
     fold.add(row / sigma_rad);
   }
@@ -161,7 +162,7 @@ struct FoldedIntervalResidual {
     Eigen::Matrix<T, kFoldedColumns, 1> phi;
     phi << c * x + s * y, -s * x + c * y, c, s, T(1.0), Eigen::Matrix<T, kParams, 1>::Zero(),
         count[0], count[1], lever[0], lever[1], latency[0], pose[2] + heading_bias[0];
-    for (int p = 0; p < kParams; ++p) phi(5 + p) = params[p] - (*params_lin)(p);
+    for (int p = 0; p < kParams; ++p) phi(kFoldedParamsColumn + p) = params[p] - (*params_lin)(p);
     factor.multiply(phi, residual);
     return true;
   }
