@@ -126,8 +126,8 @@ PYBIND11_MODULE(odocal, m) {
 
   m.def(
       "validate",
-      [](const Log& input, py::object params, double window_s, double min_distance_m,
-         double step_s) {
+      [](const Log& input, py::object params, double window_s, double min_distance_m, double step_s,
+         double tick_smoothing_s) {
         const OdometryParams calibrated = params_of(input, params);
         CalibrationOptions options;
         options.reference.mode = ReferenceMode::kSmoother;
@@ -138,6 +138,7 @@ PYBIND11_MODULE(odocal, m) {
         drift.window_s = window_s;
         drift.step_s = step_s;
         drift.min_window_distance_m = min_distance_m;
+        drift.tick_smoothing_s = tick_smoothing_s;
         const OdometryParams nominal = log.vehicle.nominal_params();
         const DriftValidation v =
             validate_drift(with_tyre_model(log, nominal, tyre_of(log, py::none())),
@@ -160,6 +161,7 @@ PYBIND11_MODULE(odocal, m) {
       },
       py::arg("log"), py::arg("params"), py::arg("window_s") = 60.0,
       py::arg("min_distance_m") = 20.0, py::arg("step_s") = 0.0,
+      py::arg("tick_smoothing_s") = kDefaultTickSmoothingS,
       "Held-out drift of nominal and calibrated parameters (a CalibrationSummary or "
       "(c_RL, c_RR, track) in metres), as `odocal validate`");
 

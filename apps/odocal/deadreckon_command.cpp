@@ -13,6 +13,7 @@
 #include "odocal/io/log_block_reader.hpp"
 #include "odocal/io/trajectory_writer.hpp"
 #include "odocal/model/angle.hpp"
+#include "tick_smoothing_option.hpp"
 
 namespace odocal::cli {
 namespace {
@@ -102,6 +103,7 @@ void add_deadreckon_command(CLI::App& app) {
       ->add_option("--start", args->start,
                    "Start pose: truth, gnss, or auto (truth when truth.csv exists)")
       ->check(CLI::IsMember({"auto", "truth", "gnss"}));
+  add_tick_smoothing_option(*command, args->options.tick_smoothing_s);
   args->window.add_to(*command);
   command->add_option("--out", args->out_csv, "Write the trajectory as CSV (t,x,y,heading)");
   command->add_option("--tum", args->out_tum, "Write the trajectory in TUM format");

@@ -15,6 +15,7 @@
 #include "odocal/io/calibration_io.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/io/output_file.hpp"
+#include "tick_smoothing_option.hpp"
 
 namespace odocal::cli {
 namespace {
@@ -87,6 +88,7 @@ void run_validate(const ValidateArgs& args) {
     write_output_file(args.json_file,
                       nlohmann::json{{"window_s", args.options.window_s},
                                      {"step_s", args.options.step_s},
+                                     {"tick_smoothing_s", args.options.tick_smoothing_s},
                                      {"reference", args.reference},
                                      {"nominal", statistics_json(v.nominal_statistics)},
                                      {"calibrated", statistics_json(v.calibrated_statistics)},
@@ -120,6 +122,7 @@ void add_validate_command(CLI::App& app) {
                    "Skip windows with less driving than this, m")
       ->capture_default_str()
       ->check(finite_in(0.0, 1e6));
+  add_tick_smoothing_option(*command, args->options.tick_smoothing_s);
   command->add_option("--reference", args->reference, "Reference pose: smoother or filter")
       ->capture_default_str()
       ->check(CLI::IsMember(enum_name_list<ReferenceMode>()));

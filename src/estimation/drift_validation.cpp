@@ -63,6 +63,7 @@ std::string DriftValidationOptions::validate() const {
   if (!(window_s > 0.0)) return "window_s must be positive";
   if (!(step_s >= 0.0)) return "step_s must not be negative";
   if (min_window_distance_m < 0.0) return "min_window_distance_m must not be negative";
+  if (!(tick_smoothing_s >= 0.0)) return "tick_smoothing_s must not be negative";
   return "";
 }
 
@@ -72,17 +73,21 @@ DriftValidation validate_drift(const WheelStream& wheels, const ReferenceTraject
   return validate_drift(wheels, wheels, reference, nominal, calibrated, options);
 }
 
-DriftValidation validate_drift(const WheelStream& wheels, const WheelStream& calibrated_wheels,
+DriftValidation validate_drift(const WheelStream& counted_wheels,
+                               const WheelStream& counted_calibrated_wheels,
                                const ReferenceTrajectory& reference, const OdometryParams& nominal,
                                const OdometryParams& calibrated,
                                const DriftValidationOptions& options) {
-  if (calibrated_wheels.size() != wheels.size())
+  if (counted_calibrated_wheels.size() != counted_wheels.size())
     throw Error("validate_drift: both wheel streams must hold the same samples");
   // The reference's times are the wheels' (reference_filter.hpp): it must be these wheels'.
-  if (reference.first_wheel_index + reference.poses.size() > wheels.size())
+  if (reference.first_wheel_index + reference.poses.size() > counted_wheels.size())
     throw Error("validate_drift: the reference reaches past the wheel stream it was computed on");
   if (const std::string problem = options.validate(); !problem.empty())
     throw Error("invalid validation options: " + problem);
+  const WheelStream wheels = dequantised_ticks(counted_wheels, options.tick_smoothing_s);
+  const WheelStream calibrated_wheels =
+      dequantised_ticks(counted_calibrated_wheels, options.tick_smoothing_s);
   DriftValidation result;
   const double max_gap_s = default_max_wheel_gap_s(wheels);
   const std::span<const double> t = reference.times(wheels);

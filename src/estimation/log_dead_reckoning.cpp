@@ -69,7 +69,9 @@ LogDeadReckoning dead_reckon_log(LogBlockSource& source, const LogDeadReckoningO
     const Log& context = block->context;
     const auto [first, last] = core_rows(*block, context.wheels.t_s);
     if (first >= last) continue;
-    const WheelStream counted = with_tyre_model(context, run.params, tyre);
+    // The block's margins hold every neighbour that a core sample's tick average reaches.
+    const WheelStream counted =
+        dequantised_ticks(with_tyre_model(context, run.params, tyre), options.tick_smoothing_s);
     // The piece: the pose carried from the block before, then this block's own samples.
     WheelStream piece = stream_rows(counted, first, last);
     if (carried) {

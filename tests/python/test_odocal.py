@@ -98,6 +98,10 @@ def test_doctor_validate_and_dead_reckon(worn):
     drift = odocal.validate(worn, result, window_s=60)
     assert drift["calibrated"]["windows"] > 0
     assert drift["calibrated"]["median_drift_percent"] < drift["nominal"]["median_drift_percent"]
+    # The tick counts as they are: the same windows, dead-reckoned with their quantisation.
+    raw = odocal.validate(worn, result, window_s=60, tick_smoothing_s=0)
+    assert raw["calibrated"]["windows"] == drift["calibrated"]["windows"]
+    assert raw["calibrated"]["median_end_error_m"] != drift["calibrated"]["median_end_error_m"]
     track = odocal.dead_reckon(worn, result)
     assert len(track["x_m"]) == len(worn.wheels)
     assert np.all(np.isfinite(track["yaw_rad"]))

@@ -9,6 +9,7 @@
 
 #include "odocal/data/log.hpp"
 #include "odocal/estimation/reference_filter.hpp"
+#include "odocal/estimation/tick_dequantisation.hpp"
 
 namespace odocal {
 
@@ -18,6 +19,9 @@ struct DriftValidationOptions {
   // A window starts every step_s seconds; 0: every window_s (disjoint windows). Overlapping
   // windows give more, correlated windows: steadier medians on a short log.
   double step_s = 0.0;
+  // Tick counts are averaged over +-this before dead reckoning (tick_dequantisation.hpp); 0: the
+  // counts as they are, as a controller that integrates them raw would see them.
+  double tick_smoothing_s = kDefaultTickSmoothingS;
   std::string validate() const;  // empty when valid
 };
 

@@ -10,6 +10,7 @@
 
 #include "odocal/data/log_source.hpp"
 #include "odocal/estimation/log_preparation.hpp"
+#include "odocal/estimation/tick_dequantisation.hpp"
 #include "odocal/estimation/trajectory_errors.hpp"
 
 namespace odocal {
@@ -20,6 +21,8 @@ struct LogDeadReckoningOptions {
   std::optional<double> circumference_rl_m, circumference_rr_m, track_width_m;  // else nominal
   bool plain = false;  // ignore vehicle.yaml's tyre_model
   LogStart start = LogStart::kAuto;
+  double tick_smoothing_s =
+      kDefaultTickSmoothingS;      // tick_dequantisation.hpp; 0: counts as they are
   CalibrationOptions preparation;  // prepared as every command prepares a log (the defaults)
 };
 

@@ -1,0 +1,25 @@
+#pragma once
+// Encoder ticks cut each wheel's angle to whole ticks, so a wheel's cumulative count lags its
+// true angle by up to one tick. The two rear wheels' lags differ by a phase that stays put while
+// both turn alike (a straight at a steady speed), and dead reckoning integrates that as a heading
+// bias of up to c / (n t) rad: 0.7 deg for 96 ticks of a 1.96 m wheel on a 1.6 m track, which
+// on an urban drive is most of the held-out drift left with the true circumferences
+// (docs/batch-calibration.md, "Encoder ticks in dead reckoning"). The centred mean of the
+// cumulative count over a short window averages the cut over the ticks that pass within it.
+
+#include "odocal/data/log.hpp"
+
+namespace odocal {
+
+// Half the window that odocal's dead reckoning (`deadreckon`, `validate`) averages a tick
+// count over by default.
+inline constexpr double kDefaultTickSmoothingS = 0.2;
+
+// The stream with every wheel's cumulative count replaced by a straight line fitted to it over
+// +-half_window_s at each sample: its mean where the window is whole, and towards a chain break
+// or the stream's ends, where the window is cut, the line's value there. Streams of wheel angles
+// or speeds (WheelStream::unit_rear not kTicks) and half_window_s <= 0 return unchanged. Only the
+// increments change; a segment's total moves by less than a tick.
+WheelStream dequantised_ticks(const WheelStream& wheels, double half_window_s);
+
+}  // namespace odocal

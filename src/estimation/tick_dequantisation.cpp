@@ -1,0 +1,83 @@
+#include "odocal/estimation/tick_dequantisation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "odocal/estimation/median.hpp"
+
+namespace odocal {
+namespace {
+
+// The straight line fitted by least squares to the running count over samples [a, b] of `step`
+// (step[i]: the count's change into sample i), at j, less the count at j. From the steps
+// themselves, so that where the count starts (a block of a long log, or all of it) changes no
+// digit.
+double line_offset(const std::vector<double>& step, std::size_t a, std::size_t b, std::size_t j) {
+  const double m = static_cast<double>(b - a + 1);
+  double count = 0.0;  // at i, relative to a
+  double at_j = 0.0;
+  double sum_i = 0.0, sum_y = 0.0, sum_ii = 0.0, sum_iy = 0.0;
+  for (std::size_t i = a; i <= b; ++i) {
+    if (i > a) count += step[i];
+    if (i == j) at_j = count;
+    const double di = static_cast<double>(i) - static_cast<double>(j);
+    sum_i += di;
+    sum_y += count;
+    sum_ii += di * di;
+    sum_iy += di * count;
+  }
+  const double spread = sum_ii - sum_i * sum_i / m;
+  const double slope = spread > 0.0 ? (sum_iy - sum_i * sum_y / m) / spread : 0.0;
+  return sum_y / m - slope * sum_i / m - at_j;
+}
+
+// Increments [begin, end) of one unbroken segment, through their running count: a line fitted
+// over +-half_window samples at each one (the mean where the window is whole; near the segment's
+// ends, where it is cut, the line carries the count's slope to the end, so that a segment
+// starting in motion starts on its fitted count, as the rest of it continues).
+void smooth_segment(std::vector<double>& increments, std::size_t begin, std::size_t end,
+                    std::size_t half_window, std::vector<double>& step,
+                    std::vector<double>& offset) {
+  // Sample j of the segment is begin + j - 1; j = 0, the sample before it, is where it starts.
+  const std::size_t n = end - begin;
+  step.assign(n + 1, 0.0);
+  for (std::size_t j = 1; j <= n; ++j) step[j] = increments[begin + j - 1];
+  offset.resize(n + 1);
+  for (std::size_t j = 0; j <= n; ++j)
+    offset[j] =
+        line_offset(step, j > half_window ? j - half_window : 0, std::min(n, j + half_window), j);
+  for (std::size_t j = 1; j <= n; ++j)
+    increments[begin + j - 1] = step[j] + offset[j] - offset[j - 1];
+}
+
+void smooth_wheel(std::vector<double>& increments, const WheelStream& wheels,
+                  std::size_t half_window) {
+  if (increments.empty()) return;
+  std::vector<double> step, offset;
+  // A chain break's increment spans a gap (zero by convention): the segments lie on either side.
+  std::size_t begin = 1;
+  for (std::size_t k = 1; k <= wheels.size(); ++k) {
+    if (k < wheels.size() && !wheels.breaks_at(k)) continue;
+    if (k > begin) smooth_segment(increments, begin, k, half_window, step, offset);
+    begin = k + 1;
+  }
+}
+
+}  // namespace
+
+WheelStream dequantised_ticks(const WheelStream& wheels, double half_window_s) {
+  WheelStream out = wheels;
+  if (wheels.unit_rear != WheelUnit::kTicks || !(half_window_s > 0.0) || wheels.size() < 3)
+    return out;
+  std::vector<double> steps(wheels.size() - 1);
+  for (std::size_t k = 1; k < wheels.size(); ++k) steps[k - 1] = wheels.t_s[k] - wheels.t_s[k - 1];
+  const double period_s = median(steps);
+  if (!(period_s > 0.0)) return out;
+  const auto half_window = static_cast<std::size_t>(std::lround(half_window_s / period_s));
+  if (half_window == 0) return out;
+  for (std::vector<double>* wheel : {&out.rev_rl, &out.rev_rr, &out.rev_fl, &out.rev_fr})
+    smooth_wheel(*wheel, wheels, half_window);
+  return out;
+}
+
+}  // namespace odocal

@@ -1,0 +1,176 @@
+// Encoder quantisation in dead reckoning: two wheels rolling alike down a straight, their ticks
+// cut at different phases, dead-reckon a heading of up to one tick's worth of track angle that
+// never goes away; the counts' fitted line does not. Truth is exact: the drive is straight.
+
+#include "odocal/estimation/tick_dequantisation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "odocal/estimation/dead_reckoning.hpp"
+#include "odocal/estimation/drift_validation.hpp"
+
+namespace odocal {
+namespace {
+
+constexpr double kTicksPerRev = 96.0;
+constexpr double kRateHz = 50.0;
+const OdometryParams kParams{1.96, 1.96, 1.6};
+// The heading one tick of difference between the wheels turns: c / (n t).
+const double kTickHeadingRad = kParams.circumference_rl_m / kTicksPerRev / kParams.track_width_m;
+
+// Revolutions as floored counts of an encoder at `phase` (of a tick) when the wheel has turned
+// `ticks`: the increments a tick logger gives.
+struct Encoder {
+  double phase{};
+  double last{};
+  double increment(double ticks) {
+    const double count = std::floor(phase + ticks);
+    const double revs = (count - last) / kTicksPerRev;
+    last = count;
+    return revs;
+  }
+};
+
+// `speed(t)` m/s straight ahead, both wheels alike, encoders at the given phases.
+template <class Speed>
+WheelStream straight(double phase_rl, double phase_rr, double duration_s, Speed speed) {
+  WheelStream w;
+  Encoder rl{phase_rl, std::floor(phase_rl)}, rr{phase_rr, std::floor(phase_rr)};
+  double ticks = 0.0;
+  for (int k = 0; k <= static_cast<int>(duration_s * kRateHz); ++k) {
+    const double t = k / kRateHz;
+    if (k > 0)
+      ticks += speed(t - 0.5 / kRateHz) / kRateHz / kParams.circumference_rl_m * kTicksPerRev;
+    w.t_s.push_back(t);
+    w.rev_rl.push_back(rl.increment(ticks));
+    w.rev_rr.push_back(rr.increment(ticks));
+  }
+  return w;
+}
+
+// RMS heading over dead reckoning from sample `first` on (truth: zero).
+double rms_heading_rad(const WheelStream& wheels, std::size_t first) {
+  std::vector<Pose2> path(wheels.size() - first, Pose2::Zero());
+  dead_reckon_into(wheels, first, kParams, path);
+  double sum = 0.0;
+  for (const Pose2& pose : path) sum += pose(2) * pose(2);
+  return std::sqrt(sum / static_cast<double>(path.size()));
+}
+
+// 12.64 m/s: 12.38 ticks a sample, whose fraction (near the golden ratio's) sweeps a tick's
+// phases evenly within the window. Where it is near a fraction of few digits (10.3 m/s: 10.09
+// ticks a sample) the samples see few phases of the cut, and no average of them can see the rest
+// (the sweep below).
+const auto kSteady = [](double) { return 12.64; };
+
+TEST(TickDequantisation, AStraightDeadReckonedFromMidDriveKeepsItsHeading) {
+  for (const auto& [phase_rl, phase_rr] :
+       {std::pair{0.05, 0.9}, std::pair{0.5, 0.1}, std::pair{0.3, 0.35}, std::pair{0.7, 0.2}}) {
+    const WheelStream raw = straight(phase_rl, phase_rr, 60.0, kSteady);
+    const WheelStream smoothed = dequantised_ticks(raw, kDefaultTickSmoothingS);
+    for (const std::size_t first : {500u, 1234u}) {
+      SCOPED_TRACE(testing::Message()
+                   << "phases " << phase_rl << ", " << phase_rr << "; from " << first);
+      EXPECT_LT(rms_heading_rad(smoothed, first), 0.05 * kTickHeadingRad);
+      // The raw counts: the phase of the wheels' difference at the start of the dead reckoning
+      // stays with it.
+      if (std::abs(phase_rl - phase_rr) > 0.2) {
+        EXPECT_GT(rms_heading_rad(raw, first), 0.2 * kTickHeadingRad);
+      }
+    }
+  }
+}
+
+TEST(TickDequantisation, ALogStartingInMotionStartsOnTheFittedLine) {
+  const WheelStream raw = straight(0.05, 0.9, 30.0, kSteady);
+  EXPECT_GT(rms_heading_rad(raw, 0), 0.5 * kTickHeadingRad);  // one tick apart most of the time
+  EXPECT_LT(rms_heading_rad(dequantised_ticks(raw, kDefaultTickSmoothingS), 0),
+            0.2 * kTickHeadingRad);
+}
+
+// Every speed from 1 to 25 m/s, four pairs of phases: the resonances included, the smoothed
+// counts' heading is a fraction of the raw counts', from mid-drive and from a rolling start.
+TEST(TickDequantisation, EverySpeedGainsOnAverage) {
+  double raw_mid = 0.0, smoothed_mid = 0.0, raw_start = 0.0, smoothed_start = 0.0;
+  for (double speed = 1.0; speed <= 25.0; speed += 0.5) {
+    for (const auto& [phase_rl, phase_rr] :
+         {std::pair{0.05, 0.9}, std::pair{0.5, 0.1}, std::pair{0.3, 0.35}, std::pair{0.7, 0.2}}) {
+      const WheelStream raw = straight(phase_rl, phase_rr, 12.0, [=](double) { return speed; });
+      const WheelStream smoothed = dequantised_ticks(raw, kDefaultTickSmoothingS);
+      raw_mid += rms_heading_rad(raw, 200);
+      smoothed_mid += rms_heading_rad(smoothed, 200);
+      raw_start += rms_heading_rad(raw, 0);
+      smoothed_start += rms_heading_rad(smoothed, 0);
+    }
+  }
+  EXPECT_LT(smoothed_mid, 0.25 * raw_mid);
+  EXPECT_LT(smoothed_start, 0.5 * raw_start);
+}
+
+double total(const std::vector<double>& increments, std::size_t begin, std::size_t end) {
+  double sum = 0.0;
+  for (std::size_t k = begin; k < end; ++k) sum += increments[k];
+  return sum;
+}
+
+// Standing, driving off, stopping, a gap, then the same again: at rest the count is what the
+// encoder says, so every segment's total and every standstill stay exact, and the gap's sample
+// keeps its zero.
+TEST(TickDequantisation, CountsAtRestAndAtTheBreakStayAsCounted) {
+  const auto stop_and_go = [](double t) {
+    const double in_leg = std::fmod(t, 20.0);
+    return in_leg < 3.0 || in_leg > 17.0 ? 0.0 : 8.0 * std::sin(M_PI * (in_leg - 3.0) / 14.0);
+  };
+  const WheelStream raw0 = straight(0.4, 0.8, 40.0, stop_and_go);
+  WheelStream raw = raw0;
+  const std::size_t gap = 1000;  // t = 20 s: standing
+  raw.chain_break.assign(raw.size(), 0);
+  raw.chain_break[gap] = 1;
+  raw.rev_rl[gap] = raw.rev_rr[gap] = 0.0;
+  const WheelStream smoothed = dequantised_ticks(raw, kDefaultTickSmoothingS);
+  EXPECT_EQ(smoothed.rev_rl[gap], 0.0);
+  for (const auto& [begin, end] : {std::pair<std::size_t, std::size_t>{1, gap},
+                                   std::pair<std::size_t, std::size_t>{gap + 1, raw.size()}}) {
+    EXPECT_NEAR(total(smoothed.rev_rl, begin, end), total(raw.rev_rl, begin, end), 1e-9);
+    EXPECT_NEAR(total(smoothed.rev_rr, begin, end), total(raw.rev_rr, begin, end), 1e-9);
+  }
+  // Deep in a standstill (t = 21 s): nothing moves.
+  EXPECT_EQ(smoothed.rev_rl[1050], 0.0);
+  // While moving, the smoothed increments follow the motion and not the cut: within a tenth of
+  // a tick of it wherever the speed changes slowly.
+  double worst = 0.0;
+  for (std::size_t k = 300; k < 700; ++k) {
+    const double t = raw.t_s[k] - 0.5 / kRateHz;
+    const double true_revs = stop_and_go(t) / kRateHz / kParams.circumference_rl_m;
+    worst = std::max(worst, std::abs(smoothed.rev_rl[k] - true_revs) * kTicksPerRev);
+  }
+  EXPECT_LT(worst, 0.1);
+}
+
+TEST(TickDequantisation, WheelAnglesAndAZeroWindowPassUnchanged) {
+  WheelStream raw = straight(0.05, 0.9, 10.0, kSteady);
+  EXPECT_EQ(dequantised_ticks(raw, 0.0).rev_rl, raw.rev_rl);
+  raw.unit_rear = WheelUnit::kRadians;
+  EXPECT_EQ(dequantised_ticks(raw, kDefaultTickSmoothingS).rev_rl, raw.rev_rl);
+}
+
+// `validate` dead-reckons the smoothed counts unless told not to.
+TEST(TickDequantisation, HeldOutWindowsDriftLessWithTheCountsSmoothed) {
+  const WheelStream wheels = straight(0.05, 0.9, 185.0, kSteady);
+  ReferenceTrajectory exact;
+  for (const double t : wheels.t_s) exact.poses.emplace_back(12.64 * t, 0.0, 0.0);
+  DriftValidationOptions options;
+  options.step_s = 7.0;
+  const double smoothed = validate_drift(wheels, exact, kParams, kParams, options)
+                              .calibrated_statistics.median_end_error_m;
+  options.tick_smoothing_s = 0.0;
+  const double raw = validate_drift(wheels, exact, kParams, kParams, options)
+                         .calibrated_statistics.median_end_error_m;
+  EXPECT_LT(smoothed, 0.2 * raw);
+  EXPECT_GT(raw, 0.5);  // a quarter of a tick's heading over 600 m
+}
+
+}  // namespace
+}  // namespace odocal
