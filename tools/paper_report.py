@@ -410,7 +410,9 @@ def tyre_models(report):
     report.write(f"Urban drive (the built-in `urban` scenario, realistic, rear-wheel drive, "
                  f"true circumferences = nominal, {urban['seeds']} noise seeds), batch with "
                  f"`auto`, then `odocal validate`'s held-out 60 s windows (one every 10 s) "
-                 f"dead-reckoned from the smoothed reference; medians over seeds of each log's "
+                 f"dead-reckoned from the smoothed reference, the encoders' tick counts averaged "
+                 f"over ±0.2 s (`--tick-smoothing`, docs/batch-calibration.md); medians over "
+                 f"seeds of each log's "
                  f"median drift, in % of distance:")
     report.write()
     report.write("| parameters | median drift [%] |")
@@ -422,6 +424,11 @@ def tyre_models(report):
     report.write(f"| the true circumferences, the same drive in ideal mode (the metric's floor: "
                  f"the reference's and the encoders' noise) | "
                  f"{urban['ideal_true_median_drift_percent']:.3f} |")
+    if "calibrated_raw_ticks_median_drift_percent" in urban:
+        report.write(f"| calibrated (`auto`), the tick counts as they are (`--tick-smoothing 0`) | "
+                     f"{urban['calibrated_raw_ticks_median_drift_percent']:.3f} |")
+        report.write(f"| the metric's floor, the tick counts as they are | "
+                     f"{urban['ideal_true_raw_ticks_median_drift_percent']:.3f} |")
     report.write()
     report.write("The issue's targets, as measured here:")
     report.write()

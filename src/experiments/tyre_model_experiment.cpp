@@ -117,9 +117,10 @@ namespace {
 
 // `odocal validate --params` as it runs: the prepared log, the smoothed reference, each parameter
 // set with its own tyre model; 60 s windows starting every 10 s (steadier medians on a 5-minute
-// drive than its four disjoint windows).
+// drive than its four disjoint windows); the tick counts smoothed as `--tick-smoothing` says.
 DriftValidation urban_drift(const Log& input, const OdometryParams& calibrated,
-                            const TyreModel& tyre) {
+                            const TyreModel& tyre,
+                            double tick_smoothing_s = kDefaultTickSmoothingS) {
   CalibrationOptions common;
   common.reference.mode = ReferenceMode::kSmoother;
   LogPreparation done;
@@ -129,6 +130,7 @@ DriftValidation urban_drift(const Log& input, const OdometryParams& calibrated,
   const OdometryParams nominal = log.vehicle.nominal_params();
   DriftValidationOptions windows;
   windows.step_s = 10.0;
+  windows.tick_smoothing_s = tick_smoothing_s;
   return validate_drift(with_tyre_model(log, nominal, log.vehicle.tyre_model.value_or(TyreModel{})),
                         with_tyre_model(log, calibrated, tyre), reference, nominal, calibrated,
                         windows);
@@ -151,7 +153,11 @@ nlohmann::json run_urban_drift_seed(std::uint64_t seed) {
   const DriftValidation truth = urban_drift(log, drive.true_params, TyreModel{});
   scenario.ideal = true;
   const sim::SimulatedDrive ideal = sim::simulate(scenario);
-  const DriftValidation floor = urban_drift(simulated_log(ideal), ideal.true_params, TyreModel{});
+  const Log ideal_log = simulated_log(ideal);
+  const DriftValidation floor = urban_drift(ideal_log, ideal.true_params, TyreModel{});
+  // The same with the encoders' counts as they are (`--tick-smoothing 0`).
+  const DriftValidation raw_ticks = urban_drift(log, summary.estimate, summary.tyre_model, 0.0);
+  const DriftValidation raw_floor = urban_drift(ideal_log, ideal.true_params, TyreModel{}, 0.0);
   return {
       {"seed", seed},
       {"usable", summary.usable()},
@@ -160,7 +166,11 @@ nlohmann::json run_urban_drift_seed(std::uint64_t seed) {
       {"nominal_median_drift_percent", calibrated.nominal_statistics.median_drift_percent},
       {"calibrated_median_drift_percent", calibrated.calibrated_statistics.median_drift_percent},
       {"true_static_median_drift_percent", truth.calibrated_statistics.median_drift_percent},
-      {"ideal_true_median_drift_percent", floor.calibrated_statistics.median_drift_percent}};
+      {"ideal_true_median_drift_percent", floor.calibrated_statistics.median_drift_percent},
+      {"calibrated_raw_ticks_median_drift_percent",
+       raw_ticks.calibrated_statistics.median_drift_percent},
+      {"ideal_true_raw_ticks_median_drift_percent",
+       raw_floor.calibrated_statistics.median_drift_percent}};
 }
 
 nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
@@ -222,12 +232,15 @@ nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
   targets.push_back(target("ideal, auto: change of the mean abs error against none", change,
                            kTargetIdealErrorChange, change <= kTargetIdealErrorChange));
 
-  std::vector<double> nominal_drift, calibrated_drift, true_drift, floor_drift;
+  std::vector<double> nominal_drift, calibrated_drift, true_drift, floor_drift, raw_drift,
+      raw_floor_drift;
   for (const nlohmann::json& seed : urban) {
     nominal_drift.push_back(seed.at("nominal_median_drift_percent"));
     calibrated_drift.push_back(seed.at("calibrated_median_drift_percent"));
     true_drift.push_back(seed.at("true_static_median_drift_percent"));
     floor_drift.push_back(seed.at("ideal_true_median_drift_percent"));
+    raw_drift.push_back(seed.at("calibrated_raw_ticks_median_drift_percent"));
+    raw_floor_drift.push_back(seed.at("ideal_true_raw_ticks_median_drift_percent"));
   }
   const double urban_drift = median(calibrated_drift);
   targets.push_back(target("urban, auto: held-out median drift [%]", urban_drift,
@@ -240,6 +253,8 @@ nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
             {"calibrated_median_drift_percent", urban_drift},
             {"true_static_median_drift_percent", median(true_drift)},
             {"ideal_true_median_drift_percent", median(floor_drift)},
+            {"calibrated_raw_ticks_median_drift_percent", median(raw_drift)},
+            {"ideal_true_raw_ticks_median_drift_percent", median(raw_floor_drift)},
             {"runs", urban}}},
           {"targets", targets}};
 }

@@ -32,7 +32,9 @@ nlohmann::json urban(int n, double calibrated) {
           {"nominal_median_drift_percent", 0.7},
           {"calibrated_median_drift_percent", calibrated},
           {"true_static_median_drift_percent", 0.6},
-          {"ideal_true_median_drift_percent", 0.2}};
+          {"ideal_true_median_drift_percent", 0.2},
+          {"calibrated_raw_ticks_median_drift_percent", calibrated + 0.1},
+          {"ideal_true_raw_ticks_median_drift_percent", 0.3}};
 }
 
 const nlohmann::json* find_target(const nlohmann::json& summary, const std::string& start) {
@@ -79,6 +81,11 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
   ASSERT_NE(drift, nullptr);
   EXPECT_DOUBLE_EQ((*drift)["measured"].get<double>(), 0.25);  // the median of three seeds
   EXPECT_TRUE((*drift)["met"].get<bool>());
+  // The unsmoothed tick counts' figures are reported beside it, not judged.
+  EXPECT_DOUBLE_EQ(summary["urban"]["calibrated_raw_ticks_median_drift_percent"].get<double>(),
+                   0.35);
+  EXPECT_DOUBLE_EQ(summary["urban"]["ideal_true_raw_ticks_median_drift_percent"].get<double>(),
+                   0.3);
   EXPECT_THROW(summarise_tyre_models({}, {}), std::exception);
 }
 
