@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "odocal/estimation/median.hpp"
+#include "odocal/estimation/wheel_gaps.hpp"
 
 namespace odocal {
 namespace {
@@ -51,13 +52,17 @@ void smooth_segment(std::vector<double>& increments, std::size_t begin, std::siz
 }
 
 void smooth_wheel(std::vector<double>& increments, const WheelStream& wheels,
-                  std::size_t half_window) {
+                  std::size_t half_window, double max_gap_s) {
   if (increments.empty()) return;
   std::vector<double> step, offset;
-  // A chain break's increment spans a gap (zero by convention): the segments lie on either side.
+  // A chain break's increment spans a gap (zero by convention), and so does the increment after
+  // a gap that nothing marked (a stream not prepared): it stays as counted, the segments lie on
+  // either side.
   std::size_t begin = 1;
   for (std::size_t k = 1; k <= wheels.size(); ++k) {
-    if (k < wheels.size() && !wheels.breaks_at(k)) continue;
+    const bool segment_ends =
+        k == wheels.size() || wheels.breaks_at(k) || wheels.t_s[k] - wheels.t_s[k - 1] > max_gap_s;
+    if (!segment_ends) continue;
     if (k > begin) smooth_segment(increments, begin, k, half_window, step, offset);
     begin = k + 1;
   }
@@ -75,8 +80,9 @@ WheelStream dequantised_ticks(const WheelStream& wheels, double half_window_s) {
   if (!(period_s > 0.0)) return out;
   const auto half_window = static_cast<std::size_t>(std::lround(half_window_s / period_s));
   if (half_window == 0) return out;
+  const double max_gap_s = default_max_wheel_gap_s(wheels);
   for (std::vector<double>* wheel : {&out.rev_rl, &out.rev_rr, &out.rev_fl, &out.rev_fr})
-    smooth_wheel(*wheel, wheels, half_window);
+    smooth_wheel(*wheel, wheels, half_window, max_gap_s);
   return out;
 }
 

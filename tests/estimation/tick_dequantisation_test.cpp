@@ -149,6 +149,26 @@ TEST(TickDequantisation, CountsAtRestAndAtTheBreakStayAsCounted) {
   EXPECT_LT(worst, 0.1);
 }
 
+// A stream that no preparation marked: its gap of 2 s (the counts of the gap in the sample after
+// it) is no part of either side's average, and stays as counted.
+TEST(TickDequantisation, AnUnmarkedGapIsNotAveragedOver) {
+  const WheelStream whole = straight(0.05, 0.9, 20.0, kSteady);
+  WheelStream gapped;
+  for (std::size_t k = 0; k < whole.size(); ++k) {
+    if (k > 500 && k < 600) continue;  // samples lost; sample 600 counts all of it
+    gapped.t_s.push_back(whole.t_s[k]);
+    gapped.rev_rl.push_back(k == 600 ? total(whole.rev_rl, 501, 601) : whole.rev_rl[k]);
+    gapped.rev_rr.push_back(k == 600 ? total(whole.rev_rr, 501, 601) : whole.rev_rr[k]);
+  }
+  const WheelStream smoothed = dequantised_ticks(gapped, kDefaultTickSmoothingS);
+  const std::size_t gap = 501;  // the sample after the gap, in the gapped stream
+  EXPECT_EQ(smoothed.rev_rl[gap], gapped.rev_rl[gap]);
+  EXPECT_EQ(smoothed.rev_rr[gap], gapped.rev_rr[gap]);
+  EXPECT_NEAR(total(smoothed.rev_rl, 1, gap), total(gapped.rev_rl, 1, gap), 1.0 / kTicksPerRev);
+  // Either side is smoothed as a stream of its own: the heading from mid-drive stays put.
+  EXPECT_LT(rms_heading_rad(smoothed, gap + 100), 0.05 * kTickHeadingRad);
+}
+
 TEST(TickDequantisation, WheelAnglesAndAZeroWindowPassUnchanged) {
   WheelStream raw = straight(0.05, 0.9, 10.0, kSteady);
   EXPECT_EQ(dequantised_ticks(raw, 0.0).rev_rl, raw.rev_rl);

@@ -16,8 +16,9 @@ namespace odocal {
 inline constexpr double kDefaultTickSmoothingS = 0.2;
 
 // The stream with every wheel's cumulative count replaced by a straight line fitted to it over
-// +-half_window_s at each sample: its mean where the window is whole, and towards a chain break
-// or the stream's ends, where the window is cut, the line's value there. Streams of wheel angles
+// +-half_window_s at each sample: its mean where the window is whole, and towards a chain break,
+// a gap (wheel_gaps.hpp's default) or the stream's ends, where the window is cut, the line's
+// value there. The increment across a break or gap stays as counted. Streams of wheel angles
 // or speeds (WheelStream::unit_rear not kTicks) and half_window_s <= 0 return unchanged. Only the
 // increments change; a segment's total moves by less than a tick.
 WheelStream dequantised_ticks(const WheelStream& wheels, double half_window_s);
