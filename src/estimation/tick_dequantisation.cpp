@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "odocal/estimation/median.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
 
 namespace odocal {
@@ -74,13 +73,11 @@ WheelStream dequantised_ticks(const WheelStream& wheels, double half_window_s) {
   WheelStream out = wheels;
   if (wheels.unit_rear != WheelUnit::kTicks || !(half_window_s > 0.0) || wheels.size() < 3)
     return out;
-  std::vector<double> steps(wheels.size() - 1);
-  for (std::size_t k = 1; k < wheels.size(); ++k) steps[k - 1] = wheels.t_s[k] - wheels.t_s[k - 1];
-  const double period_s = median(steps);
+  const double period_s = median_sample_period_s(wheels);
   if (!(period_s > 0.0)) return out;
   const auto half_window = static_cast<std::size_t>(std::lround(half_window_s / period_s));
   if (half_window == 0) return out;
-  const double max_gap_s = default_max_wheel_gap_s(wheels);
+  const double max_gap_s = kMaxWheelGapPeriods * period_s;
   for (std::vector<double>* wheel : {&out.rev_rl, &out.rev_rr, &out.rev_fl, &out.rev_fr})
     smooth_wheel(*wheel, wheels, half_window, max_gap_s);
   return out;

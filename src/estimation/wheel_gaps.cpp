@@ -4,13 +4,13 @@
 
 namespace odocal {
 
-double default_max_wheel_gap_s(const WheelStream& wheels) {
+double median_sample_period_s(const WheelStream& wheels) {
   if (wheels.size() < 2) return 0.0;
   std::vector<double> steps(wheels.size() - 1);
   for (std::size_t k = 1; k < wheels.size(); ++k) steps[k - 1] = wheels.t_s[k] - wheels.t_s[k - 1];
   const auto middle = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
   std::nth_element(steps.begin(), middle, steps.end());
-  return 5.0 * *middle;
+  return *middle;
 }
 
 std::vector<WheelGap> find_wheel_gaps(const WheelStream& wheels, double max_gap_s) {

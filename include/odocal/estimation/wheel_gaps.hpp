@@ -16,8 +16,14 @@ struct WheelGap {
   double duration_s{};
 };
 
+// The median interval between consecutive samples; 0 for fewer than two.
+double median_sample_period_s(const WheelStream& wheels);
+
 // Five times the median sample period: a dropped sample or two is no gap, a second is.
-double default_max_wheel_gap_s(const WheelStream& wheels);
+inline constexpr double kMaxWheelGapPeriods = 5.0;
+inline double default_max_wheel_gap_s(const WheelStream& wheels) {
+  return kMaxWheelGapPeriods * median_sample_period_s(wheels);
+}
 
 // Every interval between consecutive samples longer than max_gap_s.
 std::vector<WheelGap> find_wheel_gaps(const WheelStream& wheels, double max_gap_s);
