@@ -69,18 +69,19 @@ void smooth_wheel(std::vector<double>& increments, const WheelStream& wheels,
 
 }  // namespace
 
-WheelStream dequantised_ticks(const WheelStream& wheels, double half_window_s) {
-  WheelStream out = wheels;
+WheelStream dequantised_ticks(WheelStream wheels, double half_window_s) {
   if (wheels.unit_rear != WheelUnit::kTicks || !(half_window_s > 0.0) || wheels.size() < 3)
-    return out;
+    return wheels;
   const double period_s = median_sample_period_s(wheels);
-  if (!(period_s > 0.0)) return out;
+  if (!(period_s > 0.0)) return wheels;
   const auto half_window = static_cast<std::size_t>(std::lround(half_window_s / period_s));
-  if (half_window == 0) return out;
+  if (half_window == 0) return wheels;
   const double max_gap_s = kMaxWheelGapPeriods * period_s;
-  for (std::vector<double>* wheel : {&out.rev_rl, &out.rev_rr, &out.rev_fl, &out.rev_fr})
+  // Each wheel's increments in place; the times and breaks they are cut at are read alongside.
+  for (std::vector<double>* wheel :
+       {&wheels.rev_rl, &wheels.rev_rr, &wheels.rev_fl, &wheels.rev_fr})
     smooth_wheel(*wheel, wheels, half_window, max_gap_s);
-  return out;
+  return wheels;
 }
 
 }  // namespace odocal

@@ -20,7 +20,8 @@ inline constexpr double kDefaultTickSmoothingS = 0.2;
 // a gap (wheel_gaps.hpp's default) or the stream's ends, where the window is cut, the line's
 // value there. The increment across a break or gap stays as counted. Streams of wheel angles
 // or speeds (WheelStream::unit_rear not kTicks) and half_window_s <= 0 return unchanged. Only the
-// increments change; a segment's total moves by less than a tick.
-WheelStream dequantised_ticks(const WheelStream& wheels, double half_window_s);
+// increments change; a segment's total moves by less than a tick. Taken by value: a caller
+// done with its stream moves it in.
+WheelStream dequantised_ticks(WheelStream wheels, double half_window_s);
 
 }  // namespace odocal
