@@ -21,8 +21,9 @@ struct LogDeadReckoningOptions {
   std::optional<double> circumference_rl_m, circumference_rr_m, track_width_m;  // else nominal
   bool plain = false;  // ignore vehicle.yaml's tyre_model
   LogStart start = LogStart::kAuto;
-  double tick_smoothing_s =
-      kDefaultTickSmoothingS;      // tick_dequantisation.hpp; 0: counts as they are
+  // Tick counts averaged over +-this before dead reckoning (tick_dequantisation.hpp); 0: as
+  // counted.
+  double tick_smoothing_s = kDefaultTickSmoothingS;
   CalibrationOptions preparation;  // prepared as every command prepares a log (the defaults)
 };
 
