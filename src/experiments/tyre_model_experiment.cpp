@@ -115,26 +115,39 @@ nlohmann::json run_tyre_model_seed(const PaperSetup& setup, std::uint64_t seed) 
 
 namespace {
 
-// `odocal validate --params` as it runs: the prepared log, the smoothed reference, each parameter
-// set with its own tyre model; 60 s windows starting every 10 s (steadier medians on a 5-minute
-// drive than its four disjoint windows); the tick counts smoothed as `--tick-smoothing` says.
-DriftValidation urban_drift(const Log& input, const OdometryParams& calibrated,
-                            const TyreModel& tyre,
-                            double tick_smoothing_s = kDefaultTickSmoothingS) {
-  CalibrationOptions common;
-  common.reference.mode = ReferenceMode::kSmoother;
-  LogPreparation done;
-  const std::optional<Log> prepared = prepare_log(input, common, done);
-  const Log& log = prepared ? *prepared : input;
-  const ReferenceTrajectory reference = compute_reference(log, common.reference);
-  const OdometryParams nominal = log.vehicle.nominal_params();
-  DriftValidationOptions windows;
-  windows.step_s = 10.0;
-  windows.tick_smoothing_s = tick_smoothing_s;
-  return validate_drift(with_tyre_model(log, nominal, log.vehicle.tyre_model.value_or(TyreModel{})),
-                        with_tyre_model(log, calibrated, tyre), reference, nominal, calibrated,
-                        windows);
-}
+// `odocal validate --params` as it runs: the prepared log and its smoothed reference, computed
+// once per log; each parameter set with its own tyre model; 60 s windows starting every 10 s
+// (steadier medians on a 5-minute drive than its four disjoint windows); the tick counts smoothed
+// as `--tick-smoothing` says.
+class UrbanValidation {
+ public:
+  explicit UrbanValidation(const Log& input) {
+    common_.reference.mode = ReferenceMode::kSmoother;
+    LogPreparation done;
+    prepared_ = prepare_log(input, common_, done);
+    log_ = prepared_ ? &*prepared_ : &input;
+    reference_ = compute_reference(*log_, common_.reference);
+  }
+  UrbanValidation(const UrbanValidation&) = delete;  // log_ may point into prepared_
+  UrbanValidation& operator=(const UrbanValidation&) = delete;
+
+  DriftValidation drift(const OdometryParams& calibrated, const TyreModel& tyre,
+                        double tick_smoothing_s = kDefaultTickSmoothingS) const {
+    const OdometryParams nominal = log_->vehicle.nominal_params();
+    DriftValidationOptions windows;
+    windows.step_s = 10.0;
+    windows.tick_smoothing_s = tick_smoothing_s;
+    return validate_drift(
+        with_tyre_model(*log_, nominal, log_->vehicle.tyre_model.value_or(TyreModel{})),
+        with_tyre_model(*log_, calibrated, tyre), reference_, nominal, calibrated, windows);
+  }
+
+ private:
+  CalibrationOptions common_;
+  std::optional<Log> prepared_;
+  const Log* log_ = nullptr;  // prepared_, or the input where preparing changed nothing
+  ReferenceTrajectory reference_;
+};
 
 }  // namespace
 
@@ -147,17 +160,19 @@ nlohmann::json run_urban_drift_seed(std::uint64_t seed) {
   options.batch.tyre_model = TyreModelChoice::kAuto;
   const AnyCalibrationSummary result = calibrate(log, options);
   const CalibrationSummary& summary = core(result);
-  const DriftValidation calibrated = urban_drift(log, summary.estimate, summary.tyre_model);
+  const UrbanValidation realistic(log);
+  const DriftValidation calibrated = realistic.drift(summary.estimate, summary.tyre_model);
   // What the metric gives with the true circumferences at rest: on this drive, and on the same
   // drive in ideal mode (no tyre effects: the reference's and the encoders' own noise).
-  const DriftValidation truth = urban_drift(log, drive.true_params, TyreModel{});
+  const DriftValidation truth = realistic.drift(drive.true_params, TyreModel{});
   scenario.ideal = true;
   const sim::SimulatedDrive ideal = sim::simulate(scenario);
   const Log ideal_log = simulated_log(ideal);
-  const DriftValidation floor = urban_drift(ideal_log, ideal.true_params, TyreModel{});
+  const UrbanValidation ideal_windows(ideal_log);
+  const DriftValidation floor = ideal_windows.drift(ideal.true_params, TyreModel{});
   // The same with the encoders' counts as they are (`--tick-smoothing 0`).
-  const DriftValidation raw_ticks = urban_drift(log, summary.estimate, summary.tyre_model, 0.0);
-  const DriftValidation raw_floor = urban_drift(ideal_log, ideal.true_params, TyreModel{}, 0.0);
+  const DriftValidation raw_ticks = realistic.drift(summary.estimate, summary.tyre_model, 0.0);
+  const DriftValidation raw_floor = ideal_windows.drift(ideal.true_params, TyreModel{}, 0.0);
   return {
       {"seed", seed},
       {"usable", summary.usable()},
