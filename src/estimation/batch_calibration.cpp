@@ -28,6 +28,7 @@
 #include "odocal/error.hpp"
 #include "odocal/estimation/driving_state.hpp"
 #include "odocal/estimation/odometry_preintegration.hpp"
+#include "odocal/model/tyre_car_prior.hpp"
 
 namespace odocal {
 namespace {
@@ -166,6 +167,7 @@ class BatchProblem {
   void set_tyre_terms(std::optional<TyreTerms> terms) {
     tyre_terms_ = terms;
     tyre_held_sigma_.fill(0.0);
+    tyre_held_estimate_.fill(0.0);
     std::fill(params_.begin() + kTyreOffset, params_.end(), 0.0);
   }
   bool tyre_fitted() const { return tyre_terms_.has_value(); }
@@ -175,10 +177,15 @@ class BatchProblem {
     return tyre_terms_ && kTyreCoefficients[static_cast<std::size_t>(j)].terms == *tyre_terms_;
   }
   // Holds coefficient j at zero from the next solve on: the log cannot identify it (its sigma
-  // when it was free is kept for the report).
-  void hold_tyre_coefficient(int j, double sigma) {
+  // when it was free is kept for the report, and with its value there for its share of the
+  // circumferences' sigma; a fit that wandered says nothing of the value).
+  enum class FreeValue { kEstimate, kWandered };
+  void hold_tyre_coefficient(int j, double sigma, FreeValue value = FreeValue::kEstimate) {
+    const auto index = static_cast<std::size_t>(kTyreOffset + j);
     tyre_held_sigma_[static_cast<std::size_t>(j)] = sigma;
-    params_[static_cast<std::size_t>(kTyreOffset + j)] = 0.0;
+    tyre_held_estimate_[static_cast<std::size_t>(j)] =
+        value == FreeValue::kEstimate ? params_[index] : 0.0;
+    params_[index] = 0.0;
   }
   // Whether a pre-integration rebuilds the GNSS and heading folds or keeps the last ones.
   enum class Folds { kRebuild, kKeep };
@@ -452,37 +459,65 @@ class BatchProblem {
 
   const ParamsBlock& params() const { return params_; }
 
-  // How far the estimate moves with the body's uncertainty (the physical terms' geometry, which
-  // the log cannot identify, docs/tyre-model.md): per body parameter, one Gauss-Newton step from
-  // the solution with the parameter moved by a quarter of its uncertainty, scaled to the whole
-  // (the linear sensitivity, without solving again); the outer products summed, as for
-  // independent errors. The GNSS and heading folds are built once, at the solution: the body
-  // reaches them only through the wheels' motion within one keyframe interval, while it moves
-  // the odometry and the Doppler speed over the whole log. The solution and its problem are
-  // restored after.
-  void add_body_uncertainty() {
+  // How far the estimate moves with what the log cannot identify and the fit takes as known:
+  // per number, one Gauss-Newton step from the solution with it moved by a quarter of its
+  // uncertainty, scaled to the whole (the linear sensitivity, without solving again); the outer
+  // products summed, as for independent errors. The numbers:
+  // - the body's (the physical terms' geometry, docs/tyre-model.md). The GNSS and heading folds
+  //   are built once, at the solution: the body reaches them only through the wheels' motion
+  //   within one keyframe interval, while it moves the odometry and the Doppler speed over the
+  //   whole log;
+  // - the physical coefficients held at zero, by their spread about zero (a car's value, and what
+  //   the log said while they were free: held_coefficient_sigma). Holding one makes an error of
+  //   the car's own value, which the free ones and the circumferences take up (the urban drive,
+  //   seed 8: the brake slip held, c_RL +10 mm at a sigma of 2.5 mm without it). The coefficient
+  //   is linear in the pre-integration's Jacobian, which carries the step; the folds keep theirs,
+  //   as for the body.
+  // The solution and its problem are restored after.
+  void add_considered_uncertainty() {
     body_covariance_.setZero();
+    held_covariance_.setZero();
     body_responses_.clear();
-    if (!tyre_terms_ || *tyre_terms_ != TyreTerms::kPhysical || tyre_model().plain()) return;
+    held_responses_.clear();
+    if (!tyre_terms_ || *tyre_terms_ != TyreTerms::kPhysical) return;
     preintegrate_all(0.0, false);
     const Unknowns solution = unknowns(Folds::kKeep);
     const VehicleBody stated = body_;
     const batch::ParamsVector at = Eigen::Map<const batch::ParamsVector>(params_.data());
-    for (const BodyUncertainty& uncertainty : kBodyUncertainties) {
-      const double sigma = uncertainty.sigma(stated);
-      constexpr double kStep = 0.25;
-      body_ = stated;
-      body_.*(uncertainty.member) += kStep * sigma;
-      preintegrate_all(0.0, false, Folds::kKeep);
+    constexpr double kStep = 0.25;
+    const auto respond = [&] {
       solve(1);
       const batch::ParamsVector moved =
           (Eigen::Map<const batch::ParamsVector>(params_.data()) - at) / kStep;
-      body_covariance_ += moved * moved.transpose();
-      body_responses_.push_back({body_, kStep * moved, kStep});
       set_unknowns(solution);
+      return moved;
+    };
+    const double circumference_m =
+        0.5 * (nominal_.circumference_rl_m + nominal_.circumference_rr_m);
+    for (int j = 0; j < TyreModel::kCoefficients; ++j) {
+      if (!tyre_in_fit(j) || !tyre_held(j)) continue;
+      const auto index = static_cast<std::size_t>(j);
+      const double sigma =
+          held_coefficient_sigma(tyre_held_estimate_[index], tyre_held_sigma_[index],
+                                 car_tyre_coefficient_sigma(j, stated, circumference_m));
+      if (!(sigma > 0.0)) continue;
+      params_[static_cast<std::size_t>(kTyreOffset) + index] += kStep * sigma;
+      const batch::ParamsVector moved = respond();
+      held_covariance_ += moved * moved.transpose();
+      held_responses_.push_back({j, {stated, kStep * moved, kStep}});
     }
-    body_ = stated;
-    preintegrate_all(0.0, false, Folds::kKeep);
+    if (!tyre_model().plain()) {
+      for (const BodyUncertainty& uncertainty : kBodyUncertainties) {
+        body_ = stated;
+        body_.*(uncertainty.member) += kStep * uncertainty.sigma(stated);
+        preintegrate_all(0.0, false, Folds::kKeep);
+        const batch::ParamsVector moved = respond();
+        body_covariance_ += moved * moved.transpose();
+        body_responses_.push_back({body_, kStep * moved, kStep});
+      }
+      body_ = stated;
+      preintegrate_all(0.0, false, Folds::kKeep);
+    }
     solve();  // the solution's own problem again, for the summary (it starts converged)
   }
   const Eigen::Matrix<double, batch::kParams, batch::kParams>& body_covariance() const {
@@ -492,13 +527,25 @@ class BatchProblem {
   // two models that extrapolate to rest differently say how sure either extrapolation is.
   void set_model_spread(const std::array<double, 2>& spread_m) { model_spread_m_ = spread_m; }
   const std::array<double, 2>& model_spread_m() const { return model_spread_m_; }
-  // One body number moved by `step` of its uncertainty, and what that moved the parameters by.
-  struct BodyResponse {
+  // One number moved by `step` of its uncertainty (the body as it then was), and what that moved
+  // the parameters by.
+  struct Response {
     VehicleBody body;
     batch::ParamsVector moved;
     double step;
   };
-  const std::vector<BodyResponse>& body_responses() const { return body_responses_; }
+  // Per held coefficient (its index in TyreModel::Vector).
+  struct HeldResponse {
+    int coefficient;
+    Response response;
+  };
+  // Per body number, in kBodyUncertainties' order (none where every coefficient is zero).
+  const std::vector<Response>& body_responses() const { return body_responses_; }
+  const std::vector<HeldResponse>& held_responses() const { return held_responses_; }
+  // Of the parameters, from the held coefficients' spread (add_considered_uncertainty).
+  const Eigen::Matrix<double, batch::kParams, batch::kParams>& held_covariance() const {
+    return held_covariance_;
+  }
   const VehicleBody& body() const { return body_; }
   const Block2& lever() const { return lever_; }
   double gyro_bias() const { return gyro_bias_; }
@@ -996,12 +1043,17 @@ class BatchProblem {
   std::vector<std::uint8_t> rough_segment_;  // per interval: outside the gentle limits
   TyreModel::Vector regressor_rms_ = TyreModel::Vector::Zero();
   std::optional<TyreTerms> tyre_terms_;  // the family of tyre coefficients fitted (none: plain)
-  // Of the parameters, from the body's uncertainty (add_body_uncertainty).
+  // Of the parameters, from the body's uncertainty and the held coefficients' spread
+  // (add_considered_uncertainty).
   Eigen::Matrix<double, batch::kParams, batch::kParams> body_covariance_ =
       Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
-  std::vector<BodyResponse> body_responses_;
+  Eigen::Matrix<double, batch::kParams, batch::kParams> held_covariance_ =
+      Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
+  std::vector<Response> body_responses_;
+  std::vector<HeldResponse> held_responses_;
   std::array<double, 2> model_spread_m_{};
-  std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};  // > 0: held at zero
+  std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};     // > 0: held at zero
+  std::array<double, TyreModel::kCoefficients> tyre_held_estimate_{};  // its value while free
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
   std::vector<ceres::ResidualBlockId> fold_blocks_;
@@ -1061,11 +1113,14 @@ ReferenceCircumference reference_circumference(
       gradient(j) = (rolling(moved, batch.body(), wheel) - value) / step;
     }
     double variance = gradient.dot(covariance * gradient);
-    for (const BatchProblem::BodyResponse& response : batch.body_responses()) {
+    const auto add_response = [&](const BatchProblem::Response& response) {
       const double change =
           (rolling(at + response.moved, response.body, wheel) - value) / response.step;
       variance += change * change;
-    }
+    };
+    for (const BatchProblem::Response& response : batch.body_responses()) add_response(response);
+    for (const BatchProblem::HeldResponse& held : batch.held_responses())
+      add_response(held.response);
     const double sigma = std::sqrt(std::max(variance, 0.0));
     (wheel == 0 ? r.circumference_rl_m : r.circumference_rr_m) = value;
     (wheel == 0 ? r.sigma_rl_m : r.sigma_rr_m) = sigma;
@@ -1081,6 +1136,49 @@ void suggest_tyre_model(ModelAdequacy& adequacy) {
   adequacy.verdict +=
       "; the batch method's tyre_model: physical (or auto) fits a circumference that follows the "
       "driving state (docs/tyre-model.md)";
+}
+
+// Why a circumference beside a tyre model is not identified: at rest it is an extrapolation from
+// the states driven, and its sigma carries what the log cannot identify (the body's numbers, the
+// coefficients held at zero), or the two models' gap; the largest share named, so that the user
+// knows what to state or drive.
+std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel, double spread_m) {
+  const auto largest = [wheel](const auto& parts) {
+    return std::max_element(parts.begin(), parts.end(), [wheel](const auto& a, const auto& b) {
+      return a.sigma_m[wheel] < b.sigma_m[wheel];
+    });
+  };
+  std::vector<std::string> shares, advice;
+  const auto body = largest(summary.body_sigma_parts);
+  if (summary.body_sigma_m[wheel] > 0.0 && body != summary.body_sigma_parts.end()) {
+    shares.push_back(
+        fmt::format("{:.2g} mm of the sigma from the body's uncertainty, {:.2g} mm "
+                    "of it from {}",
+                    1e3 * summary.body_sigma_m[wheel], 1e3 * body->sigma_m[wheel], body->key));
+    advice.push_back("state vehicle.yaml's body");
+  }
+  const auto held = largest(summary.held_sigma_parts);
+  if (summary.held_sigma_m[wheel] > 0.0 && held != summary.held_sigma_parts.end()) {
+    shares.push_back(
+        fmt::format("{:.2g} mm from the tyre coefficients held at zero, {:.2g} mm "
+                    "of it from {}",
+                    1e3 * summary.held_sigma_m[wheel], 1e3 * held->sigma_m[wheel], held->key));
+    advice.push_back("drive more of what shows " + held->key);
+  }
+  const std::string extrapolation =
+      "with the tyre model the circumference at rest is an extrapolation from this drive's slip "
+      "and load";
+  if (!shares.empty()) {
+    return fmt::format("{} ({}: {}, or drive longer and more gently)", extrapolation,
+                       fmt::join(shares, "; "), fmt::join(advice, ", "));
+  }
+  if (spread_m > 0.0) {
+    return fmt::format(
+        "{}, and the physical terms' fit puts it {:.3g} mm away (its sigma includes that gap): "
+        "drive longer and more gently",
+        extrapolation, 1e3 * spread_m);
+  }
+  return extrapolation + " (drive longer and more gently)";
 }
 
 // Fills the summary from the solved problem: every parameter with its sigma and verdict, and
@@ -1103,19 +1201,30 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   // at a reference speed adds the body's share per body number itself, and makes no
   // extrapolation to rest.
   const Eigen::Matrix<double, batch::kParams, batch::kParams> data_covariance = u.params;
-  u.params += batch.body_covariance();
+  u.params += batch.body_covariance() + batch.held_covariance();
   const std::array<double, 2>& spread = batch.model_spread_m();
   for (int w = 0; w < 2; ++w)
     u.params(w, w) += spread[static_cast<std::size_t>(w)] * spread[static_cast<std::size_t>(w)];
   summary.model_spread_m = spread;
   summary.body_sigma_m = {std::sqrt(batch.body_covariance()(0, 0)),
                           std::sqrt(batch.body_covariance()(1, 1))};
+  const auto moved_circumferences = [](const BatchProblem::Response& response) {
+    return std::array<double, 2>{std::abs(response.moved(0)) / response.step,
+                                 std::abs(response.moved(1)) / response.step};
+  };
   summary.body_sigma_parts.clear();
   for (std::size_t i = 0; i < batch.body_responses().size(); ++i) {
-    const BatchProblem::BodyResponse& response = batch.body_responses()[i];
-    summary.body_sigma_parts.push_back({kBodyUncertainties[i].key,
-                                        {std::abs(response.moved(0)) / response.step,
-                                         std::abs(response.moved(1)) / response.step}});
+    summary.body_sigma_parts.push_back(
+        {kBodyUncertainties[i].key, moved_circumferences(batch.body_responses()[i])});
+  }
+  summary.held_sigma_m = {std::sqrt(batch.held_covariance()(0, 0)),
+                          std::sqrt(batch.held_covariance()(1, 1))};
+  summary.held_sigma_parts.clear();
+  for (const BatchProblem::HeldResponse& held : batch.held_responses()) {
+    const auto j = static_cast<std::size_t>(held.coefficient);
+    summary.held_sigma_parts.push_back(
+        {tyre_parameter_name(kTyreCoefficients[j]), moved_circumferences(held.response),
+         held.response.moved(kTyreOffset + held.coefficient) / held.response.step});
   }
   summary.parameters = {
       {"circumference_rl_m", p[0], sigma(u.params(0, 0)), true, true, ""},
@@ -1158,32 +1267,10 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
         std::isfinite(parameter.sigma) && parameter.sigma <= thresholds[i] && block_used[i];
     if (!parameter.identified) {
       parameter.verdict = unidentified_reason(parameter.name, coverage, block_used[i]);
-      if (i < 2 && batch.tyre_fitted() && !batch.tyre_model().plain()) {
-        // Beside a tyre model the circumference at rest is an extrapolation from the states
-        // driven, and with the physical terms its sigma carries the body's uncertainty too.
-        const double body_mm = 1e3 * std::sqrt(batch.body_covariance()(i, i));
-        const auto largest =
-            std::max_element(summary.body_sigma_parts.begin(), summary.body_sigma_parts.end(),
-                             [i](const auto& left, const auto& right) {
-                               return left.sigma_m[i] < right.sigma_m[i];
-                             });
-        parameter.verdict =
-            body_mm > 0.0 && largest != summary.body_sigma_parts.end()
-                ? fmt::format(
-                      "with the tyre model the circumference at rest is an extrapolation "
-                      "from this drive's slip and load ({:.2g} mm of the sigma from the "
-                      "body's uncertainty, {:.2g} mm of it from {}: state vehicle.yaml's "
-                      "body, or drive longer and more gently)",
-                      body_mm, 1e3 * largest->sigma_m[i], largest->key)
-            : spread[i] > 0.0
-                ? fmt::format(
-                      "with the tyre model the circumference at rest is an extrapolation from "
-                      "this drive's slip and load, and the physical terms' fit puts it {:.3g} mm "
-                      "away (its sigma includes that gap): drive longer and more gently",
-                      1e3 * spread[i])
-                : "with the tyre model the circumference at rest is an extrapolation from this "
-                  "drive's slip and load (drive longer and more gently)";
-      }
+      const bool considered =
+          i < 2 && (summary.body_sigma_m[i] > 0.0 || summary.held_sigma_m[i] > 0.0);
+      if (i < 2 && batch.tyre_fitted() && (!batch.tyre_model().plain() || considered))
+        parameter.verdict = extrapolation_verdict(summary, i, spread[i]);
       const bool held_tyre = i >= 8 && batch.tyre_held(static_cast<int>(i) - 8);
       if (held_tyre) parameter.verdict = "held at zero: " + parameter.verdict;
       problems.push_back(parameter.name + ": " + parameter.verdict);
@@ -1464,7 +1551,8 @@ ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions&
       if (!batch.tyre_in_fit(j) || batch.tyre_held(j)) continue;
       const double variance = tyre_variance(uncertainty, j);
       batch.hold_tyre_coefficient(
-          j, variance > 0.0 ? std::sqrt(variance) : std::numeric_limits<double>::infinity());
+          j, variance > 0.0 ? std::sqrt(variance) : std::numeric_limits<double>::infinity(),
+          BatchProblem::FreeValue::kWandered);
     }
     batch.restart();
     return solve_relinearised(batch, options, summary);
@@ -1547,7 +1635,7 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
   adapt_doppler_noise(batch, options, summary, solver);
   adapt_gnss_noise(batch, options, common, summary, solver);
   batch.set_model_spread(spread());  // at the solution reported
-  batch.add_body_uncertainty();
+  batch.add_considered_uncertainty();
   summarise(run.log(), options, batch, solver, summary);
   return true;
 }
@@ -1670,6 +1758,18 @@ std::string BatchSummary::full_report() const {
         "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the body's uncertainty "
         "(vehicle.yaml body: {}{})\n",
         "body", 1e3 * body_sigma_m[0], 1e3 * body_sigma_m[1], fmt::join(assumed, ", "), most);
+  }
+  if (held_sigma_m[0] > 0.0 || held_sigma_m[1] > 0.0) {
+    std::vector<std::string> parts;
+    for (const HeldSigmaPart& part : held_sigma_parts) {
+      parts.push_back(fmt::format("{} +-{:.2g}: {:.3g} / {:.3g} mm", part.key,
+                                  part.coefficient_sigma, 1e3 * part.sigma_m[0],
+                                  1e3 * part.sigma_m[1]));
+    }
+    text += fmt::format(
+        "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the tyre coefficients "
+        "held at zero, each taken as a car's size of it that this log cannot narrow ({})\n",
+        "held", 1e3 * held_sigma_m[0], 1e3 * held_sigma_m[1], fmt::join(parts, ", "));
   }
   if (model_spread_m[0] > 0.0 || model_spread_m[1] > 0.0) {
     text += fmt::format(

@@ -162,6 +162,15 @@ void add_details(json& out, const BatchSummary& s) {
       parts[part.key] = {part.sigma_m[0], part.sigma_m[1]};
     out["body_sigma_parts_m"] = parts;
   }
+  if (s.held_sigma_m[0] > 0.0 || s.held_sigma_m[1] > 0.0) {
+    out["held_sigma_m"] = {s.held_sigma_m[0], s.held_sigma_m[1]};
+    nlohmann::json parts = nlohmann::json::object();
+    for (const BatchSummary::HeldSigmaPart& part : s.held_sigma_parts) {
+      parts[part.key] = {{"sigma_m", {part.sigma_m[0], part.sigma_m[1]}},
+                         {"coefficient_sigma", part.coefficient_sigma}};
+    }
+    out["held_sigma_parts"] = parts;
+  }
   if (s.tyre_selection.compared) {
     nlohmann::json candidates = nlohmann::json::array();
     for (const TyreCandidate& c : s.tyre_selection.candidates) {
