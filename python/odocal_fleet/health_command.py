@@ -14,13 +14,16 @@ WHEELS = ("rl", "rr")
 def vehicle_drives(db, method):
     """{vehicle: [row]} of the usable calibrations by `method`, in driving order: by odometer
     when every drive states one, else by start time, else by path. Each row ends with the
-    share of each wheel's sigma that the vehicle's body numbers make (the batch's
-    body_sigma_m; None where the calibration has none)."""
+    shares of each wheel's sigma that the vehicle's body numbers and the tyre coefficients held
+    at zero make (the batch's body_sigma_m and held_sigma_m; None where the calibration has
+    none)."""
     rows = db.execute(
         """SELECT d.vehicle_id, d.path, d.start_time, d.odometer_km, d.distance_m,
                   c.circumference_rl_m, c.circumference_rr_m, c.sigma_rl_m, c.sigma_rr_m,
                   json_extract(c.result_json, '$.body_sigma_m[0]'),
-                  json_extract(c.result_json, '$.body_sigma_m[1]')
+                  json_extract(c.result_json, '$.body_sigma_m[1]'),
+                  json_extract(c.result_json, '$.held_sigma_m[0]'),
+                  json_extract(c.result_json, '$.held_sigma_m[1]')
            FROM drives d JOIN calibrations c USING (drive_key)
            WHERE c.method = ? AND c.usable = 1""", (method,)).fetchall()
     by_vehicle = {}
@@ -44,10 +47,12 @@ def has_estimate(row):
 
 def drive_of(row, i):
     """Wheel i's measurement of one drive. The body's share of its sigma is the same error on
-    every drive of the vehicle (its body numbers, driven alike): it leaves the drive-to-drive
-    changes that health tracks and stays in the level's sigma (a drive's own error is never
-    taken as nil: at least 0.31 of its sigma)."""
-    sigma, common = row[7 + i], min(row[9 + i] or 0.0, 0.95 * row[7 + i])
+    every drive of the vehicle (its body numbers, driven alike), and so is the held
+    coefficients' (the car's own brake or side slip, held at zero wherever a drive cannot
+    identify it): they leave the drive-to-drive changes that health tracks and stay in the
+    level's sigma (a drive's own error is never taken as nil: at least 0.31 of its sigma)."""
+    shared = math.hypot(row[9 + i] or 0.0, row[11 + i] or 0.0)
+    sigma, common = row[7 + i], min(shared, 0.95 * row[7 + i])
     return health.Drive(odometer_km=row[3], start_time=row[2] or "", path=row[1],
                         value_m=row[5 + i], sigma_m=math.sqrt(sigma * sigma - common * common),
                         common_sigma_m=common)

@@ -64,7 +64,9 @@ def test_the_bodys_shared_error_is_kept_out_of_the_changes_and_in_the_level():
     """Drives whose sigma is mostly the body's share (as under tyre_model auto: 0.9 of 0.95 mm),
     the body's error drawn once per vehicle: a 0.45 mm radius loss (a 25 % pressure loss) is
     found by its own drive (20 of 20; with the total sigma taken as each drive's own, none),
-    and the level's 2-sigma band still holds the truth, the shared error included."""
+    and the level's 2-sigma band still holds the truth, the shared error included. The shared
+    error is split between the body's share and the held tyre coefficients' (0.6 and 0.8 of it:
+    both are the car's, the same on every drive), which add in squares."""
     model = health.HealthModel()
     rng = np.random.default_rng(5)
     own, common = 0.3e-3, 0.9e-3
@@ -75,7 +77,8 @@ def test_the_bodys_shared_error_is_kept_out_of_the_changes_and_in_the_level():
         drives, truth = series(rng, 24, step_at=12, step_m=step, sigma=own)
         offset = common * rng.standard_normal()
         rows = [("car", d.path, d.start_time, d.odometer_km, None, d.value_m + offset,
-                 d.value_m + offset, total, total, common, common) for d in drives]
+                 d.value_m + offset, total, total, 0.6 * common, 0.6 * common, 0.8 * common,
+                 0.8 * common) for d in drives]
         wheels, events = health.vehicle_health(model, health_command.wheel_drives(rows))
         rl = [e for e in events if e.wheel == "rl"]
         assert [e.drive_index for e in rl] == [12]
