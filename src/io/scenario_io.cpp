@@ -242,15 +242,12 @@ sim::Scenario parse_scenario(const std::string& yaml_text, const std::string& fi
       if (dynamics->has("drivetrain")) {
         std::string drivetrain;
         dynamics->read("drivetrain", drivetrain);
-        if (drivetrain == "rear") {
-          d.drivetrain = sim::Drivetrain::kRear;
-        } else if (drivetrain == "front") {
-          d.drivetrain = sim::Drivetrain::kFront;
-        } else if (drivetrain == "all") {
-          d.drivetrain = sim::Drivetrain::kAll;
-        } else {
-          throw InputError(dynamics->location("drivetrain"), "expected rear, front or all");
+        const auto parsed = parse_enum<Drivetrain>(drivetrain);
+        if (!parsed) {
+          throw InputError(dynamics->location("drivetrain"),
+                           "expected " + enum_expected<Drivetrain>());
         }
+        d.drivetrain = *parsed;
       }
       dynamics->read("drive_front_share_all", d.drive_front_share_all, 0.0, 1.0);
       dynamics->read("radius_load_sensitivity_m_per_n", d.radius_load_sensitivity_m_per_n, 0.0,
@@ -375,9 +372,7 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("air_density_kgpm3", d.air_density_kgpm3);
   key("rolling_resistance", d.rolling_resistance);
   key("brake_front_share", d.brake_front_share);
-  key("drivetrain", d.drivetrain == sim::Drivetrain::kFront ? "front"
-                    : d.drivetrain == sim::Drivetrain::kAll ? "all"
-                                                            : "rear");
+  key("drivetrain", enum_name(d.drivetrain));
   key("drive_front_share_all", d.drive_front_share_all);
   key("radius_load_sensitivity_m_per_n", d.radius_load_sensitivity_m_per_n);
   key("max_steer_rad", d.max_steer_rad);

@@ -91,6 +91,15 @@ VehicleConfig parse_vehicle_config(YamlMap& map) {
   if (auto body = map.map("body")) {
     for (const BodyField& field : kBodyFields)
       body->read(field.key, vehicle.body.*(field.member), field.range.min, field.range.max);
+    if (body->has("drivetrain")) {
+      std::string drivetrain;
+      body->read("drivetrain", drivetrain);
+      vehicle.body.drivetrain = parse_enum<Drivetrain>(drivetrain);
+      if (!vehicle.body.drivetrain) {
+        throw InputError(body->location("drivetrain"),
+                         "expected " + enum_expected<Drivetrain>() + ", not '" + drivetrain + "'");
+      }
+    }
     body->reject_unknown_keys();
   }
   map.reject_unknown_keys();
@@ -134,13 +143,17 @@ void write_vehicle_config(const VehicleConfig& vehicle, const std::filesystem::p
     out << YAML::EndMap;
   }
   const VehicleBody defaults;
-  const bool stated_body = std::any_of(kBodyFields.begin(), kBodyFields.end(), [&](const auto& f) {
-    return vehicle.body.*(f.member) != defaults.*(f.member);
-  });
-  if (stated_body) {
+  const bool stated_numbers =
+      std::any_of(kBodyFields.begin(), kBodyFields.end(),
+                  [&](const auto& f) { return vehicle.body.*(f.member) != defaults.*(f.member); });
+  if (stated_numbers || vehicle.body.drivetrain) {
     out << YAML::Key << "body" << YAML::Value << YAML::BeginMap;
-    for (const BodyField& field : kBodyFields)
-      out << YAML::Key << field.key << YAML::Value << vehicle.body.*(field.member);
+    if (vehicle.body.drivetrain)
+      out << YAML::Key << "drivetrain" << YAML::Value << enum_name(*vehicle.body.drivetrain);
+    for (const BodyField& field : kBodyFields) {
+      if (stated_numbers)
+        out << YAML::Key << field.key << YAML::Value << vehicle.body.*(field.member);
+    }
     out << YAML::EndMap;
   }
   out << YAML::EndMap;

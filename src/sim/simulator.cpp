@@ -246,6 +246,9 @@ SimulatedDrive simulate(const Scenario& scenario) {
   out.nominal_vehicle.circumference_rl_m = nominal_c;
   out.nominal_vehicle.circumference_rr_m = nominal_c;
   out.nominal_vehicle.wheelbase_m = scenario.vehicle.wheelbase_m;
+  // What its owner knows of the car; the body's numbers are left to the defaults (a calibration
+  // is not told the simulated car's load geometry).
+  out.nominal_vehicle.body.drivetrain = scenario.dynamics.drivetrain;
   if (scenario.wheels.output == WheelUnit::kTicks) {
     out.nominal_vehicle.ticks_per_rev = scenario.wheels.ticks_per_rev;
     if (scenario.wheels.counter_bits > 0)

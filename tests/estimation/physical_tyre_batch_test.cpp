@@ -267,6 +267,33 @@ TEST(PhysicalTyreBatch, TheHeldCoefficientsShareIsWhatRefittingWithItMovedGives)
   }
 }
 
+TEST(PhysicalTyreBatch, AStatedFrontDriveNarrowsTheHeldDriveSlipsShare) {
+  // The realistic urban drive of a front-driven car, noise seed 3: its rear wheels roll free, the
+  // drive cannot identify their drive slip, and it is held at zero. Unstated, the drivetrain
+  // could be a rear-driven car's, whose drive slip is 0.05: the held share is most of the sigma.
+  // Stated (vehicle.yaml's body.drivetrain: front, as the simulator writes it), a free-rolling
+  // axle's slop is far smaller, and the sigma still covers the error.
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.dynamics.drivetrain = sim::Drivetrain::kFront;
+  scenario.seeds.noise = 3;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  Log log = simulated_log(drive);
+  ASSERT_EQ(log.vehicle.body.drivetrain, Drivetrain::kFront);
+  const BatchSummary stated = calibrate(log, TyreModelChoice::kPhysical);
+  log.vehicle.body.drivetrain.reset();
+  const BatchSummary unstated = calibrate(log, TyreModelChoice::kPhysical);
+  for (const BatchSummary* summary : {&stated, &unstated}) {
+    ASSERT_EQ(parameter(*summary, "tyre_drive_slip").value, 0.0) << summary->full_report();
+    const double error =
+        summary->estimate.circumference_rl_m - drive.true_params.circumference_rl_m;
+    EXPECT_LT(std::abs(error), 3.0 * summary->sigma_rl_m()) << summary->full_report();
+  }
+  EXPECT_EQ(stated.estimate.circumference_rl_m, unstated.estimate.circumference_rl_m);
+  EXPECT_GT(unstated.held_sigma_m[0], 0.5 * unstated.sigma_rl_m());
+  EXPECT_LT(stated.held_sigma_m[0], 0.5 * unstated.held_sigma_m[0]);
+  EXPECT_LT(stated.sigma_rl_m(), 0.75 * unstated.sigma_rl_m());
+}
+
 TEST(PhysicalTyreBatch, CalibratesAHillyDriveWithTheForceThatClimbingTakes) {
   // The realistic urban drive on hills of up to 6 %, rear-driven: the rear wheels slip with the
   // slope's share of the weight, which the accelerometer feels but the hills' projection takes

@@ -353,6 +353,7 @@ TEST(VehicleConfigIo, WriteThenReadRoundTrips) {
   vehicle.tyre_model->k_drive_slip = 0.05;
   vehicle.body.cg_height_m = 0.62;
   vehicle.body.rear_axle_load_share = 0.41;
+  vehicle.body.drivetrain = Drivetrain::kFront;
   write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
   const VehicleConfig read = read_vehicle_config(dir.file("vehicle.yaml"));
   EXPECT_EQ(read.vehicle_id, "van-07.b");
@@ -367,6 +368,7 @@ TEST(VehicleConfigIo, WriteThenReadRoundTrips) {
   EXPECT_EQ(read.body.cg_height_m, 0.62);
   EXPECT_EQ(read.body.rear_axle_load_share, 0.41);
   EXPECT_EQ(read.body.mass_kg, VehicleBody{}.mass_kg);
+  EXPECT_EQ(read.body.drivetrain, Drivetrain::kFront);
   // The physical terms' geometry: the vehicle's own wheelbase and rear track.
   EXPECT_EQ(read.body_geometry().wheelbase_m, 2.7);
   EXPECT_EQ(read.body_geometry().track_width_m, 1.58);
@@ -382,6 +384,21 @@ TEST(VehicleConfigIo, NoBodyKeyWhenTheBodyIsTheDefault) {
   const std::string text((std::istreambuf_iterator<char>(written)), {});
   EXPECT_NE(text.find("track_width_m"), std::string::npos);
   EXPECT_EQ(text.find("body"), std::string::npos);
+  EXPECT_FALSE(read_vehicle_config(dir.file("vehicle.yaml")).body.drivetrain.has_value());
+}
+
+TEST(VehicleConfigIo, ADrivetrainAloneIsStatedWithoutTheBodysNumbers) {
+  const TempLogDir dir;
+  VehicleConfig vehicle;
+  vehicle.track_width_m = 1.6;
+  vehicle.circumference_rl_m = vehicle.circumference_rr_m = 2.0;
+  vehicle.body.drivetrain = Drivetrain::kAll;
+  write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
+  std::ifstream written(dir.file("vehicle.yaml"));
+  const std::string text((std::istreambuf_iterator<char>(written)), {});
+  EXPECT_NE(text.find("drivetrain: all"), std::string::npos) << text;
+  EXPECT_EQ(text.find("mass_kg"), std::string::npos) << text;
+  EXPECT_EQ(read_vehicle_config(dir.file("vehicle.yaml")).body.drivetrain, Drivetrain::kAll);
 }
 
 TEST(LogReaderRejects, BodyBeyondAnyVehicle) {
@@ -394,6 +411,10 @@ TEST(LogReaderRejects, BodyBeyondAnyVehicle) {
             "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\n"
             "body:\n  wheelbase_m: 2.7\n");
   expect_input_error(dir, {"vehicle.yaml", 5, "body.wheelbase_m", "unknown"});
+  dir.write("vehicle.yaml",
+            "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\n"
+            "body:\n  mass_kg: 1400\n  drivetrain: 4wd\n");
+  expect_input_error(dir, {"vehicle.yaml", 6, "body.drivetrain", "rear, front or all"});
 }
 
 TEST(LogReaderRejects, TyreCoefficientBeyondAnyTyre) {

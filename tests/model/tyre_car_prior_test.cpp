@@ -25,7 +25,14 @@ TEST(TyreCarPrior, IsACarsSizeOfEachPhysicalCoefficient) {
   body.mass_kg = 3000.0;
   EXPECT_NEAR(car_tyre_coefficient_sigma(kLoad, body, circumference), 2 * 0.4e-6 * 1500.0 / 0.31,
               1e-12);
+  // The drive slip by drivetrain: unstated, a driven rear axle's.
   EXPECT_DOUBLE_EQ(car_tyre_coefficient_sigma(kDriving, body, circumference), 1.0 / 20.0);
+  body.drivetrain = Drivetrain::kRear;
+  EXPECT_DOUBLE_EQ(car_tyre_coefficient_sigma(kDriving, body, circumference), 1.0 / 20.0);
+  body.drivetrain = Drivetrain::kAll;
+  EXPECT_DOUBLE_EQ(car_tyre_coefficient_sigma(kDriving, body, circumference), 0.5 / 20.0);
+  body.drivetrain = Drivetrain::kFront;
+  EXPECT_DOUBLE_EQ(car_tyre_coefficient_sigma(kDriving, body, circumference), 0.05 / 20.0);
   EXPECT_DOUBLE_EQ(car_tyre_coefficient_sigma(kBraking, body, circumference), 0.35 / 20.0);
   EXPECT_NEAR(car_tyre_coefficient_sigma(kSideSlip, body, circumference), 1.0 / (9.81 * 19.0),
               1e-12);

@@ -19,11 +19,17 @@ inline constexpr double kCarRadiusPerNewtonM = 0.4e-6;
 inline constexpr double kCarSlipStiffnessPerLoad = 20.0;
 inline constexpr double kCarRearBrakeShare = 0.35;
 inline constexpr double kCarCorneringStiffnessPerLoad = 19.0;
+// The share of the drive force on the rear axle: all of it, or an all-wheel drive's typical
+// 0.5; a free-rolling axle carries none, and what its coefficient can still take up is the
+// model's slop (the simulator's front-driven circuit fits -0.0009 and -0.0019 at sigma 0.0015),
+// taken as a twentieth of a driven axle's.
+inline constexpr double kRearDriveShareAll = 0.5;
+inline constexpr double kRearDriveShareFreeRolling = 0.05;
 
 // 1 sigma about zero of physical coefficient j (kTyreCoefficients' order) on a car with this
-// body and rear circumference (m): its expected size, so that a car with half or twice the
-// usual value stays within 1 sigma of it. Zero for a regression term: their sizes are not a
-// car's physics but the fit's (a skid-steer robot's are orders apart).
+// body (its mass and drivetrain) and rear circumference (m): its expected size, so that a car
+// with half or twice the usual value stays within 1 sigma of it. Zero for a regression term: their
+// sizes are not a car's physics but the fit's (a skid-steer robot's are orders apart).
 inline double car_tyre_coefficient_sigma(int j, const VehicleBody& body, double circumference_m) {
   constexpr double kGravity = 9.81;
   if (j < 0 || j >= TyreModel::kCoefficients) return 0.0;
@@ -32,8 +38,13 @@ inline double car_tyre_coefficient_sigma(int j, const VehicleBody& body, double 
     const double radius_m = circumference_m / (2.0 * std::numbers::pi);
     return kCarRadiusPerNewtonM * body.mass_kg / radius_m;
   }
-  // A front-driven car's rear axle does not drive: the driven one's value covers both.
-  if (member == &TyreModel::k_drive_slip) return 1.0 / kCarSlipStiffnessPerLoad;
+  if (member == &TyreModel::k_drive_slip) {
+    // Unstated: a driven axle's, which covers every car.
+    const double share = body.drivetrain == Drivetrain::kFront ? kRearDriveShareFreeRolling
+                         : body.drivetrain == Drivetrain::kAll ? kRearDriveShareAll
+                                                               : 1.0;
+    return share / kCarSlipStiffnessPerLoad;
+  }
   if (member == &TyreModel::k_brake_slip) return kCarRearBrakeShare / kCarSlipStiffnessPerLoad;
   if (member == &TyreModel::k_side_slip_s2pm)
     return 1.0 / (kGravity * kCarCorneringStiffnessPerLoad);

@@ -24,9 +24,21 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <string>
 
+#include "odocal/options/enum_names.hpp"
+
 namespace odocal {
+
+// Which axle the engine drives. On a front-driven car the rear wheels roll free: no drive slip
+// in their speeds, only the brakes' share of slip.
+enum class Drivetrain { kRear, kFront, kAll };
+template <>
+struct EnumNames<Drivetrain> {
+  static constexpr std::array<EnumName<Drivetrain>, 3> kTable{
+      {{Drivetrain::kRear, "rear"}, {Drivetrain::kFront, "front"}, {Drivetrain::kAll, "all"}}};
+};
 
 // What the physical terms need of the vehicle: vehicle.yaml's `body`, with its wheelbase_m and
 // track_width_m. The defaults are a mid-size passenger car.
@@ -39,6 +51,9 @@ struct VehicleBody {
   double mass_kg = 1500.0;              // m
   double drag_area_m2 = 0.7;            // c_d A
   double rolling_resistance = 0.012;    // f_r
+  // Not a term of the model: what a coefficient held at zero is taken to be uncertain by
+  // (tyre_car_prior.hpp). Unstated: a driven rear axle's, which covers every car.
+  std::optional<Drivetrain> drivetrain;
 };
 
 enum class TyreTerms { kRegression, kPhysical };

@@ -11,15 +11,14 @@
 #include <functional>
 #include <memory>
 
+#include "odocal/model/tyre_model.hpp"
 #include "odocal/sim/motion_truth.hpp"
 #include "odocal/sim/path.hpp"
 #include "odocal/sim/speed_profile.hpp"
 
 namespace odocal::sim {
 
-// Which axle the engine drives. On a front-driven car the rear wheels roll free: no drive slip
-// in their speeds, only the brakes' share of slip.
-enum class Drivetrain { kRear, kFront, kAll };
+using odocal::Drivetrain;
 
 struct VehicleDynamicsConfig {
   // Effects, each switchable alone (docs/simulator.md measures each one's drift).
