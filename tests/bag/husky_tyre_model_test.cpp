@@ -75,13 +75,15 @@ TEST(HuskyBag, TyreModelIsNoModelForASkidSteer) {
   const nlohmann::json chosen = calibrate("auto");
   EXPECT_EQ(chosen.at("tyre_selection").at("chosen"), "none");
   // Each candidate's first fit does not settle here (the physical terms alternate between two
-  // solutions, the regression terms wander): stopped there and every coefficient held at zero,
-  // not repeated to the re-weighting limit at each of its fits (72 and 29 solves of their own,
-  // and as many again for their criterion under the GNSS noise the plain fit found here).
+  // solutions, the regression terms wander): stopped there and every coefficient held (at zero,
+  // or where a car's value and the log put it), not repeated to the re-weighting limit at each
+  // of its fits (72 and 29 solves of their own, and as many again for their criterion under the
+  // GNSS noise the plain fit found here). Every coefficient held, each candidate's criterion is
+  // the plain fit's to within a unit (the held values' own small difference).
   for (const auto& candidate : chosen.at("tyre_selection").at("candidates")) {
     EXPECT_LE(candidate.at("solves").get<int>(), 40) << candidate;
-    EXPECT_EQ(candidate.at("bic").get<double>(),
-              chosen.at("tyre_selection").at("plain_bic").get<double>())
+    EXPECT_NEAR(candidate.at("bic").get<double>(),
+                chosen.at("tyre_selection").at("plain_bic").get<double>(), 1.0)
         << candidate;
   }
 }

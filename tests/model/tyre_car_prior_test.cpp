@@ -1,6 +1,6 @@
-// A car's spread of its physical tyre coefficients, and the spread about zero of one held there,
-// against closed forms: the radius's load sensitivity over the wheel radius, and two Gaussian
-// statements of one number combined.
+// A car's physical tyre coefficients, and the spread of one held at a value, against closed
+// forms: the radius's load sensitivity over the wheel radius, the slip stiffness and the
+// drivetrain's share of the drive, and two Gaussian statements of one number combined.
 
 #include "odocal/model/tyre_car_prior.hpp"
 
@@ -15,48 +15,57 @@ namespace {
 
 constexpr int kLoad = 7, kDriving = 8, kBraking = 9, kSideSlip = 10;
 
-TEST(TyreCarPrior, IsACarsSizeOfEachPhysicalCoefficient) {
+TEST(TyreCarPrior, IsACarsValueOfEachPhysicalCoefficientWithItsSignAndSize) {
   VehicleBody body;
   body.mass_kg = 1500.0;
   const double circumference = 2.0 * std::numbers::pi * 0.31;
-  // 0.4 mm per kN times 1500 kg over a 0.31 m radius.
-  EXPECT_NEAR(car_tyre_coefficient_sigma(kLoad, body, circumference), 0.4e-6 * 1500.0 / 0.31,
-              1e-12);
+  const auto car = [&](int j) { return car_tyre_coefficient(j, body, circumference); };
+  // 0.4 mm per kN times 1500 kg over a 0.31 m radius: the radius shrinks under load.
+  EXPECT_NEAR(car(kLoad).mean, 0.4e-6 * 1500.0 / 0.31, 1e-12);
+  EXPECT_EQ(car(kLoad).sigma, car(kLoad).mean);
   body.mass_kg = 3000.0;
-  EXPECT_NEAR(car_tyre_coefficient_sigma(kLoad, body, circumference), 2 * 0.4e-6 * 1500.0 / 0.31,
-              1e-12);
-  // The drive slip by drivetrain: unstated, a driven rear axle's.
-  EXPECT_DOUBLE_EQ(car_tyre_coefficient_sigma(kDriving, body, circumference), 1.0 / 20.0);
+  EXPECT_NEAR(car(kLoad).mean, 2 * 0.4e-6 * 1500.0 / 0.31, 1e-12);
+  // The drive slip by drivetrain: unstated, none expected and a driven axle's sigma.
+  EXPECT_EQ(car(kDriving).mean, 0.0);
+  EXPECT_DOUBLE_EQ(car(kDriving).sigma, 1.0 / 20.0);
   body.drivetrain = Drivetrain::kRear;
-  EXPECT_DOUBLE_EQ(car_tyre_coefficient_sigma(kDriving, body, circumference), 1.0 / 20.0);
+  EXPECT_DOUBLE_EQ(car(kDriving).mean, 1.0 / 20.0);
+  EXPECT_DOUBLE_EQ(car(kDriving).sigma, 1.0 / 20.0);
   body.drivetrain = Drivetrain::kAll;
-  EXPECT_DOUBLE_EQ(car_tyre_coefficient_sigma(kDriving, body, circumference), 0.5 / 20.0);
+  EXPECT_DOUBLE_EQ(car(kDriving).mean, 0.5 / 20.0);
   body.drivetrain = Drivetrain::kFront;
-  EXPECT_DOUBLE_EQ(car_tyre_coefficient_sigma(kDriving, body, circumference), 0.05 / 20.0);
-  EXPECT_DOUBLE_EQ(car_tyre_coefficient_sigma(kBraking, body, circumference), 0.35 / 20.0);
-  EXPECT_NEAR(car_tyre_coefficient_sigma(kSideSlip, body, circumference), 1.0 / (9.81 * 19.0),
-              1e-12);
-  for (int j = 0; j < 7; ++j)
-    EXPECT_EQ(car_tyre_coefficient_sigma(j, body, circumference), 0.0) << "regression term " << j;
-  EXPECT_EQ(car_tyre_coefficient_sigma(-1, body, circumference), 0.0);
-  EXPECT_EQ(car_tyre_coefficient_sigma(TyreModel::kCoefficients, body, circumference), 0.0);
+  EXPECT_EQ(car(kDriving).mean, 0.0);
+  EXPECT_DOUBLE_EQ(car(kDriving).sigma, 0.05 / 20.0);
+  // The rear brakes' share over the slip stiffness; the axle slides outwards (negative).
+  EXPECT_DOUBLE_EQ(car(kBraking).mean, 0.35 / 20.0);
+  EXPECT_NEAR(car(kSideSlip).mean, -1.0 / (9.81 * 19.0), 1e-12);
+  EXPECT_NEAR(car(kSideSlip).sigma, 1.0 / (9.81 * 19.0), 1e-12);
+  for (int j = 0; j < 7; ++j) EXPECT_EQ(car(j).sigma, 0.0) << "regression term " << j;
+  EXPECT_EQ(car(-1).sigma, 0.0);
+  EXPECT_EQ(car(TyreModel::kCoefficients).sigma, 0.0);
 }
 
 TEST(TyreCarPrior, AHeldCoefficientsSpreadCombinesTheLogsWordWithTheCars) {
   const double inf = std::numeric_limits<double>::infinity();
-  // The log said nothing: the car's spread.
-  EXPECT_DOUBLE_EQ(held_coefficient_sigma(0.3, inf, 0.02), 0.02);
-  EXPECT_DOUBLE_EQ(held_coefficient_sigma(std::nan(""), 0.01, 0.02), 0.02);
+  const CarCoefficient at_zero{0.0, 0.02}, car{0.02, 0.02};
+  // The log said nothing: the car's sigma about its own value, and its value's distance beside.
+  EXPECT_DOUBLE_EQ(held_coefficient_sigma(0.3, inf, at_zero, 0.0), 0.02);
+  EXPECT_DOUBLE_EQ(held_coefficient_sigma(std::nan(""), 0.01, at_zero, 0.0), 0.02);
+  EXPECT_DOUBLE_EQ(held_coefficient_sigma(0.0, inf, car, 0.02), 0.02);
+  EXPECT_NEAR(held_coefficient_sigma(0.0, inf, car, 0.0), std::hypot(0.02, 0.02), 1e-15);
   // Equal sigmas at zero: the combined sigma, 1/sqrt(2) of either.
-  EXPECT_NEAR(held_coefficient_sigma(0.0, 0.02, 0.02), 0.02 / std::sqrt(2.0), 1e-15);
-  // Equal sigmas, the log at 0.02: the mean halfway, 0.01, beside the same variance.
-  EXPECT_NEAR(held_coefficient_sigma(0.02, 0.02, 0.02), std::sqrt(1e-4 + 2e-4), 1e-15);
-  // A log far surer than the car: its own estimate and sigma about zero.
-  EXPECT_NEAR(held_coefficient_sigma(3e-4, 1e-4, 1.0), std::hypot(3e-4, 1e-4), 1e-10);
-  // The sign of the estimate does not matter; no car spread (a regression term): nothing.
-  EXPECT_DOUBLE_EQ(held_coefficient_sigma(-0.01, 0.01, 0.02),
-                   held_coefficient_sigma(0.01, 0.01, 0.02));
-  EXPECT_EQ(held_coefficient_sigma(0.01, 0.01, 0.0), 0.0);
+  EXPECT_NEAR(held_coefficient_sigma(0.0, 0.02, at_zero, 0.0), 0.02 / std::sqrt(2.0), 1e-15);
+  // Equal sigmas, the log at 0.02 and the car at zero: the mean halfway, 0.01, beside the same
+  // variance; the same held at the car's value 0.02 instead, with the car at 0.02 and the log at
+  // zero.
+  EXPECT_NEAR(held_coefficient_sigma(0.02, 0.02, at_zero, 0.0), std::sqrt(1e-4 + 2e-4), 1e-15);
+  EXPECT_NEAR(held_coefficient_sigma(0.0, 0.02, car, 0.02), std::sqrt(1e-4 + 2e-4), 1e-15);
+  // Held where the log and the car agree: the combined sigma alone.
+  EXPECT_NEAR(held_coefficient_sigma(0.02, 0.02, car, 0.02), 0.02 / std::sqrt(2.0), 1e-15);
+  // A log far surer than the car: its own estimate and sigma about the held value.
+  EXPECT_NEAR(held_coefficient_sigma(3e-4, 1e-4, {0.0, 1.0}, 0.0), std::hypot(3e-4, 1e-4), 1e-10);
+  // No car's value (a regression term): nothing.
+  EXPECT_EQ(held_coefficient_sigma(0.01, 0.01, {}, 0.0), 0.0);
 }
 
 }  // namespace

@@ -1,8 +1,8 @@
 #pragma once
-// How large a passenger car's physical tyre coefficients are (docs/tyre-model.md, "The physical
-// terms"), for the coefficients that a log cannot identify: the batch holds them at zero, and
-// the car's own value is the error that holding makes. Not a prior of the fit (nothing pulls a
-// free coefficient towards it): only what a held one is taken to be uncertain by.
+// Where a passenger car's physical tyre coefficients are (docs/tyre-model.md, "Coefficients held
+// at a car's value"), for the coefficients that a log cannot identify: the batch holds them
+// there, and the car's own value beside what the log said is what that holding may be off by.
+// Not a prior of the free fit (nothing pulls a free coefficient towards it).
 
 #include <cmath>
 #include <limits>
@@ -26,43 +26,61 @@ inline constexpr double kCarCorneringStiffnessPerLoad = 19.0;
 inline constexpr double kRearDriveShareAll = 0.5;
 inline constexpr double kRearDriveShareFreeRolling = 0.05;
 
-// 1 sigma about zero of physical coefficient j (kTyreCoefficients' order) on a car with this
-// body (its mass and drivetrain) and rear circumference (m): its expected size, so that a car
-// with half or twice the usual value stays within 1 sigma of it. Zero for a regression term: their
-// sizes are not a car's physics but the fit's (a skid-steer robot's are orders apart).
-inline double car_tyre_coefficient_sigma(int j, const VehicleBody& body, double circumference_m) {
+// A car's physical coefficient: where it is expected and how far from there a car may be.
+struct CarCoefficient {
+  double mean = 0.0;
+  double sigma = 0.0;  // zero: no car's value (a regression term)
+};
+
+// Physical coefficient j (kTyreCoefficients' order) on a car with this body (its mass and
+// drivetrain) and rear circumference (m): its expected value, and a sigma of its size, so that
+// a car with half or twice the usual value stays within 1 sigma. The signs are the physics':
+// the radius shrinks under load, a driven or braked wheel slips, the rear axle slides outwards.
+// An unstated drivetrain has no expected drive slip (zero, between a front-driven car's and a
+// rear-driven one's) and a driven axle's sigma. Nothing for a regression term: their sizes are
+// not a car's physics but the fit's (a skid-steer robot's are orders apart).
+inline CarCoefficient car_tyre_coefficient(int j, const VehicleBody& body, double circumference_m) {
   constexpr double kGravity = 9.81;
-  if (j < 0 || j >= TyreModel::kCoefficients) return 0.0;
+  if (j < 0 || j >= TyreModel::kCoefficients) return {};
   const double TyreModel::*member = kTyreCoefficients[static_cast<std::size_t>(j)].member;
+  const auto sized = [](double mean) { return CarCoefficient{mean, std::abs(mean)}; };
   if (member == &TyreModel::k_load_s2pm) {
     const double radius_m = circumference_m / (2.0 * std::numbers::pi);
-    return kCarRadiusPerNewtonM * body.mass_kg / radius_m;
+    return sized(kCarRadiusPerNewtonM * body.mass_kg / radius_m);
   }
   if (member == &TyreModel::k_drive_slip) {
-    // Unstated: a driven axle's, which covers every car.
-    const double share = body.drivetrain == Drivetrain::kFront ? kRearDriveShareFreeRolling
-                         : body.drivetrain == Drivetrain::kAll ? kRearDriveShareAll
-                                                               : 1.0;
-    return share / kCarSlipStiffnessPerLoad;
+    if (!body.drivetrain) return {0.0, 1.0 / kCarSlipStiffnessPerLoad};
+    if (*body.drivetrain == Drivetrain::kFront)
+      return {0.0, kRearDriveShareFreeRolling / kCarSlipStiffnessPerLoad};
+    const double share = *body.drivetrain == Drivetrain::kAll ? kRearDriveShareAll : 1.0;
+    return sized(share / kCarSlipStiffnessPerLoad);
   }
-  if (member == &TyreModel::k_brake_slip) return kCarRearBrakeShare / kCarSlipStiffnessPerLoad;
+  if (member == &TyreModel::k_brake_slip)
+    return sized(kCarRearBrakeShare / kCarSlipStiffnessPerLoad);
   if (member == &TyreModel::k_side_slip_s2pm)
-    return 1.0 / (kGravity * kCarCorneringStiffnessPerLoad);
-  return 0.0;
+    return sized(-1.0 / (kGravity * kCarCorneringStiffnessPerLoad));
+  return {};
 }
 
-// The spread about zero of a coefficient held at zero: what the log said of it while it was
-// free (estimate and sigma, sigma infinite where it said nothing) combined with the car's
-// spread, as two independent Gaussian statements of one number; the RMS of the combination
-// about zero (the error that holding it at zero makes). Zero where the car's spread is zero.
-inline double held_coefficient_sigma(double free_estimate, double free_sigma, double car_sigma) {
-  if (!(car_sigma > 0.0)) return 0.0;
+// What the log said of a coefficient while it was free (estimate and sigma; sigma infinite where
+// it said nothing) and the car's value, as two independent Gaussian statements of one number,
+// combined: where the coefficient is best held, and its sigma there.
+inline CarCoefficient combined_coefficient(double free_estimate, double free_sigma,
+                                           const CarCoefficient& car) {
+  if (!(car.sigma > 0.0)) return {};
   if (!std::isfinite(free_sigma) || !std::isfinite(free_estimate) || !(free_sigma > 0.0))
-    return car_sigma;
-  const double car2 = car_sigma * car_sigma, free2 = free_sigma * free_sigma;
-  const double mean = free_estimate * car2 / (car2 + free2);
-  const double variance = car2 * free2 / (car2 + free2);
-  return std::sqrt(mean * mean + variance);
+    return car;
+  const double car2 = car.sigma * car.sigma, free2 = free_sigma * free_sigma;
+  return {(free_estimate * car2 + car.mean * free2) / (car2 + free2),
+          std::sqrt(car2 * free2 / (car2 + free2))};
+}
+
+// The spread about `held` of a coefficient held there: the RMS of the combination above about
+// the held value (the error that holding it there makes). Zero where the car has no value.
+inline double held_coefficient_sigma(double free_estimate, double free_sigma,
+                                     const CarCoefficient& car, double held) {
+  const CarCoefficient combined = combined_coefficient(free_estimate, free_sigma, car);
+  return std::hypot(combined.mean - held, combined.sigma);
 }
 
 }  // namespace odocal
