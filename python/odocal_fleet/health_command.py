@@ -15,7 +15,7 @@ def vehicle_drives(db, method):
     """{vehicle: [row]} of the usable calibrations by `method`, in driving order: by odometer
     when every drive states one, else by start time, else by path. Each row ends with the
     shares of each wheel's sigma that the vehicle's body numbers and the tyre coefficients held
-    at zero make (the batch's body_sigma_m and held_sigma_m; None where the calibration has
+    make (the batch's body_sigma_m and held_sigma_m; None where the calibration has
     none)."""
     rows = db.execute(
         """SELECT d.vehicle_id, d.path, d.start_time, d.odometer_km, d.distance_m,
@@ -48,8 +48,8 @@ def has_estimate(row):
 def drive_of(row, i):
     """Wheel i's measurement of one drive. The body's share of its sigma is the same error on
     every drive of the vehicle (its body numbers, driven alike), and so is the held
-    coefficients' (the car's own brake or side slip, held at zero wherever a drive cannot
-    identify it): they leave the drive-to-drive changes that health tracks and stay in the
+    coefficients' (the car's own brake or side slip, held at a car's value wherever a
+    drive cannot identify it): they leave the drive-to-drive changes that health tracks and stay in the
     level's sigma (a drive's own error is never taken as nil: at least 0.31 of its sigma)."""
     shared = math.hypot(row[9 + i] or 0.0, row[11 + i] or 0.0)
     sigma, common = row[7 + i], min(shared, 0.95 * row[7 + i])

@@ -178,9 +178,10 @@ class BatchProblem {
   bool tyre_in_fit(int j) const {
     return tyre_terms_ && kTyreCoefficients[static_cast<std::size_t>(j)].terms == *tyre_terms_;
   }
-  // Holds coefficient j at zero from the next solve on: the log cannot identify it (its sigma
-  // when it was free is kept for the report, and with its value there for its share of the
-  // circumferences' sigma; a fit that wandered says nothing of the value).
+  // Holds coefficient j at zero from the next solve on (hold_at_car_values may move it after the
+  // decisions): the log cannot identify it. Its sigma when it was free is kept for the report,
+  // and with its value there for where it is held and its share of the circumferences' sigma; a
+  // fit that wandered says nothing of the value.
   enum class FreeValue { kEstimate, kWandered };
   void hold_tyre_coefficient(int j, double sigma, FreeValue value = FreeValue::kEstimate) {
     const auto index = static_cast<std::size_t>(kTyreOffset + j);
@@ -248,7 +249,7 @@ class BatchProblem {
   }
 
   // Every unknown back to where the first solve started (the layer-1 reference's poses, the
-  // nominal parameters, the log's own driving state), held coefficients kept at zero: after
+  // nominal parameters, the log's own driving state), held coefficients kept where held: after
   // coefficients are held, the rest is solved from where a plain fit starts, not from where a
   // model with more freedom left it (on a skid-steer robot, circumferences of a fraction of a
   // millimetre).
@@ -493,10 +494,11 @@ class BatchProblem {
   //   are built once, at the solution: the body reaches them only through the wheels' motion
   //   within one keyframe interval, while it moves the odometry and the Doppler speed over the
   //   whole log;
-  // - the physical coefficients held at zero, by their spread about zero (a car's value, and what
-  //   the log said while they were free: held_coefficient_sigma). Holding one makes an error of
-  //   the car's own value, which the free ones and the circumferences take up (the urban drive,
-  //   seed 8: the brake slip held, c_RL +10 mm at a sigma of 2.5 mm without it). The coefficient
+  // - the physical coefficients held, by their spread about where they are held (a car's value,
+  //   and what the log said while they were free: held_coefficient_sigma). Holding one makes an
+  //   error of the car's own value less the held one, which the free ones and the circumferences
+  //   take up (the urban drive, seed 8: the brake slip held at zero, c_RL +10 mm at a sigma of
+  //   2.5 mm without it). The coefficient
   //   is linear in the pre-integration's Jacobian, which carries the step; the folds keep theirs,
   //   as for the body.
   // The solution and its problem are restored after.
