@@ -5,7 +5,6 @@
 // Not a prior of the free fit (nothing pulls a free coefficient towards it).
 
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 #include "odocal/model/tyre_model.hpp"
@@ -40,7 +39,6 @@ struct CarCoefficient {
 // rear-driven one's) and a driven axle's sigma. Nothing for a regression term: their sizes are
 // not a car's physics but the fit's (a skid-steer robot's are orders apart).
 inline CarCoefficient car_tyre_coefficient(int j, const VehicleBody& body, double circumference_m) {
-  constexpr double kGravity = 9.81;
   if (j < 0 || j >= TyreModel::kCoefficients) return {};
   const double TyreModel::*member = kTyreCoefficients[static_cast<std::size_t>(j)].member;
   const auto sized = [](double mean) { return CarCoefficient{mean, std::abs(mean)}; };
@@ -58,7 +56,7 @@ inline CarCoefficient car_tyre_coefficient(int j, const VehicleBody& body, doubl
   if (member == &TyreModel::k_brake_slip)
     return sized(kCarRearBrakeShare / kCarSlipStiffnessPerLoad);
   if (member == &TyreModel::k_side_slip_s2pm)
-    return sized(-1.0 / (kGravity * kCarCorneringStiffnessPerLoad));
+    return sized(-1.0 / (kTyreGravityMps2 * kCarCorneringStiffnessPerLoad));
   return {};
 }
 

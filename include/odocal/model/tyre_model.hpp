@@ -155,10 +155,13 @@ struct DrivingState {
 
 enum class RearWheel { kLeft, kRight };
 
+// What the physical terms and a car's values of them (tyre_car_prior.hpp) take g to be.
+inline constexpr double kTyreGravityMps2 = 9.81;
+
 // d(c_i,eff / c_i) / d coefficients at this state, for one wheel (zero for the side slip).
 inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wheel,
                                          const VehicleBody& body) {
-  constexpr double kGravity = 9.81, kAirDensity = 1.2;
+  constexpr double kAirDensity = 1.2;
   const double side = wheel == RearWheel::kLeft ? 1.0 : -1.0;
   const double v = state.speed_mps, w = state.yaw_rate_radps;
   const double a_x = state.longitudinal_mps2;
@@ -167,11 +170,11 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
   // Physical: per vehicle mass, the wheel's load and the force its axle transmits.
   const double f_x = state.specific_force_x_mps2, f_y = state.specific_force_y_mps2;
   const double L = body.wheelbase_m, h = body.cg_height_m;
-  const double static_load = 0.5 * kGravity * body.rear_axle_load_share;
+  const double static_load = 0.5 * kTyreGravityMps2 * body.rear_axle_load_share;
   const double load_change =
       h * f_x / (2.0 * L) - side * body.rear_roll_share * h * f_y / body.track_width_m;
   const double tractive = f_x + 0.5 * kAirDensity * body.drag_area_m2 / body.mass_kg * v * v +
-                          body.rolling_resistance * kGravity +
+                          body.rolling_resistance * kTyreGravityMps2 +
                           (1.0 - body.rear_axle_load_share) * L * w * w;
   // A wheel that the turn lifts keeps a tenth of its load: beyond, nothing is linear anyway.
   const double force_over_load =
