@@ -1078,7 +1078,7 @@ class BatchProblem {
   std::vector<Response> body_responses_;
   std::vector<HeldResponse> held_responses_;
   std::array<double, 2> model_spread_m_{};
-  std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};     // > 0: held at zero
+  std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};     // > 0: held
   std::array<double, TyreModel::kCoefficients> tyre_held_estimate_{};  // its value while free
   std::array<double, TyreModel::kCoefficients> tyre_held_value_{};     // where it is held
   std::array<bool, TyreModel::kCoefficients> tyre_held_wandered_{};    // its free fit wandered
@@ -1168,31 +1168,26 @@ void suggest_tyre_model(ModelAdequacy& adequacy) {
 
 // Why a circumference beside a tyre model is not identified: at rest it is an extrapolation from
 // the states driven, and its sigma carries what the log cannot identify (the body's numbers, the
-// coefficients held at zero), or the two models' gap; the largest share named, so that the user
-// knows what to state or drive.
+// held coefficients), or the two models' gap; the largest share named, so that the user knows
+// what to state or drive.
 std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel, double spread_m) {
-  const auto largest = [wheel](const auto& parts) {
-    return std::max_element(parts.begin(), parts.end(), [wheel](const auto& a, const auto& b) {
-      return a.sigma_m[wheel] < b.sigma_m[wheel];
-    });
-  };
   std::vector<std::string> shares, advice;
-  const auto body = largest(summary.body_sigma_parts);
-  if (summary.body_sigma_m[wheel] > 0.0 && body != summary.body_sigma_parts.end()) {
-    shares.push_back(
-        fmt::format("{:.2g} mm of the sigma from the body's uncertainty, {:.2g} mm "
-                    "of it from {}",
-                    1e3 * summary.body_sigma_m[wheel], 1e3 * body->sigma_m[wheel], body->key));
-    advice.push_back("state vehicle.yaml's body");
-  }
-  const auto held = largest(summary.held_sigma_parts);
-  if (summary.held_sigma_m[wheel] > 0.0 && held != summary.held_sigma_parts.end()) {
-    shares.push_back(
-        fmt::format("{:.2g} mm from the tyre coefficients held, {:.2g} mm "
-                    "of it from {}",
-                    1e3 * summary.held_sigma_m[wheel], 1e3 * held->sigma_m[wheel], held->key));
-    advice.push_back("drive more of what shows " + held->key);
-  }
+  // One share: its total, and the part that moves the circumference most, which `act` on names.
+  const auto name_share = [&](double total_m, const auto& parts, const char* from, auto act) {
+    const auto largest = std::max_element(
+        parts.begin(), parts.end(),
+        [wheel](const auto& a, const auto& b) { return a.sigma_m[wheel] < b.sigma_m[wheel]; });
+    if (!(total_m > 0.0) || largest == parts.end()) return;
+    shares.push_back(fmt::format("{:.2g} mm {}, {:.2g} mm of it from {}", 1e3 * total_m, from,
+                                 1e3 * largest->sigma_m[wheel], largest->key));
+    advice.push_back(act(largest->key));
+  };
+  name_share(summary.body_sigma_m[wheel], summary.body_sigma_parts,
+             "of the sigma from the body's uncertainty",
+             [](const std::string&) { return std::string("state vehicle.yaml's body"); });
+  name_share(summary.held_sigma_m[wheel], summary.held_sigma_parts,
+             "from the tyre coefficients held",
+             [](const std::string& key) { return "drive more of what shows " + key; });
   const std::string extrapolation =
       "with the tyre model the circumference at rest is an extrapolation from this drive's slip "
       "and load";

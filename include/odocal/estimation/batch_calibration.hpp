@@ -118,14 +118,15 @@ struct BatchSummary : CalibrationSummary {
     std::array<double, 2> sigma_m{};
   };
   std::vector<BodySigmaPart> body_sigma_parts;
-  // The physical coefficients held at zero (the log cannot identify them), likewise: what a car's
-  // value of each, narrowed by what the log said of it, moves the circumferences by (zero for any
-  // other model and where none is held; it is in sigma and covariance too).
+  // The physical coefficients held (the log cannot identify them), likewise: what each one's
+  // spread about where it is held (a car's value, narrowed by what the log said of it) moves the
+  // circumferences by (zero for any other model and where none is held; it is in sigma and
+  // covariance too).
   std::array<double, 2> held_sigma_m{};
   struct HeldSigmaPart {
     std::string key;  // the parameter's name, tyre_...
     std::array<double, 2> sigma_m{};
-    double coefficient_sigma{};  // the coefficient's spread about zero that was taken
+    double coefficient_sigma{};  // the coefficient's spread about its held value that was taken
   };
   std::vector<HeldSigmaPart> held_sigma_parts;
   // The regression terms' share of the circumferences' sigma under tyre_model auto: their gap to
