@@ -143,10 +143,15 @@ PYBIND11_MODULE(odocal, m) {
         const DriftValidation v =
             validate_drift(with_tyre_model(log, nominal, tyre_of(log, py::none())),
                            with_tyre_model(log, calibrated, tyre_of(input, params)),
-                           compute_reference(log, options.reference), nominal, calibrated, drift);
+                           compute_reference(log, options.reference, ReferenceCovariance::kKeep),
+                           nominal, calibrated, drift);
         py::dict out;
         out["nominal"] = statistics(v.nominal_statistics);
         out["calibrated"] = statistics(v.calibrated_statistics);
+        py::dict reference;
+        reference["median_end_error_m"] = v.reference->median_end_error_m;
+        reference["median_drift_percent"] = v.reference->median_drift_percent;
+        out["reference_uncertainty"] = reference;
         py::list windows;
         for (std::size_t i = 0; i < v.nominal.size(); ++i) {
           py::dict w;
@@ -154,6 +159,7 @@ PYBIND11_MODULE(odocal, m) {
           w["distance_m"] = v.nominal[i].distance_m;
           w["nominal_end_error_m"] = v.nominal[i].end_error_m;
           w["calibrated_end_error_m"] = v.calibrated[i].end_error_m;
+          w["reference_rms_m"] = v.reference->rms_m[i];
           windows.append(w);
         }
         out["windows"] = windows;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <span>
 
+#include "gaussian_radius.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
 #include "odocal/model/odometry_model.hpp"
@@ -57,6 +58,32 @@ WindowDrift window_drift(const WheelStream& wheels, const ReferenceTrajectory& r
   return {reference.times(wheels)[first], distance, error, 100.0 * error / distance};
 }
 
+// Covariance of the end error the reference's own uncertainty makes over [first, last]
+// (ReferenceUncertainty): d(R(yaw) D)/d(yaw) = D turned by 90 degrees.
+Eigen::Matrix2d reference_end_covariance(const ReferenceTrajectory& reference, std::size_t first,
+                                         std::size_t last) {
+  const Eigen::Vector2d displacement =
+      reference.poses[last].head<2>() - reference.poses[first].head<2>();
+  Eigen::Matrix<double, 2, 3> start;
+  start << Eigen::Matrix2d::Identity(), Eigen::Vector2d(-displacement.y(), displacement.x());
+  return start * reference.covariance[first] * start.transpose() +
+         reference.covariance[last].topLeftCorner<2, 2>();
+}
+
+ReferenceUncertainty reference_uncertainty(const std::vector<Eigen::Matrix2d>& covariances,
+                                           const std::vector<WindowDrift>& windows) {
+  ReferenceUncertainty u;
+  std::vector<double> hundredths;  // a percent of each window's distance, in metres
+  for (std::size_t i = 0; i < windows.size(); ++i) {
+    u.rms_m.push_back(std::sqrt(covariances[i].trace()));
+    hundredths.push_back(windows[i].distance_m / 100.0);
+  }
+  u.median_end_error_m =
+      gaussian_radius_median(covariances, std::vector<double>(covariances.size(), 1.0));
+  u.median_drift_percent = gaussian_radius_median(covariances, hundredths);
+  return u;
+}
+
 }  // namespace
 
 std::string DriftValidationOptions::validate() const {
@@ -85,10 +112,14 @@ DriftValidation validate_drift(const WheelStream& counted_wheels,
     throw Error("validate_drift: the reference reaches past the wheel stream it was computed on");
   if (const std::string problem = options.validate(); !problem.empty())
     throw Error("invalid validation options: " + problem);
+  const bool with_uncertainty = !reference.covariance.empty();
+  if (with_uncertainty && reference.covariance.size() != reference.poses.size())
+    throw Error("validate_drift: the reference's covariance must hold one matrix per pose");
   const WheelStream wheels = dequantised_ticks(counted_wheels, options.tick_smoothing_s);
   const WheelStream calibrated_wheels =
       dequantised_ticks(counted_calibrated_wheels, options.tick_smoothing_s);
   DriftValidation result;
+  std::vector<Eigen::Matrix2d> reference_end;
   const double max_gap_s = default_max_wheel_gap_s(wheels);
   const std::span<const double> t = reference.times(wheels);
   // Disjoint windows share their end and start sample; overlapping ones start step_s apart.
@@ -113,6 +144,8 @@ DriftValidation validate_drift(const WheelStream& counted_wheels,
       result.nominal.push_back(with_nominal);
       result.calibrated.push_back(
           window_drift(calibrated_wheels, reference, first, last, calibrated));
+      if (with_uncertainty)
+        reference_end.push_back(reference_end_covariance(reference, first, last));
     }
     first = next_start(first, last);
   }
@@ -123,6 +156,7 @@ DriftValidation validate_drift(const WheelStream& counted_wheels,
   }
   result.nominal_statistics = statistics(result.nominal);
   result.calibrated_statistics = statistics(result.calibrated);
+  if (with_uncertainty) result.reference = reference_uncertainty(reference_end, result.nominal);
   return result;
 }
 

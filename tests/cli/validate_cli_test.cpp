@@ -46,6 +46,23 @@ TEST(ValidateCli, CalibrationOnOneDriveCutsDriftOnAnother) {
   EXPECT_GT(v["nominal"]["windows"].get<int>(), 3);
   EXPECT_LT(v["calibrated"]["median_drift_percent"].get<double>(),
             0.5 * v["nominal"]["median_drift_percent"].get<double>());
+  // On an ideal drive the calibrated odometry is all but exact: what is left is the reference's
+  // error, which its own covariance must predict. 24 overlapping windows (4 disjoint ones are too
+  // few for a median): 1.09 times the prediction on this seed, 0.85-2.1 on urban seeds 1-10.
+  EXPECT_NE(validate.out.find("the reference's own uncertainty"), std::string::npos)
+      << validate.out;
+  ASSERT_EQ(run_cli("validate " + urban + " --params " + dir.file("result.json") +
+                    " --step 10 --json " + dir.file("overlapping.json"))
+                .status,
+            0);
+  const auto overlapping = nlohmann::json::parse(read_text_file(dir.file("overlapping.json")));
+  const double predicted =
+      overlapping["reference_uncertainty"]["median_drift_percent"].get<double>();
+  const double measured = overlapping["calibrated"]["median_drift_percent"].get<double>();
+  EXPECT_GT(measured, 0.7 * predicted);
+  EXPECT_LT(measured, 1.6 * predicted);
+  EXPECT_GT(overlapping["nominal"]["median_drift_percent"].get<double>(), 2.0 * predicted);
+  EXPECT_GT(overlapping["windows"][0]["reference_rms_m"].get<double>(), 0.0);
 
   // --config gives the reference options: looser heading and IMU noise change the reference, a bad
   // key is exit 2 naming the file.

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "odocal/error.hpp"
 
 namespace odocal {
@@ -76,6 +78,34 @@ TEST(DriftValidation, RefusesAReferenceOfOtherWheels) {
     EXPECT_NE(std::string(e.what()).find("reaches past the wheel stream"), std::string::npos)
         << e.what();
   }
+}
+
+// The reference's own uncertainty: a heading error at a window's start turns its whole 600 m
+// displacement (a half-normal across the track, sigma 600 m * sigma_yaw); position errors at start
+// and end add as independent circular ones.
+TEST(DriftValidation, TheReferencesUncertaintySaysWhatItAloneWouldShow) {
+  StraightDrive d = straight_drive(130.0);
+  const OdometryParams truth{2.0, 2.0, 1.6};
+  const DriftValidation without = validate_drift(d.wheels, d.reference, truth, truth, {60.0, 20.0});
+  EXPECT_FALSE(without.reference.has_value());  // no covariance, no claim
+
+  d.reference.covariance.assign(d.reference.poses.size(),
+                                Eigen::Vector3d(0.0, 0.0, 1e-6).asDiagonal());
+  const DriftValidation heading = validate_drift(d.wheels, d.reference, truth, truth, {60.0, 20.0});
+  ASSERT_TRUE(heading.reference.has_value());
+  ASSERT_EQ(heading.reference->rms_m.size(), 2u);
+  EXPECT_NEAR(heading.reference->rms_m[0], 0.6, 1e-9);
+  EXPECT_NEAR(heading.reference->median_end_error_m, 0.6 * 0.6744898, 2e-3);
+  EXPECT_NEAR(heading.reference->median_drift_percent, 100.0 * 0.6 * 0.6744898 / 600.0, 3e-4);
+
+  d.reference.covariance.assign(d.reference.poses.size(),
+                                Eigen::Vector3d(0.25, 0.25, 0.0).asDiagonal());
+  const DriftValidation position =
+      validate_drift(d.wheels, d.reference, truth, truth, {60.0, 20.0});
+  EXPECT_NEAR(position.reference->median_end_error_m, std::sqrt(std::log(2.0)), 1e-6);
+
+  d.reference.covariance.pop_back();
+  EXPECT_THROW(validate_drift(d.wheels, d.reference, truth, truth, {60.0, 20.0}), Error);
 }
 
 }  // namespace

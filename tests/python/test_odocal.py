@@ -98,6 +98,10 @@ def test_doctor_validate_and_dead_reckon(worn):
     drift = odocal.validate(worn, result, window_s=60)
     assert drift["calibrated"]["windows"] > 0
     assert drift["calibrated"]["median_drift_percent"] < drift["nominal"]["median_drift_percent"]
+    # What the reference's own uncertainty alone would show, and each window's share of it.
+    floor = drift["reference_uncertainty"]
+    assert 0 < floor["median_end_error_m"] < drift["nominal"]["median_end_error_m"]
+    assert all(w["reference_rms_m"] > 0 for w in drift["windows"])
     # The tick counts as they are: the same windows, dead-reckoned with their quantisation.
     raw = odocal.validate(worn, result, window_s=60, tick_smoothing_s=0)
     assert raw["calibrated"]["windows"] == drift["calibrated"]["windows"]

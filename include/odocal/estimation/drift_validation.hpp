@@ -3,7 +3,10 @@
 // each is dead-reckoned from the reference pose at its start, as if GNSS had gone there, and its
 // drift is the distance from the reference pose at the window's end, in metres and in % of the
 // distance driven in the window. Compared for two parameter sets (nominal and calibrated).
+// Where the reference carries its covariance, each window also gets the end error that the
+// reference's own uncertainty makes: a drift near it measures the reference, not the parameters.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,12 +43,24 @@ struct DriftStatistics {
   double p95_drift_percent{};
 };
 
+// The end error of a window that the reference alone makes, its start pose (position and heading,
+// the heading turning the whole window's displacement) and its end position taken as independent
+// (the smoother's errors decorrelate within seconds; a window lasts a minute). Per window the RMS
+// of that Gaussian; over the windows the medians of the end error and the drift that these
+// Gaussians alone would show, to set beside DriftStatistics' measured ones.
+struct ReferenceUncertainty {
+  std::vector<double> rms_m;  // per window, as DriftValidation::nominal
+  double median_end_error_m{};
+  double median_drift_percent{};  // over the nominal windows' distances
+};
+
 struct DriftValidation {
   std::vector<WindowDrift> nominal;     // one per usable window
   std::vector<WindowDrift> calibrated;  // the same windows
   DriftStatistics nominal_statistics;
   DriftStatistics calibrated_statistics;
-  std::size_t windows_with_gaps{};  // left out: a wheel gap inside (wheel_gaps.hpp)
+  std::optional<ReferenceUncertainty> reference;  // with the reference's covariance only
+  std::size_t windows_with_gaps{};                // left out: a wheel gap inside (wheel_gaps.hpp)
 };
 
 // Throws InsufficientDataError when no window is long enough, Error for invalid options.
