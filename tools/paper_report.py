@@ -421,15 +421,33 @@ def tyre_models(report):
     report.write(f"| calibrated (`auto`) | {urban['calibrated_median_drift_percent']:.3f} |")
     report.write(f"| the true circumferences at rest (plain model) | "
                  f"{urban['true_static_median_drift_percent']:.3f} |")
+    if "exact_wheels_median_drift_percent" in urban:
+        report.write(f"| the true circumferences, the same drive with wheels that neither slip "
+                     f"nor change radius with load (the plain model with the true circumferences "
+                     f"exact but for the side slip) | "
+                     f"{urban['exact_wheels_median_drift_percent']:.3f} |")
     report.write(f"| the true circumferences, the same drive in ideal mode (the metric's floor: "
                  f"the reference's and the encoders' noise) | "
                  f"{urban['ideal_true_median_drift_percent']:.3f} |")
+    if "reference_only_median_drift_percent" in urban:
+        report.write(f"| the smoothed reference's own uncertainty alone (`validate`'s `reference` "
+                     f"row: its covariance at the windows' start and end) | "
+                     f"{urban['reference_only_median_drift_percent']:.3f} |")
     if "calibrated_raw_ticks_median_drift_percent" in urban:
         report.write(f"| calibrated (`auto`), the tick counts as they are (`--tick-smoothing 0`) | "
                      f"{urban['calibrated_raw_ticks_median_drift_percent']:.3f} |")
         report.write(f"| the metric's floor, the tick counts as they are | "
                      f"{urban['ideal_true_raw_ticks_median_drift_percent']:.3f} |")
     report.write()
+    if "calibrated_minus_exact_wheels_mean_percent" in urban:
+        report.write(f"Seed by seed, the calibrated drift minus the same drive's with exact wheels: "
+                     f"{urban['calibrated_minus_exact_wheels_mean_percent']:+.3f} % on average "
+                     f"(standard error "
+                     f"{urban['calibrated_minus_exact_wheels_standard_error_percent']:.3f} %); "
+                     f"the rest of the drift is the reference's (`validate`'s `reference` row, "
+                     f"docs/batch-calibration.md). The medians over seeds are the upper middle "
+                     f"value of an even count.")
+        report.write()
     report.write("The issue's targets, as measured here:")
     report.write()
     report.write("| target | measured | limit | met |")

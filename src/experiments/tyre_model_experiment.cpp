@@ -126,7 +126,7 @@ class UrbanValidation {
     LogPreparation done;
     prepared_ = prepare_log(input, common_, done);
     log_ = prepared_ ? &*prepared_ : &input;
-    reference_ = compute_reference(*log_, common_.reference);
+    reference_ = compute_reference(*log_, common_.reference, ReferenceCovariance::kKeep);
   }
   UrbanValidation(const UrbanValidation&) = delete;  // log_ may point into prepared_
   UrbanValidation& operator=(const UrbanValidation&) = delete;
@@ -165,6 +165,15 @@ nlohmann::json run_urban_drift_seed(std::uint64_t seed) {
   // What the metric gives with the true circumferences at rest: on this drive, and on the same
   // drive in ideal mode (no tyre effects: the reference's and the encoders' own noise).
   const DriftValidation truth = realistic.drift(drive.true_params, TyreModel{});
+  // The same realistic drive (the same path, sensors and noise) with wheels that neither slip nor
+  // change radius with load: what the metric gives where the two-wheel model is exact.
+  sim::Scenario exact_wheels = scenario;
+  exact_wheels.dynamics.longitudinal_slip = false;
+  exact_wheels.dynamics.load_dependent_radius = false;
+  const sim::SimulatedDrive exact_drive = sim::simulate(exact_wheels);
+  const Log exact_log = simulated_log(exact_drive);
+  const DriftValidation exact =
+      UrbanValidation(exact_log).drift(exact_drive.true_params, TyreModel{});
   scenario.ideal = true;
   const sim::SimulatedDrive ideal = sim::simulate(scenario);
   const Log ideal_log = simulated_log(ideal);
@@ -181,6 +190,8 @@ nlohmann::json run_urban_drift_seed(std::uint64_t seed) {
       {"nominal_median_drift_percent", calibrated.nominal_statistics.median_drift_percent},
       {"calibrated_median_drift_percent", calibrated.calibrated_statistics.median_drift_percent},
       {"true_static_median_drift_percent", truth.calibrated_statistics.median_drift_percent},
+      {"exact_wheels_median_drift_percent", exact.calibrated_statistics.median_drift_percent},
+      {"reference_only_median_drift_percent", calibrated.reference->median_drift_percent},
       {"ideal_true_median_drift_percent", floor.calibrated_statistics.median_drift_percent},
       {"calibrated_raw_ticks_median_drift_percent",
        raw_ticks.calibrated_statistics.median_drift_percent},
@@ -247,16 +258,34 @@ nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
   targets.push_back(target("ideal, auto: change of the mean abs error against none", change,
                            kTargetIdealErrorChange, change <= kTargetIdealErrorChange));
 
-  std::vector<double> nominal_drift, calibrated_drift, true_drift, floor_drift, raw_drift,
-      raw_floor_drift;
+  std::vector<double> nominal_drift, calibrated_drift, true_drift, exact_drift, reference_drift,
+      floor_drift, raw_drift, raw_floor_drift;
   for (const nlohmann::json& seed : urban) {
     nominal_drift.push_back(seed.at("nominal_median_drift_percent"));
     calibrated_drift.push_back(seed.at("calibrated_median_drift_percent"));
     true_drift.push_back(seed.at("true_static_median_drift_percent"));
+    exact_drift.push_back(seed.at("exact_wheels_median_drift_percent"));
+    reference_drift.push_back(seed.at("reference_only_median_drift_percent"));
     floor_drift.push_back(seed.at("ideal_true_median_drift_percent"));
     raw_drift.push_back(seed.at("calibrated_raw_ticks_median_drift_percent"));
     raw_floor_drift.push_back(seed.at("ideal_true_raw_ticks_median_drift_percent"));
   }
+  // The calibration's own share, seed by seed against the same drive with exact wheels: the mean
+  // difference and its standard error (the seeds' medians scatter by several hundredths each).
+  double difference_sum = 0.0, difference_squares = 0.0;
+  for (std::size_t i = 0; i < calibrated_drift.size(); ++i) {
+    const double difference = calibrated_drift[i] - exact_drift[i];
+    difference_sum += difference;
+    difference_squares += difference * difference;
+  }
+  const double count = static_cast<double>(calibrated_drift.size());
+  const double mean_difference = difference_sum / count;
+  const double difference_spread =
+      count > 1.0
+          ? std::sqrt(
+                std::max(difference_squares - count * mean_difference * mean_difference, 0.0) /
+                (count - 1.0))
+          : 0.0;
   const double urban_drift = median(calibrated_drift);
   targets.push_back(target("urban, auto: held-out median drift [%]", urban_drift,
                            kTargetUrbanDriftPercent, urban_drift <= kTargetUrbanDriftPercent));
@@ -267,6 +296,11 @@ nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
             {"nominal_median_drift_percent", median(nominal_drift)},
             {"calibrated_median_drift_percent", urban_drift},
             {"true_static_median_drift_percent", median(true_drift)},
+            {"exact_wheels_median_drift_percent", median(exact_drift)},
+            {"reference_only_median_drift_percent", median(reference_drift)},
+            {"calibrated_minus_exact_wheels_mean_percent", mean_difference},
+            {"calibrated_minus_exact_wheels_standard_error_percent",
+             difference_spread / std::sqrt(count)},
             {"ideal_true_median_drift_percent", median(floor_drift)},
             {"calibrated_raw_ticks_median_drift_percent", median(raw_drift)},
             {"ideal_true_raw_ticks_median_drift_percent", median(raw_floor_drift)},

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "experiments/tyre_model_experiment.hpp"
 
 namespace odocal::experiments {
@@ -32,6 +34,8 @@ nlohmann::json urban(int n, double calibrated) {
           {"nominal_median_drift_percent", 0.7},
           {"calibrated_median_drift_percent", calibrated},
           {"true_static_median_drift_percent", 0.6},
+          {"exact_wheels_median_drift_percent", 0.25 + 0.01 * n},
+          {"reference_only_median_drift_percent", 0.22},
           {"ideal_true_median_drift_percent", 0.2},
           {"calibrated_raw_ticks_median_drift_percent", calibrated + 0.1},
           {"ideal_true_raw_ticks_median_drift_percent", 0.3}};
@@ -86,6 +90,19 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
                    0.35);
   EXPECT_DOUBLE_EQ(summary["urban"]["ideal_true_raw_ticks_median_drift_percent"].get<double>(),
                    0.3);
+  // So are the drive's floors: its wheels made exact, and its reference's uncertainty alone.
+  EXPECT_DOUBLE_EQ(summary["urban"]["exact_wheels_median_drift_percent"].get<double>(), 0.27);
+  EXPECT_DOUBLE_EQ(summary["urban"]["reference_only_median_drift_percent"].get<double>(), 0.22);
+  // Calibrated minus exact wheels per seed: -0.06, +0.23, -0.03; mean 0.0467, sample sigma 0.1595.
+  EXPECT_NEAR(summary["urban"]["calibrated_minus_exact_wheels_mean_percent"].get<double>(),
+              0.14 / 3.0, 1e-12);
+  EXPECT_NEAR(
+      summary["urban"]["calibrated_minus_exact_wheels_standard_error_percent"].get<double>(),
+      std::sqrt((std::pow(-0.06 - 0.14 / 3, 2) + std::pow(0.23 - 0.14 / 3, 2) +
+                 std::pow(-0.03 - 0.14 / 3, 2)) /
+                2.0) /
+          std::sqrt(3.0),
+      1e-12);
   EXPECT_THROW(summarise_tyre_models({}, {}), std::exception);
 }
 
