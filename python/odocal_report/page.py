@@ -56,6 +56,11 @@ def render(title, result, findings, drift, figures):
     drift_rows = [(name, d["windows"], f"{d['median_drift_percent']:.3f}",
                    f"{d['p95_drift_percent']:.3f}", f"{d['median_end_error_m']:.2f}")
                   for name, d in (("nominal", drift["nominal"]), ("calibrated", drift["calibrated"]))]
+    # What the reference's own uncertainty alone would show: a drift near it is the reference's.
+    floor = drift["reference_uncertainty"]
+    drift_rows.append(("the reference's own uncertainty", drift["calibrated"]["windows"],
+                       f"{floor['median_drift_percent']:.3f}", "-",
+                       f"{floor['median_end_error_m']:.2f}"))
     finding_rows = [(f["severity"], f["check"], f["what"], f["evidence"], f["fix"]) for f in findings]
     return f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>{html.escape(title)}</title>

@@ -62,6 +62,7 @@ def test_the_report_loads_without_errors_and_draws_every_plot(report):
     assert not re.search(r"<(script|link)[^>]+(src|href)=", text)  # offline: nothing fetched
     for heading in ("Result", "Input checks", "Held-out drift", "Configuration"):
         assert f"<h2>{heading}" in text
+    assert "reference&#x27;s own uncertainty" in text  # beside the drifts it bounds (escaped)
     dom, errors = load(report)
     assert not errors, errors
     assert dom.count('class="plot-container') == 4  # track, drift windows, conditions, iterations
