@@ -494,8 +494,9 @@ class BatchProblem {
   //   are built once, at the solution: the body reaches them only through the wheels' motion
   //   within one keyframe interval, while it moves the odometry and the Doppler speed over the
   //   whole log;
-  // - the physical coefficients held, by their spread about where they are held (a car's value,
-  //   and what the log said while they were free: held_coefficient_sigma). Holding one makes an
+  // - the tyre coefficients held, by their spread about where they are held (a car's value, and
+  //   what the log said while they were free; a regression term, at zero, by what the log said
+  //   alone: held_coefficient_sigma). Holding one makes an
   //   error of the car's own value less the held one, which the free ones and the circumferences
   //   take up (the urban drive, seed 8: the brake slip held at zero, c_RL +10 mm at a sigma of
   //   2.5 mm without it). The coefficient
@@ -507,7 +508,7 @@ class BatchProblem {
     held_covariance_.setZero();
     body_responses_.clear();
     held_responses_.clear();
-    if (!tyre_terms_ || *tyre_terms_ != TyreTerms::kPhysical) return;
+    if (!tyre_terms_) return;
     preintegrate_all(0.0, false);
     const Unknowns solution = unknowns(Folds::kKeep);
     const VehicleBody stated = body_;
@@ -523,16 +524,18 @@ class BatchProblem {
     for (int j = 0; j < TyreModel::kCoefficients; ++j) {
       if (!tyre_in_fit(j) || !tyre_held(j)) continue;
       const auto index = static_cast<std::size_t>(j);
-      const double sigma =
-          held_coefficient_sigma(tyre_held_estimate_[index], tyre_held_sigma_[index],
-                                 car_coefficient(j), tyre_held_value_[index]);
+      const CarCoefficient car = car_coefficient(j);
+      // A regression term has no car's value, and a fit that wandered no word of its own.
+      if (!(car.sigma > 0.0) && tyre_held_wandered_[index]) continue;
+      const double sigma = held_coefficient_sigma(
+          tyre_held_estimate_[index], tyre_held_sigma_[index], car, tyre_held_value_[index]);
       if (!(sigma > 0.0)) continue;
       params_[static_cast<std::size_t>(kTyreOffset) + index] += kStep * sigma;
       const batch::ParamsVector moved = respond();
       held_covariance_ += moved * moved.transpose();
       held_responses_.push_back({j, {stated, kStep * moved, kStep}});
     }
-    if (!tyre_model().plain()) {
+    if (*tyre_terms_ == TyreTerms::kPhysical && !tyre_model().plain()) {
       for (const BodyUncertainty& uncertainty : kBodyUncertainties) {
         body_ = stated;
         body_.*(uncertainty.member) += kStep * uncertainty.sigma(stated);
@@ -1804,7 +1807,9 @@ std::string BatchSummary::full_report() const {
     text += fmt::format(
         "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the tyre coefficients "
         "held, that this log cannot identify: each where a car's value and the log's own word put "
-        "it (at zero where its fit wandered), and its spread there ({})\n",
+        "it (a regression term, which no car sizes, at zero with the log's word for its spread; at "
+        "zero where "
+        "its fit wandered), and its spread there ({})\n",
         "held", 1e3 * held_sigma_m[0], 1e3 * held_sigma_m[1], fmt::join(parts, ", "));
   }
   if (model_spread_m[0] > 0.0 || model_spread_m[1] > 0.0) {

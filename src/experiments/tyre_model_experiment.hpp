@@ -16,7 +16,7 @@ namespace odocal::experiments {
 // physical terms and auto; 6: the side slip; 7: auto's agreement with the plain fit; 8: the urban
 // drift with the tick counts smoothed, and without; 9: held coefficients in the sigma; 10: held
 // at a car's value.
-inline constexpr int kTyreModelExperimentVersion = 11;
+inline constexpr int kTyreModelExperimentVersion = 12;
 
 // {seed, realistic: {rear: {none, extended, auto}, front: {...}}, ideal: {none, auto}} with
 // method_run_to_json entries, each with "tyre_model_used" (whether the result carries one).

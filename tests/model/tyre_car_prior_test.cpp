@@ -64,8 +64,12 @@ TEST(TyreCarPrior, AHeldCoefficientsSpreadCombinesTheLogsWordWithTheCars) {
   EXPECT_NEAR(held_coefficient_sigma(0.02, 0.02, car, 0.02), 0.02 / std::sqrt(2.0), 1e-15);
   // A log far surer than the car: its own estimate and sigma about the held value.
   EXPECT_NEAR(held_coefficient_sigma(3e-4, 1e-4, {0.0, 1.0}, 0.0), std::hypot(3e-4, 1e-4), 1e-10);
-  // No car's value (a regression term): nothing.
-  EXPECT_EQ(held_coefficient_sigma(0.01, 0.01, {}, 0.0), 0.0);
+  // No car's value (a regression term): the log's own estimate and sigma about the held value,
+  // and nothing where the log said nothing either.
+  EXPECT_NEAR(held_coefficient_sigma(0.03, 0.04, {}, 0.0), 0.05, 1e-15);
+  EXPECT_NEAR(held_coefficient_sigma(0.03, 0.04, {}, 0.03), 0.04, 1e-15);
+  EXPECT_EQ(held_coefficient_sigma(0.01, inf, {}, 0.0), 0.0);
+  EXPECT_EQ(held_coefficient_sigma(std::nan(""), 0.01, {}, 0.0), 0.0);
 }
 
 }  // namespace

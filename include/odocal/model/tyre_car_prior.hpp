@@ -74,9 +74,15 @@ inline CarCoefficient combined_coefficient(double free_estimate, double free_sig
 }
 
 // The spread about `held` of a coefficient held there: the RMS of the combination above about
-// the held value (the error that holding it there makes). Zero where the car has no value.
+// the held value (the error that holding it there makes). Where the car has no value (a
+// regression term) the log's statement alone, and zero where the log said nothing either.
 inline double held_coefficient_sigma(double free_estimate, double free_sigma,
                                      const CarCoefficient& car, double held) {
+  if (!(car.sigma > 0.0)) {
+    if (!std::isfinite(free_sigma) || !std::isfinite(free_estimate) || !(free_sigma > 0.0))
+      return 0.0;
+    return std::hypot(free_estimate - held, free_sigma);
+  }
   const CarCoefficient combined = combined_coefficient(free_estimate, free_sigma, car);
   return std::hypot(combined.mean - held, combined.sigma);
 }
