@@ -272,20 +272,14 @@ nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
   }
   // The calibration's own share, seed by seed against the same drive with exact wheels: the mean
   // difference and its standard error (the seeds' medians scatter by several hundredths each).
-  double difference_sum = 0.0, difference_squares = 0.0;
-  for (std::size_t i = 0; i < calibrated_drift.size(); ++i) {
-    const double difference = calibrated_drift[i] - exact_drift[i];
-    difference_sum += difference;
-    difference_squares += difference * difference;
-  }
-  const double count = static_cast<double>(calibrated_drift.size());
-  const double mean_difference = difference_sum / count;
-  const double difference_spread =
-      count > 1.0
-          ? std::sqrt(
-                std::max(difference_squares - count * mean_difference * mean_difference, 0.0) /
-                (count - 1.0))
-          : 0.0;
+  std::vector<double> differences;
+  for (std::size_t i = 0; i < calibrated_drift.size(); ++i)
+    differences.push_back(calibrated_drift[i] - exact_drift[i]);
+  const double mean_difference = mean(differences);
+  double squares = 0.0;
+  for (const double d : differences) squares += (d - mean_difference) * (d - mean_difference);
+  const double count = static_cast<double>(differences.size());
+  const double difference_spread = count > 1.0 ? std::sqrt(squares / (count - 1.0)) : 0.0;
   const double urban_drift = median(calibrated_drift);
   targets.push_back(target("urban, auto: held-out median drift [%]", urban_drift,
                            kTargetUrbanDriftPercent, urban_drift <= kTargetUrbanDriftPercent));

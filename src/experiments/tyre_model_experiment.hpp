@@ -15,7 +15,8 @@ namespace odocal::experiments {
 // Bump when the tyre model or its fit changes what these pieces write (their cache key). 3: the
 // physical terms and auto; 6: the side slip; 7: auto's agreement with the plain fit; 8: the urban
 // drift with the tick counts smoothed, and without; 9: held coefficients in the sigma; 10: held
-// at a car's value.
+// at a car's value; 11: the urban drive with exact wheels and the reference's own uncertainty;
+// 12: held regression terms in the sigma.
 inline constexpr int kTyreModelExperimentVersion = 12;
 
 // {seed, realistic: {rear: {none, extended, auto}, front: {...}}, ideal: {none, auto}} with
