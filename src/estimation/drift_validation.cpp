@@ -140,7 +140,8 @@ DriftValidation validate_drift(const WheelStream& counted_wheels,
       continue;
     }
     const WindowDrift with_nominal = window_drift(wheels, reference, first, last, nominal);
-    if (with_nominal.distance_m >= options.min_window_distance_m) {
+    // A window without driving has no drift to give in % of its distance, whatever the minimum.
+    if (with_nominal.distance_m >= options.min_window_distance_m && with_nominal.distance_m > 0.0) {
       result.nominal.push_back(with_nominal);
       result.calibrated.push_back(
           window_drift(calibrated_wheels, reference, first, last, calibrated));

@@ -59,6 +59,25 @@ TEST(DriftValidation, OverlappingWindowsStartEveryStep) {
                Error);
 }
 
+// With no minimum distance, a window spent standing still is still left out: its drift in % of
+// no distance would be 0 / 0.
+TEST(DriftValidation, AStandingWindowIsLeftOutEvenWithoutAMinimumDistance) {
+  StraightDrive d = straight_drive(130.0);
+  for (std::size_t k = 0; k <= 610; ++k) {  // standing for the first 61 s, then on east
+    d.wheels.rev_rl[k] = d.wheels.rev_rr[k] = 0.0;
+    d.reference.poses[k] = Pose2(0.0, 0.0, 0.0);
+  }
+  for (std::size_t k = 611; k < d.reference.poses.size(); ++k)
+    d.reference.poses[k].x() = static_cast<double>(k) - 610.0;
+  d.reference.covariance.assign(d.reference.poses.size(), Eigen::Matrix3d::Identity() * 1e-4);
+  const OdometryParams truth{2.0, 2.0, 1.6};
+  const DriftValidation v = validate_drift(d.wheels, d.reference, truth, truth, {60.0, 0.0});
+  ASSERT_EQ(v.nominal.size(), 1u);  // the moving minute only
+  EXPECT_NEAR(v.nominal[0].start_s, 60.0, 1e-9);
+  EXPECT_TRUE(std::isfinite(v.nominal_statistics.median_drift_percent));
+  EXPECT_TRUE(std::isfinite(v.reference->median_drift_percent));
+}
+
 TEST(DriftValidation, RefusesALogWithoutALongEnoughWindow) {
   const StraightDrive d = straight_drive(30.0);
   EXPECT_THROW(validate_drift(d.wheels, d.reference, {2, 2, 1.6}, {2, 2, 1.6}, {60.0, 20.0}),
