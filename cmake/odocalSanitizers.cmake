@@ -3,7 +3,7 @@ function(odocal_set_sanitizers target)
   if(ODOCAL_SANITIZE)
     set(flags -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
     # -O1 as ASan's own documentation advises: Eigen and Ceres at -O0 made the sanitized suite
-    # eleven times slower than the Release one (docs/reliability.md); assertions stay on (no NDEBUG).
+    # eleven times slower than the Release one (docs/reliability.md). Assertions stay on.
     target_compile_options(${target} PRIVATE ${flags} -O1)
     # Under ASan, Eigen stops trusting malloc's 16-byte alignment and over-allocates, storing the
     # real pointer in front; Debian's Ceres is not built so, and a matrix allocated by one side
