@@ -19,6 +19,7 @@
 #include "batch_fit.hpp"
 #include "batch_folded_residuals.hpp"
 #include "batch_observability.hpp"
+#include "batch_refusal.hpp"
 #include "batch_residuals.hpp"
 #include "batch_speed_residual.hpp"
 #include "calibration_report.hpp"
@@ -1170,41 +1171,63 @@ void suggest_tyre_model(ModelAdequacy& adequacy) {
 }
 
 // Why a circumference beside a tyre model is not identified: at rest it is an extrapolation from
-// the states driven, and its sigma carries what the log cannot identify (the body's numbers, the
-// held coefficients), or the two models' gap; the largest share named, so that the user knows
-// what to state or drive.
-std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel, double spread_m) {
-  std::vector<std::string> shares, advice;
-  // One share: its total, and the part that moves the circumference most, which `act` on names.
-  const auto name_share = [&](double total_m, const auto& parts, const char* from, auto act) {
+// the states driven, and its sigma carries the log's own noise, what the log cannot identify (the
+// body's numbers, the held coefficients) and the two models' gap. Every share is named, largest
+// first, with what would shrink it, so that the user states or drives what matters most.
+std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel, double sigma_m,
+                                  double spread_m, bool has_doppler) {
+  struct Share {
+    double size_m;
+    std::string text, advice;
+  };
+  std::vector<Share> shares;
+  // A share with parts: its total, and the part that moves the circumference most, which `act`
+  // on names.
+  const auto add_parts = [&](double total_m, const auto& parts, const char* from, auto act) {
     const auto largest = std::max_element(
         parts.begin(), parts.end(),
         [wheel](const auto& a, const auto& b) { return a.sigma_m[wheel] < b.sigma_m[wheel]; });
     if (!(total_m > 0.0) || largest == parts.end()) return;
-    shares.push_back(fmt::format("{:.2g} mm {}, {:.2g} mm of it from {}", 1e3 * total_m, from,
-                                 1e3 * largest->sigma_m[wheel], largest->key));
-    advice.push_back(act(largest->key));
+    shares.push_back({total_m,
+                      fmt::format("{:.2g} mm {}, {:.2g} mm of it from {}", 1e3 * total_m, from,
+                                  1e3 * largest->sigma_m[wheel], largest->key),
+                      act(largest->key)});
   };
-  name_share(summary.body_sigma_m[wheel], summary.body_sigma_parts,
-             "of the sigma from the body's uncertainty",
-             [](const std::string&) { return std::string("state vehicle.yaml's body"); });
-  name_share(summary.held_sigma_m[wheel], summary.held_sigma_parts,
-             "from the tyre coefficients held",
-             [](const std::string& key) { return "drive more of what shows " + key; });
+  add_parts(summary.body_sigma_m[wheel], summary.body_sigma_parts, "from the body's uncertainty",
+            [](const std::string&) { return std::string("state vehicle.yaml's body"); });
+  add_parts(summary.held_sigma_m[wheel], summary.held_sigma_parts,
+            "from the tyre coefficients held",
+            [](const std::string& key) { return "drive more of what shows " + key; });
+  if (spread_m > 0.0) {
+    shares.push_back({spread_m,
+                      fmt::format("{:.2g} mm from the gap to where the physical terms' fit puts it",
+                                  1e3 * spread_m),
+                      "drive more gently"});
+  }
+  double named_variance = 0.0;
+  for (const Share& share : shares) named_variance += share.size_m * share.size_m;
+  if (std::isfinite(sigma_m)) {
+    const double own_m = std::sqrt(std::max(0.0, sigma_m * sigma_m - named_variance));
+    shares.push_back(
+        {own_m, fmt::format("{:.2g} mm from the log's own noise", 1e3 * own_m),
+         has_doppler ? "drive longer and more gently"
+                     : "drive longer and more gently, or log the GNSS receiver's Doppler speed "
+                       "(gnss.csv speed_mps)"});
+  }
+  std::stable_sort(shares.begin(), shares.end(),
+                   [](const Share& a, const Share& b) { return a.size_m > b.size_m; });
+  std::vector<std::string> texts, advice;
+  for (const Share& share : shares) {
+    texts.push_back(share.text);
+    if (std::find(advice.begin(), advice.end(), share.advice) == advice.end())
+      advice.push_back(share.advice);
+  }
   const std::string extrapolation =
       "with the tyre model the circumference at rest is an extrapolation from this drive's slip "
       "and load";
-  if (!shares.empty()) {
-    return fmt::format("{} ({}: {}, or drive longer and more gently)", extrapolation,
-                       fmt::join(shares, "; "), fmt::join(advice, ", "));
-  }
-  if (spread_m > 0.0) {
-    return fmt::format(
-        "{}, and the physical terms' fit puts it {:.3g} mm away (its sigma includes that gap): "
-        "drive longer and more gently",
-        extrapolation, 1e3 * spread_m);
-  }
-  return extrapolation + " (drive longer and more gently)";
+  if (texts.empty()) return extrapolation + " (drive longer and more gently)";
+  return fmt::format("{} (of its 1-sigma, {}: {})", extrapolation, fmt::join(texts, "; "),
+                     fmt::join(advice, "; "));
 }
 
 // Fills the summary from the solved problem: every parameter with its sigma and verdict, and
@@ -1296,7 +1319,8 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
       const bool considered =
           i < 2 && (summary.body_sigma_m[i] > 0.0 || summary.held_sigma_m[i] > 0.0);
       if (i < 2 && batch.tyre_fitted() && (!batch.tyre_model().plain() || considered))
-        parameter.verdict = extrapolation_verdict(summary, i, spread[i]);
+        parameter.verdict = extrapolation_verdict(summary, i, parameter.sigma, spread[i],
+                                                  batch.speed_intervals() > 0);
       const int coefficient = static_cast<int>(i) - 8;
       if (i >= 8 && batch.tyre_held(coefficient)) {
         const double held = batch.tyre_held_value(coefficient);
@@ -1370,7 +1394,10 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
         fmt::format("{}: {}", solved, solver.message.substr(0, solver.message.find('\n')));
   } else if (!circumferences_identified) {
     summary.termination = Termination::kNotIdentifiable;
-    summary.message = fmt::format("{}: {}", solved, summary.identifiability);
+    summary.message =
+        fmt::format("{}: {}", solved,
+                    circumference_refusal(summary.parameters, b.max_sigma_circumference_m,
+                                          !uncertainty.has_value()));
   } else {
     summary.message = solved;
   }
