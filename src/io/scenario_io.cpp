@@ -198,6 +198,8 @@ sim::Scenario parse_scenario(const std::string& yaml_text, const std::string& fi
     driver->read("max_lateral_acc_mps2", s.driver.max_lateral_acc_mps2, 0.1, 30.0);
     driver->read("max_acc_mps2", s.driver.max_acc_mps2, 0.1, 30.0);
     driver->read("max_brake_mps2", s.driver.max_brake_mps2, 0.1, 30.0);
+    driver->read("friction_ellipse", s.driver.friction_ellipse);
+    driver->read("max_power_wpkg", s.driver.max_power_wpkg, 0.0, 1e4);
     driver->read("start_dwell_s", s.driver.start_dwell_s, 0.0, 3600.0);
     driver->read("speed_variation", s.speed_variation, 0.0, 0.5);
     driver->reject_unknown_keys();
@@ -338,6 +340,8 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("max_lateral_acc_mps2", s.driver.max_lateral_acc_mps2);
   key("max_acc_mps2", s.driver.max_acc_mps2);
   key("max_brake_mps2", s.driver.max_brake_mps2);
+  key("friction_ellipse", s.driver.friction_ellipse);
+  key("max_power_wpkg", s.driver.max_power_wpkg);
   key("start_dwell_s", s.driver.start_dwell_s);
   key("speed_variation", s.speed_variation);
   out << YAML::EndMap;

@@ -38,13 +38,28 @@ SpeedProfile::SpeedProfile(const Path& path, const DriverLimits& limits,
             : cap;
     speed_mps_[i] = must_stop[i] ? 0.0 : std::min(cap, corner);
   }
+  std::vector<double> curvature_1pm(points);
+  for (int i = 0; i < points; ++i) curvature_1pm[i] = std::abs(path.at(s_m_[i]).curvature_1pm);
+  // The share of the longitudinal bound that the turn leaves at grid point i and speed v.
+  const auto grip_left = [&](int i, double v) {
+    if (!limits.friction_ellipse) return 1.0;
+    constexpr double kKept = 0.05;
+    const double turn = v * v * curvature_1pm[i] / limits.max_lateral_acc_mps2;
+    return std::max(kKept, std::sqrt(std::max(0.0, 1.0 - turn * turn)));
+  };
   for (int i = 1; i < points; ++i) {
-    speed_mps_[i] = std::min(speed_mps_[i], std::sqrt(speed_mps_[i - 1] * speed_mps_[i - 1] +
-                                                      2.0 * limits.max_acc_mps2 * ds));
+    const double v = speed_mps_[i - 1];
+    double acc = limits.max_acc_mps2 * grip_left(i - 1, v);
+    if (limits.max_power_wpkg > 0.0) {
+      constexpr double kLowestSpeedMps = 1.0;  // P / v has no bound at rest
+      acc = std::min(acc, limits.max_power_wpkg / std::max(v, kLowestSpeedMps));
+    }
+    speed_mps_[i] = std::min(speed_mps_[i], std::sqrt(v * v + 2.0 * acc * ds));
   }
   for (int i = points - 2; i >= 0; --i) {
-    speed_mps_[i] = std::min(speed_mps_[i], std::sqrt(speed_mps_[i + 1] * speed_mps_[i + 1] +
-                                                      2.0 * limits.max_brake_mps2 * ds));
+    const double v = speed_mps_[i + 1];
+    const double brake = limits.max_brake_mps2 * grip_left(i + 1, v);
+    speed_mps_[i] = std::min(speed_mps_[i], std::sqrt(v * v + 2.0 * brake * ds));
   }
   arrive_s_.resize(points);
   depart_s_.resize(points);

@@ -80,5 +80,63 @@ TEST(SpeedProfile, RespectsLimitsAndStops) {
   EXPECT_DOUBLE_EQ(profile.at(profile.duration_s()).s_m, path.length_m());
 }
 
+// The profile's speed where it first reaches s_m (sampled every millisecond).
+double speed_at_distance(const SpeedProfile& profile, double s_m) {
+  for (double t = 0.0; t <= profile.duration_s(); t += 1e-3) {
+    const MotionState state = profile.at(t);
+    if (state.s_m >= s_m) return state.speed_mps;
+  }
+  return profile.at(profile.duration_s()).speed_mps;
+}
+
+// From rest on a circle of radius R, a driver who gives the acceleration only the grip the turn
+// leaves, a_x = a sqrt(1 - u^2) with u = v^2 / (R a_y,max), has du/ds = (2 a / (R a_y,max))
+// sqrt(1 - u^2): u = sin(2 a s / (R a_y,max)), the corner speed at s = pi R a_y,max / (4 a).
+TEST(SpeedProfile, AFrictionEllipseDriverLeavesTheTurnItsGrip) {
+  const double radius = 100.0;
+  const Path circle({{2 * kPi * radius, 1 / radius, 1 / radius, 1}}, Pose2::Zero());
+  DriverLimits limits;
+  limits.max_lateral_acc_mps2 = 4.0;
+  limits.max_acc_mps2 = 3.0;
+  limits.max_brake_mps2 = 5.0;
+  limits.friction_ellipse = true;
+  const SpeedProfile profile(circle, limits, {});
+  const double scale = 2 * limits.max_acc_mps2 / (radius * limits.max_lateral_acc_mps2);
+  for (const double s : {10.0, 40.0, 80.0}) {
+    const double expected = std::sqrt(radius * limits.max_lateral_acc_mps2 * std::sin(scale * s));
+    EXPECT_NEAR(speed_at_distance(profile, s), expected, 0.01 * expected) << s;
+  }
+  // Without it the same driver reaches the corner speed sooner, at full acceleration.
+  limits.friction_ellipse = false;
+  const SpeedProfile separate(circle, limits, {});
+  EXPECT_NEAR(speed_at_distance(separate, 40.0), std::sqrt(2 * limits.max_acc_mps2 * 40.0), 0.1);
+  // On a straight the ellipse changes nothing.
+  const Path straight({{500.0, 0.0, 0.0, 1}}, Pose2::Zero());
+  limits.friction_ellipse = true;
+  const SpeedProfile ellipse_straight(straight, limits, {});
+  limits.friction_ellipse = false;
+  const SpeedProfile plain_straight(straight, limits, {});
+  EXPECT_DOUBLE_EQ(ellipse_straight.duration_s(), plain_straight.duration_s());
+}
+
+// Above P / a_max the power limits the acceleration, a = P / v: d(v^2)/dt = 2 P, so v^2 grows
+// linearly in time from where the power takes over.
+TEST(SpeedProfile, APowerLimitedDriverGainsSpeedSquaredLinearlyInTime) {
+  const Path straight({{2000.0, 0.0, 0.0, 1}}, Pose2::Zero());
+  DriverLimits limits;
+  limits.max_speed_mps = 45.0;
+  limits.max_acc_mps2 = 3.0;
+  limits.max_power_wpkg = 80.0;  // 120 kW for 1500 kg
+  const SpeedProfile profile(straight, limits, {});
+  const double takeover_mps = limits.max_power_wpkg / limits.max_acc_mps2;
+  const double takeover_s = limits.start_dwell_s + takeover_mps / limits.max_acc_mps2;
+  for (const double after_s : {1.0, 3.0, 5.0}) {
+    const double expected =
+        std::sqrt(takeover_mps * takeover_mps + 2 * limits.max_power_wpkg * after_s);
+    EXPECT_NEAR(profile.at(takeover_s + after_s).speed_mps, expected, 0.01 * expected) << after_s;
+  }
+  EXPECT_NEAR(profile.at(takeover_s - 1.0).speed_mps, takeover_mps - limits.max_acc_mps2, 0.05);
+}
+
 }  // namespace
 }  // namespace odocal::sim

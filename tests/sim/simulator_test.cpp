@@ -407,6 +407,19 @@ TEST(ScenarioYaml, DrivetrainIsReadAndChecked) {
   }
 }
 
+TEST(ScenarioYaml, TheDriversGripSharingAndPowerAreReadAndWritten) {
+  const Scenario read = parse_scenario(
+      "route: {segments: [{straight: 100}]}\n"
+      "driver: {friction_ellipse: true, max_power_wpkg: 80}\n",
+      "s.yaml");
+  EXPECT_TRUE(read.driver.friction_ellipse);
+  EXPECT_EQ(read.driver.max_power_wpkg, 80.0);
+  const Scenario again = parse_scenario(scenario_to_yaml(read), "effective.yaml");
+  EXPECT_TRUE(again.driver.friction_ellipse);
+  EXPECT_EQ(again.driver.max_power_wpkg, 80.0);
+  EXPECT_FALSE(load_scenario("circuit").driver.friction_ellipse);  // each bound on its own
+}
+
 TEST(RealisticSimulator, ParkingFollowsItsRouteAndReverses) {
   const TempLogDir dir;
   Scenario ideal = load_scenario("parking");

@@ -1,6 +1,7 @@
 #pragma once
 // A driver's speed along a path: as fast as the speed limit and a lateral-acceleration bound in
-// corners allow, reached with bounded acceleration and braking, with full stops where the driving
+// corners allow, reached with bounded acceleration and braking (optionally sharing the grip with
+// the turn and limited by the engine's power), with full stops where the driving
 // direction changes and at requested stop points. Piecewise constant acceleration between grid
 // points, so position and speed at any time have closed forms.
 
@@ -21,7 +22,12 @@ struct DriverLimits {
   double max_lateral_acc_mps2 = 6.0;
   double max_acc_mps2 = 3.0;
   double max_brake_mps2 = 6.0;
-  double start_dwell_s = 1.0;  // standing still before moving off (and after arriving)
+  // A driver who shares the grip between turning and speeding up or slowing down (a g-g
+  // diagram): a_x <= max_acc (or max_brake) * sqrt(1 - (a_y / max_lateral_acc)^2), a twentieth
+  // of it kept so that a bend driven at its cap can be left. false: each bound on its own.
+  bool friction_ellipse = false;
+  double max_power_wpkg = 0.0;  // engine power per kg of car: a_x <= P / v (0: no limit)
+  double start_dwell_s = 1.0;   // standing still before moving off (and after arriving)
 };
 
 struct MotionState {
