@@ -393,6 +393,15 @@ def tyre_models(report):
                  "default 1 mm refusal threshold). DR: the whole log dead-reckoned from the true "
                  "start pose with the estimate and its tyre model, against the truth. Time: one "
                  "whole calibration on this machine.")
+    if any(row["mode"].endswith("grip-sharing driver") for row in summary["rows"]):
+        report.write()
+        report.write("The rows of the grip-sharing driver are the same drives (the same seeds, "
+                     "route and cars) with a driver who accelerates and brakes only with the grip "
+                     "that the turn leaves and has a sedan's power (`driver: {friction_ellipse: "
+                     "true, max_power_wpkg: 80}`, docs/simulator.md): the circuit's driver uses "
+                     "each bound on its own, and on Hockenheim its car fishtails once a lap in a "
+                     "fast kink (docs/tyre-model.md, \"The simulated driver's share\"). Their "
+                     "dead reckoning is compared with the same driver's ideal mode.")
     report.write()
     report.write("| mode | drive | tyre_model | mean \\|err\\| [mm] | max \\|err\\| [mm] | "
                  "within 3σ | DR mean pos [m] | DR mean heading [°] | time mean / max [s] | "

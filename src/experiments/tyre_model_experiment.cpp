@@ -29,6 +29,17 @@ constexpr double kTargetUrbanDriftPercent = 0.3;
 constexpr double kTargetIdealErrorChange = 0.05;
 constexpr double kTargetSecondsExtended = 3.0;
 
+// The driver who shares the grip with the turn and has a sedan's power (docs/simulator.md,
+// "Driver"): the circuit's driver uses each bound on its own, and on Hockenheim that makes the
+// car fishtail once a lap (docs/tyre-model.md, "The simulated driver's share").
+constexpr double kSedanPowerWpkg = 80.0;  // 120 kW for 1500 kg
+
+sim::Scenario with_grip_sharing_driver(sim::Scenario scenario) {
+  scenario.driver.friction_ellipse = true;
+  scenario.driver.max_power_wpkg = kSedanPowerWpkg;
+  return scenario;
+}
+
 const char* drivetrain_name(sim::Drivetrain drivetrain) {
   return drivetrain == sim::Drivetrain::kFront ? "front" : "rear";
 }
@@ -104,12 +115,21 @@ nlohmann::json run_tyre_model_seed(const PaperSetup& setup, std::uint64_t seed) 
     for (const TyreModelChoice model : kRealisticModels)
       result["realistic"][drivetrain_name(drivetrain)][enum_name(model)] =
           run_json(log, drive.true_params, batch_options(SimMode::kRealistic, model));
+    const sim::SimulatedDrive gentler = sim::simulate(with_grip_sharing_driver(scenario));
+    result["grip_sharing"][drivetrain_name(drivetrain)]["auto"] =
+        run_json(simulated_log(gentler, true), gentler.true_params,
+                 batch_options(SimMode::kRealistic, TyreModelChoice::kAuto));
   }
   const sim::SimulatedDrive ideal = sim::simulate(paper_scenario(setup, SimMode::kIdeal, seed));
   const Log ideal_log = simulated_log(ideal, true);
   for (const TyreModelChoice model : {TyreModelChoice::kNone, TyreModelChoice::kAuto})
     result["ideal"][enum_name(model)] =
         run_json(ideal_log, ideal.true_params, batch_options(SimMode::kIdeal, model));
+  const sim::SimulatedDrive ideal_gentler =
+      sim::simulate(with_grip_sharing_driver(paper_scenario(setup, SimMode::kIdeal, seed)));
+  result["grip_sharing_ideal"]["none"] =
+      run_json(simulated_log(ideal_gentler, true), ideal_gentler.true_params,
+               batch_options(SimMode::kIdeal, TyreModelChoice::kNone));
   return result;
 }
 
@@ -249,6 +269,34 @@ nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
     r["tyre_model"] = name;
     rows.push_back(r);
   }
+  // The same runs with the grip-sharing driver, scored against its own ideal mode.
+  nlohmann::json gentler_ideal = row_summary(runs("/grip_sharing_ideal/none"_json_pointer));
+  const double gentler_ideal_dr = gentler_ideal.at("mean_dr_position_m").get<double>();
+  for (const sim::Drivetrain drivetrain : kDrivetrains) {
+    nlohmann::json row = row_summary(runs(nlohmann::json::json_pointer(
+        std::string("/grip_sharing/") + drivetrain_name(drivetrain) + "/auto")));
+    row["mode"] = "realistic, grip-sharing driver";
+    row["drivetrain"] = drivetrain_name(drivetrain);
+    row["tyre_model"] = "auto";
+    const std::string who =
+        std::string("grip-sharing driver, ") + drivetrain_name(drivetrain) + "-wheel drive, auto: ";
+    const double error = row.at("mean_abs_error_mm");
+    const double inside = row.at("within_3_reported_sigma");
+    const double dr = row.at("mean_dr_position_m");
+    targets.push_back(target(who + "mean abs error [mm]", error, kTargetMeanAbsErrorMm,
+                             error <= kTargetMeanAbsErrorMm));
+    targets.push_back(target(who + "share inside 3 reported sigma", inside, kTargetWithin3Sigma,
+                             inside >= kTargetWithin3Sigma));
+    targets.push_back(target(who + "whole-log DR over its ideal mode's", dr / gentler_ideal_dr,
+                             kTargetDeadReckoningOverIdeal,
+                             dr <= kTargetDeadReckoningOverIdeal * gentler_ideal_dr));
+    rows.push_back(row);
+  }
+  gentler_ideal["mode"] = "ideal, grip-sharing driver";
+  gentler_ideal["drivetrain"] = "rear";
+  gentler_ideal["tyre_model"] = "none";
+  rows.push_back(gentler_ideal);
+
   const double plain_error = ideal_none.at("mean_abs_error_mm");
   const double auto_error = ideal_auto.at("mean_abs_error_mm");
   const int ideal_extended = ideal_auto.at("runs_with_tyre_model");

@@ -16,11 +16,14 @@ namespace odocal::experiments {
 // physical terms and auto; 6: the side slip; 7: auto's agreement with the plain fit; 8: the urban
 // drift with the tick counts smoothed, and without; 9: held coefficients in the sigma; 10: held
 // at a car's value; 11: the urban drive with exact wheels and the reference's own uncertainty;
-// 12: held regression terms in the sigma.
-inline constexpr int kTyreModelExperimentVersion = 12;
+// 12: held regression terms in the sigma; 13: the grip-sharing driver beside the circuit's.
+inline constexpr int kTyreModelExperimentVersion = 13;
 
-// {seed, realistic: {rear: {none, extended, auto}, front: {...}}, ideal: {none, auto}} with
-// method_run_to_json entries, each with "tyre_model_used" (whether the result carries one).
+// {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
+// grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_ideal: {none}} with
+// method_run_to_json entries, each with "tyre_model_used" (whether the result carries one); the
+// grip_sharing runs are the same drives with a driver who shares the grip with the turn and has
+// a sedan's power (docs/simulator.md, "Driver").
 nlohmann::json run_tyre_model_seed(const PaperSetup& setup, std::uint64_t seed);
 
 // {seed, nominal/calibrated median drift %, windows, tyre_model_used}: the built-in urban drive

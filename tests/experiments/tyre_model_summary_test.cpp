@@ -19,6 +19,8 @@ nlohmann::json run(double error_mm, double sigma_mm, double dr_m, bool with_mode
 
 // Both drivetrains alike: none 10 mm off, extended 0.5 mm inside its sigma, physical 3 mm
 // outside its, auto as extended; ideal: none and auto 0.2 mm off with 4 m of dead reckoning.
+// The grip-sharing driver: rear 0.8 mm inside its sigma with 9 m, front 1.5 mm outside its with
+// 30 m, its ideal mode 3 m.
 nlohmann::json seed(int n, double extended_dr_m) {
   nlohmann::json drive{{"none", run(10.0, 1.0, 500.0, false)},
                        {"extended", run(0.5, 1.0, extended_dr_m, true, 2.0 + n)},
@@ -26,7 +28,11 @@ nlohmann::json seed(int n, double extended_dr_m) {
                        {"auto", run(0.5, 1.0, extended_dr_m, true)}};
   return {{"seed", n},
           {"realistic", {{"rear", drive}, {"front", drive}}},
-          {"ideal", {{"none", run(0.2, 0.1, 4.0, false)}, {"auto", run(0.2, 0.1, 4.0, false)}}}};
+          {"ideal", {{"none", run(0.2, 0.1, 4.0, false)}, {"auto", run(0.2, 0.1, 4.0, false)}}},
+          {"grip_sharing",
+           {{"rear", {{"auto", run(0.8, 1.0, 9.0, true)}}},
+            {"front", {{"auto", run(1.5, 0.4, 30.0, true)}}}}},
+          {"grip_sharing_ideal", {{"none", run(0.1, 0.1, 3.0, false)}}}};
 }
 
 nlohmann::json urban(int n, double calibrated) {
@@ -51,7 +57,7 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
   // Dead reckoning 10 and 14 m with extended/auto (mean 12 m, 3x the ideal 4 m: on the limit).
   const nlohmann::json summary = summarise_tyre_models(
       {seed(1, 10.0), seed(2, 14.0)}, {urban(1, 0.2), urban(2, 0.5), urban(3, 0.25)});
-  ASSERT_EQ(summary.at("rows").size(), 10u);
+  ASSERT_EQ(summary.at("rows").size(), 13u);
   const nlohmann::json& rear_none = summary["rows"][0];
   EXPECT_EQ(rear_none["tyre_model"], "none");
   EXPECT_DOUBLE_EQ(rear_none["mean_abs_error_mm"].get<double>(), 10.0);
@@ -81,6 +87,20 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
   const nlohmann::json* ideal = find_target(summary, "ideal, auto: change");
   ASSERT_NE(ideal, nullptr);
   EXPECT_TRUE((*ideal)["met"].get<bool>());
+  // The grip-sharing driver's rows and targets, its dead reckoning against its own ideal mode.
+  EXPECT_EQ(summary["rows"][10]["mode"], "realistic, grip-sharing driver");
+  EXPECT_EQ(summary["rows"][12]["mode"], "ideal, grip-sharing driver");
+  const auto met = [&](const std::string& what) {
+    const nlohmann::json* t = find_target(summary, "grip-sharing driver, " + what);
+    EXPECT_NE(t, nullptr) << what;
+    return t != nullptr && (*t)["met"].get<bool>();
+  };
+  EXPECT_TRUE(met("rear-wheel drive, auto: mean abs error"));
+  EXPECT_TRUE(met("rear-wheel drive, auto: share inside 3"));
+  EXPECT_TRUE(met("rear-wheel drive, auto: whole-log DR"));  // 9 m against 3 x 3 m: the limit
+  EXPECT_FALSE(met("front-wheel drive, auto: mean abs error"));
+  EXPECT_FALSE(met("front-wheel drive, auto: share inside 3"));  // 1.5 mm against 3 x 0.4 mm
+  EXPECT_FALSE(met("front-wheel drive, auto: whole-log DR"));
   const nlohmann::json* drift = find_target(summary, "urban");
   ASSERT_NE(drift, nullptr);
   EXPECT_DOUBLE_EQ((*drift)["measured"].get<double>(), 0.25);  // the median of three seeds
