@@ -1345,8 +1345,7 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   } else {
     summary.condition_number = inf;
     summary.covariance.setConstant(inf);
-    problems.insert(problems.begin(),
-                    "the problem is rank-deficient: some unknowns cannot be told apart");
+    problems.insert(problems.begin(), kRankDeficientReason);
   }
   summary.identifiability = problems.empty()
                                 ? "every requested parameter identified"

@@ -29,7 +29,7 @@ std::string circumference_refusal(const std::vector<EstimatedParameter>& paramet
   if (refused.empty() && !rank_deficient) return "";
 
   std::string text = "not identified: ";
-  if (rank_deficient) text += "the problem is rank-deficient: some unknowns cannot be told apart";
+  if (rank_deficient) text += kRankDeficientReason;
   if (refused.empty()) return text;
   if (rank_deficient) text += "; ";
   for (std::size_t k = 0; k < refused.size(); ++k) {

@@ -11,6 +11,10 @@
 
 namespace odocal {
 
+// Said first, in the identifiability line and the refusal, when no covariance exists.
+inline constexpr const char* kRankDeficientReason =
+    "the problem is rank-deficient: some unknowns cannot be told apart";
+
 // parameters: the batch's, the two circumferences first. max_sigma_circumference_m: the limit
 // their 1-sigma was held to. rank_deficient: no covariance could be computed at all.
 // Returns "" when both circumferences are identified and the problem is not rank-deficient.

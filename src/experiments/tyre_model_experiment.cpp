@@ -103,6 +103,23 @@ nlohmann::json target(const std::string& what, double measured, double limit, bo
   return {{"target", what}, {"measured", measured}, {"limit", limit}, {"met", met}};
 }
 
+// The three accuracy targets for one `auto` row: its mean error, its share inside 3
+// reported sigma, and its dead reckoning over ideal_dr_m, the ideal mode's it is held to (named
+// in the target by `ideal`).
+void add_accuracy_targets(nlohmann::json& targets, const std::string& who,
+                          const nlohmann::json& row, double ideal_dr_m, const std::string& ideal) {
+  const double error = row.at("mean_abs_error_mm");
+  const double inside = row.at("within_3_reported_sigma");
+  const double dr = row.at("mean_dr_position_m");
+  targets.push_back(target(who + "mean abs error [mm]", error, kTargetMeanAbsErrorMm,
+                           error <= kTargetMeanAbsErrorMm));
+  targets.push_back(target(who + "share inside 3 reported sigma", inside, kTargetWithin3Sigma,
+                           inside >= kTargetWithin3Sigma));
+  targets.push_back(target(who + "whole-log DR over " + ideal, dr / ideal_dr_m,
+                           kTargetDeadReckoningOverIdeal,
+                           dr <= kTargetDeadReckoningOverIdeal * ideal_dr_m));
+}
+
 }  // namespace
 
 nlohmann::json run_tyre_model_seed(const PaperSetup& setup, std::uint64_t seed) {
@@ -240,17 +257,9 @@ nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
       row["drivetrain"] = drivetrain_name(drivetrain);
       row["tyre_model"] = enum_name(model);
       if (model == TyreModelChoice::kAuto) {
-        const std::string who = std::string(drivetrain_name(drivetrain)) + "-wheel drive, auto: ";
-        const double error = row.at("mean_abs_error_mm");
-        const double inside = row.at("within_3_reported_sigma");
-        const double dr = row.at("mean_dr_position_m");
-        targets.push_back(target(who + "mean abs error [mm]", error, kTargetMeanAbsErrorMm,
-                                 error <= kTargetMeanAbsErrorMm));
-        targets.push_back(target(who + "share inside 3 reported sigma", inside, kTargetWithin3Sigma,
-                                 inside >= kTargetWithin3Sigma));
-        targets.push_back(target(who + "whole-log DR over the ideal mode's", dr / ideal_dr,
-                                 kTargetDeadReckoningOverIdeal,
-                                 dr <= kTargetDeadReckoningOverIdeal * ideal_dr));
+        add_accuracy_targets(targets,
+                             std::string(drivetrain_name(drivetrain)) + "-wheel drive, auto: ", row,
+                             ideal_dr, "the ideal mode's");
       }
       if (model == TyreModelChoice::kExtended || model == TyreModelChoice::kPhysical) {
         const double seconds = row.at("max_seconds");
@@ -278,18 +287,10 @@ nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
     row["mode"] = "realistic, grip-sharing driver";
     row["drivetrain"] = drivetrain_name(drivetrain);
     row["tyre_model"] = "auto";
-    const std::string who =
-        std::string("grip-sharing driver, ") + drivetrain_name(drivetrain) + "-wheel drive, auto: ";
-    const double error = row.at("mean_abs_error_mm");
-    const double inside = row.at("within_3_reported_sigma");
-    const double dr = row.at("mean_dr_position_m");
-    targets.push_back(target(who + "mean abs error [mm]", error, kTargetMeanAbsErrorMm,
-                             error <= kTargetMeanAbsErrorMm));
-    targets.push_back(target(who + "share inside 3 reported sigma", inside, kTargetWithin3Sigma,
-                             inside >= kTargetWithin3Sigma));
-    targets.push_back(target(who + "whole-log DR over its ideal mode's", dr / gentler_ideal_dr,
-                             kTargetDeadReckoningOverIdeal,
-                             dr <= kTargetDeadReckoningOverIdeal * gentler_ideal_dr));
+    add_accuracy_targets(
+        targets,
+        std::string("grip-sharing driver, ") + drivetrain_name(drivetrain) + "-wheel drive, auto: ",
+        row, gentler_ideal_dr, "its ideal mode's");
     rows.push_back(row);
   }
   gentler_ideal["mode"] = "ideal, grip-sharing driver";

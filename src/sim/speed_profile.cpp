@@ -26,20 +26,19 @@ SpeedProfile::SpeedProfile(const Path& path, const DriverLimits& limits,
 
   s_m_.resize(points);
   speed_mps_.resize(points);
+  std::vector<double> curvature_1pm(points);  // unsigned
   for (int i = 0; i < points; ++i) {
     s_m_[i] = i * ds;
     const PathPoint point = path.at(s_m_[i]);
+    curvature_1pm[i] = std::abs(point.curvature_1pm);
     const double scale = segment_speed_scale.empty() ? 1.0 : segment_speed_scale.at(point.segment);
     const double cap =
         scale * (point.direction > 0 ? limits.max_speed_mps : limits.max_reverse_speed_mps);
-    const double corner =
-        std::abs(point.curvature_1pm) > 1e-9
-            ? scale * std::sqrt(limits.max_lateral_acc_mps2 / std::abs(point.curvature_1pm))
-            : cap;
+    const double corner = curvature_1pm[i] > 1e-9
+                              ? scale * std::sqrt(limits.max_lateral_acc_mps2 / curvature_1pm[i])
+                              : cap;
     speed_mps_[i] = must_stop[i] ? 0.0 : std::min(cap, corner);
   }
-  std::vector<double> curvature_1pm(points);
-  for (int i = 0; i < points; ++i) curvature_1pm[i] = std::abs(path.at(s_m_[i]).curvature_1pm);
   // The share of the longitudinal bound that the turn leaves at grid point i and speed v.
   const auto grip_left = [&](int i, double v) {
     if (!limits.friction_ellipse) return 1.0;
