@@ -214,6 +214,12 @@ class BatchProblem {
                                 0.5 * (nominal_.circumference_rl_m + nominal_.circumference_rr_m));
   }
   double tyre_held_value(int j) const { return tyre_held_value_[static_cast<std::size_t>(j)]; }
+  // Whether the car fixes coefficient j rather than the log: a stated front drivetrain's rear
+  // wheels roll free, so no drive force slips them (docs/tyre-model.md, "A free-rolling axle").
+  bool tyre_fixed_by_car(int j) const {
+    return j == kDriveSlipCoefficient && tyre_terms_ == TyreTerms::kPhysical &&
+           body_.drivetrain == Drivetrain::kFront;
+  }
   // Whether a pre-integration rebuilds the GNSS and heading folds or keeps the last ones.
   enum class Folds { kRebuild, kKeep };
   // Every unknown, and the robust loss's weights, to be put back.
@@ -1295,8 +1301,9 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
       true, true, true};
   for (int j = 0; j < TyreModel::kCoefficients; ++j) {
     const int p_index = kTyreOffset + j;
-    const double sigma_j =
-        batch.tyre_held(j) ? batch.tyre_held_sigma(j) : sigma(u.params(p_index, p_index));
+    const double sigma_j = batch.tyre_fixed_by_car(j) ? batch.car_coefficient(j).sigma
+                           : batch.tyre_held(j)       ? batch.tyre_held_sigma(j)
+                                                      : sigma(u.params(p_index, p_index));
     summary.parameters.push_back(
         {tyre_parameter_name(kTyreCoefficients[static_cast<std::size_t>(j)]), p[p_index], sigma_j,
          batch.tyre_in_fit(j), true, ""});
@@ -1312,6 +1319,13 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
       parameter.sigma = 0.0;
       continue;
     }
+    const int coefficient = static_cast<int>(i) - 8;
+    if (i >= 8 && batch.tyre_fixed_by_car(coefficient)) {  // the car's, not the log's to identify
+      parameter.verdict =
+          "held at zero: the rear wheels roll free (vehicle.yaml body.drivetrain: "
+          "front), its spread the model's slop";
+      continue;
+    }
     parameter.identified =
         std::isfinite(parameter.sigma) && parameter.sigma <= thresholds[i] && block_used[i];
     if (!parameter.identified) {
@@ -1321,7 +1335,6 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
       if (i < 2 && batch.tyre_fitted() && (!batch.tyre_model().plain() || considered))
         parameter.verdict = extrapolation_verdict(summary, i, parameter.sigma, spread[i],
                                                   batch.speed_intervals() > 0);
-      const int coefficient = static_cast<int>(i) - 8;
       if (i >= 8 && batch.tyre_held(coefficient)) {
         const double held = batch.tyre_held_value(coefficient);
         parameter.verdict = (held == 0.0 ? std::string("held at zero: ")
@@ -1596,6 +1609,12 @@ double tyre_variance(const std::optional<BatchProblem::Uncertainty>& uncertainty
 ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions& options,
                                         BatchSummary& summary, TyreTerms terms) {
   batch.set_tyre_terms(terms);
+  // Never free: left free, the drive slip of a free-rolling axle takes up what the heading and
+  // the GNSS noise make of it, and the circumferences follow (the built-in circuit, front-driven:
+  // +3.3 mm at sigma 1.2 mm). Held at zero, as where the log says nothing, its spread there the
+  // car's (tyre_car_prior.hpp) goes into their sigma.
+  if (batch.tyre_fixed_by_car(kDriveSlipCoefficient))
+    batch.hold_tyre_coefficient(kDriveSlipCoefficient, std::numeric_limits<double>::infinity());
   bool wandered = false;
   ceres::Solver::Summary solver = solve_relinearised(batch, options, summary, &wandered);
   if (wandered && solver.IsSolutionUsable()) {
@@ -1756,8 +1775,9 @@ std::string BatchSummary::full_report() const {
   std::string text = report_heading(*this);
   for (const EstimatedParameter& p : parameters) {
     if (!p.estimated || p.name.starts_with("circumference")) continue;
-    text +=
-        fmt::format("{:<13}{} = {:.6g} (1-sigma {:.3g})\n", "parameter", p.name, p.value, p.sigma);
+    text += fmt::format("{:<13}{} = {:.6g} (1-sigma {:.3g}{}{})\n", "parameter", p.name, p.value,
+                        p.sigma, p.identified && !p.verdict.empty() ? "; " : "",
+                        p.identified ? p.verdict : "");
   }
   text += fmt::format("{:<13}{}\n", "observable", identifiability);
   if (odometry_scales) {
@@ -1832,9 +1852,11 @@ std::string BatchSummary::full_report() const {
     }
     text += fmt::format(
         "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the tyre coefficients "
-        "held, that this log cannot identify: each where a car's value and the log's own word put "
-        "it (a regression term, which no car sizes, at zero with the log's word for its spread; at "
-        "zero where its fit wandered), and its spread there ({})\n",
+        "held, that this log cannot identify or the car fixes: each where a car's value and the "
+        "log's "
+        "own word put it (a regression term, which no car sizes, at zero with the log's word for "
+        "its spread; at zero where its fit wandered or the rear wheels roll free), and its spread "
+        "there ({})\n",
         "held", 1e3 * held_sigma_m[0], 1e3 * held_sigma_m[1], fmt::join(parts, ", "));
   }
   if (model_spread_m[0] > 0.0 || model_spread_m[1] > 0.0) {

@@ -16,8 +16,9 @@ namespace odocal::experiments {
 // physical terms and auto; 6: the side slip; 7: auto's agreement with the plain fit; 8: the urban
 // drift with the tick counts smoothed, and without; 9: held coefficients in the sigma; 10: held
 // at a car's value; 11: the urban drive with exact wheels and the reference's own uncertainty;
-// 12: held regression terms in the sigma; 13: the grip-sharing driver beside the circuit's.
-inline constexpr int kTyreModelExperimentVersion = 13;
+// 12: held regression terms in the sigma; 13: the grip-sharing driver beside the circuit's;
+// 14: a free-rolling axle's drive slip held at zero.
+inline constexpr int kTyreModelExperimentVersion = 14;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_ideal: {none}} with

@@ -315,6 +315,41 @@ TEST(PhysicalTyreBatch, AStatedFrontDriveNarrowsTheHeldDriveSlipsShare) {
   EXPECT_LT(stated.sigma_rl_m(), 0.75 * unstated.sigma_rl_m());
 }
 
+TEST(PhysicalTyreBatch, AFreeRollingAxlesDriveSlipIsHeldAtZeroNotFitted) {
+  // The realistic circuit with a front-driven car, seeds 2: the rear wheels roll free, so no
+  // drive force slips them. Left free, their drive slip took up what the heading and the GNSS
+  // noise made of it (-0.0019 at sigma 0.0015) and c_RL followed, -2.0 mm off at sigma 1.6 mm.
+  // Held at zero from the start, with the model's slop for its spread, c_RL is 0.2 mm off at
+  // sigma 0.6 mm: usable at odocal's 1 mm threshold.
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.dynamics.drivetrain = sim::Drivetrain::kFront;
+  scenario.seeds.noise = 2;
+  scenario.seeds.trajectory = 2;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log log = simulated_log(drive);
+  ASSERT_EQ(log.vehicle.body.drivetrain, Drivetrain::kFront);
+  const BatchSummary physical = calibrate(log, TyreModelChoice::kPhysical);
+  ASSERT_TRUE(physical.usable()) << physical.full_report();
+  const EstimatedParameter& drive_slip = parameter(physical, "tyre_drive_slip");
+  EXPECT_EQ(drive_slip.value, 0.0);
+  EXPECT_TRUE(drive_slip.identified) << "the car fixes it, not the log";
+  EXPECT_THAT(drive_slip.verdict, ::testing::StartsWith("held at zero: the rear wheels roll free"));
+  const auto part = std::find_if(physical.held_sigma_parts.begin(), physical.held_sigma_parts.end(),
+                                 [](const auto& p) { return p.key == "tyre_drive_slip"; });
+  ASSERT_NE(part, physical.held_sigma_parts.end());
+  EXPECT_DOUBLE_EQ(part->coefficient_sigma, drive_slip.sigma);
+  const std::array<double, 2> truth = {drive.true_params.circumference_rl_m,
+                                       drive.true_params.circumference_rr_m};
+  const std::array<double, 2> estimate = {physical.estimate.circumference_rl_m,
+                                          physical.estimate.circumference_rr_m};
+  const std::array<double, 2> sigma = {physical.sigma_rl_m(), physical.sigma_rr_m()};
+  for (std::size_t wheel = 0; wheel < 2; ++wheel) {
+    EXPECT_LT(std::abs(estimate[wheel] - truth[wheel]), 1e-3) << physical.full_report();
+    EXPECT_LT(std::abs(estimate[wheel] - truth[wheel]), 3.0 * sigma[wheel]);
+    EXPECT_LT(sigma[wheel], 1e-3) << physical.full_report();
+  }
+}
+
 TEST(PhysicalTyreBatch, CalibratesAHillyDriveWithTheForceThatClimbingTakes) {
   // The realistic urban drive on hills of up to 6 %, rear-driven: the rear wheels slip with the
   // slope's share of the weight, which the accelerometer feels but the hills' projection takes

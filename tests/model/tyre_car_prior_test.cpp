@@ -35,7 +35,7 @@ TEST(TyreCarPrior, IsACarsValueOfEachPhysicalCoefficientWithItsSignAndSize) {
   EXPECT_DOUBLE_EQ(car(kDriving).mean, 0.5 / 20.0);
   body.drivetrain = Drivetrain::kFront;
   EXPECT_EQ(car(kDriving).mean, 0.0);
-  EXPECT_DOUBLE_EQ(car(kDriving).sigma, 0.05 / 20.0);
+  EXPECT_DOUBLE_EQ(car(kDriving).sigma, 0.01 / 20.0);  // the model's slop: a hundredth
   // The rear brakes' share over the slip stiffness; the axle slides outwards (negative).
   EXPECT_DOUBLE_EQ(car(kBraking).mean, 0.35 / 20.0);
   EXPECT_NEAR(car(kSideSlip).mean, -1.0 / (9.81 * 19.0), 1e-12);

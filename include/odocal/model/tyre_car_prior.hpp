@@ -20,10 +20,11 @@ inline constexpr double kCarRearBrakeShare = 0.35;
 inline constexpr double kCarCorneringStiffnessPerLoad = 19.0;
 // The share of the drive force on the rear axle: all of it, or an all-wheel drive's typical
 // 0.5; a free-rolling axle carries none, and what its coefficient can still take up is the
-// model's slop (the simulator's front-driven circuit fits -0.0009 and -0.0019 at sigma 0.0015),
-// taken as a twentieth of a driven axle's.
+// model's slop: fitted to the simulator's truth (tools/tyre_truth_regression.py; front-driven
+// circuit, urban drive and Hockenheim) at most 4e-4 where its driver holds the road, 1.4e-3
+// where it fishtails, so a hundredth of a driven axle's at 1 sigma.
 inline constexpr double kRearDriveShareAll = 0.5;
-inline constexpr double kRearDriveShareFreeRolling = 0.05;
+inline constexpr double kRearDriveShareFreeRolling = 0.01;
 
 // A car's physical coefficient: where it is expected and how far from there a car may be.
 struct CarCoefficient {

@@ -116,6 +116,8 @@ inline constexpr std::array<TyreCoefficient, TyreModel::kCoefficients> kTyreCoef
 }};
 // Its index in TyreModel::Vector: the one coefficient that turns the course, not the wheels.
 inline constexpr int kSideSlipCoefficient = 10;
+// The drive slip's index: the one that a stated front drivetrain fixes (the rear wheels roll free).
+inline constexpr int kDriveSlipCoefficient = 8;
 // The steady straight speed at which a tyre model's circumference is reported by default
 // (gentle driving's): the batch's reference_speed_mps and the simulator's truth of it.
 inline constexpr double kDefaultReferenceSpeedMps = 5.0;
