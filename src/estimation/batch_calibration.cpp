@@ -1853,10 +1853,9 @@ std::string BatchSummary::full_report() const {
     text += fmt::format(
         "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the tyre coefficients "
         "held, that this log cannot identify or the car fixes: each where a car's value and the "
-        "log's "
-        "own word put it (a regression term, which no car sizes, at zero with the log's word for "
-        "its spread; at zero where its fit wandered or the rear wheels roll free), and its spread "
-        "there ({})\n",
+        "log's own word put it (a regression term, which no car sizes, at zero with the log's "
+        "word for its spread; at zero where its fit wandered or the rear wheels roll free), and "
+        "its spread there ({})\n",
         "held", 1e3 * held_sigma_m[0], 1e3 * held_sigma_m[1], fmt::join(parts, ", "));
   }
   if (model_spread_m[0] > 0.0 || model_spread_m[1] > 0.0) {
