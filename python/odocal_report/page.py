@@ -32,6 +32,10 @@ def summary_rows(result):
     rows.append(("identifiability", result.get("identifiability", "")))
     if result.get("model_adequacy", {}).get("verdict"):
         rows.append(("model adequacy", result["model_adequacy"]["verdict"]))
+    if result.get("misfit_sigma_scale", 1.0) > 1.0:
+        rows.append(("sigma widened", f"x{result['misfit_sigma_scale']:.3g}: the odometry residuals "
+                     f"are that many times as wide as their noise model (chi2/dof "
+                     f"{result['model_adequacy']['chi2_per_dof']:.3g})"))
     for when in ("before", "after"):
         dr = result.get(f"dead_reckoning_{when}")
         if dr:

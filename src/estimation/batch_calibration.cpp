@@ -1214,8 +1214,13 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
   for (const Share& share : shares) named_variance += share.size_m * share.size_m;
   if (std::isfinite(sigma_m)) {
     const double own_m = std::sqrt(std::max(0.0, sigma_m * sigma_m - named_variance));
+    const double misfit = summary.misfit_sigma_scale;
     shares.push_back(
-        {own_m, fmt::format("{:.2g} mm from the log's own noise", 1e3 * own_m),
+        {own_m,
+         misfit > 1.0 ? fmt::format("{:.2g} mm from the log's own noise, widened {:.2g} times by "
+                                    "the model's misfit (chi2/dof {:.3g})",
+                                    1e3 * own_m, misfit, summary.model_adequacy.chi2_per_dof)
+                      : fmt::format("{:.2g} mm from the log's own noise", 1e3 * own_m),
          has_doppler ? "drive longer and more gently"
                      : "drive longer and more gently, or log the GNSS receiver's Doppler speed "
                        "(gnss.csv speed_mps)"});
@@ -1236,6 +1241,21 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
                      fmt::join(advice, "; "));
 }
 
+// How much wider than their noise model the odometry residuals are: sqrt(chi2/dof), never
+// below 1 (a configured noise that is generous is not evidence of a better fit).
+double misfit_sigma_scale(const ModelAdequacy& adequacy) {
+  return adequacy.judged && adequacy.chi2_per_dof > 1.0 ? std::sqrt(adequacy.chi2_per_dof) : 1.0;
+}
+
+// A circumference that only the misfit's widening leaves unidentified.
+std::string misfit_verdict(const BatchSummary& summary) {
+  return fmt::format(
+      "the model does not fit this log: its odometry residuals are {:.2g} times as wide as their "
+      "noise (chi2/dof {:.3g}), and so is every sigma (the model line says what they follow; "
+      "drive more gently, or choose a tyre_model that explains the log)",
+      summary.misfit_sigma_scale, summary.model_adequacy.chi2_per_dof);
+}
+
 // Fills the summary from the solved problem: every parameter with its sigma and verdict, and
 // the termination (a circumference that is not identified makes the result unusable).
 void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
@@ -1246,7 +1266,13 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   const double inf = std::numeric_limits<double>::infinity();
   const auto sigma = [&](double variance) { return uncertainty ? std::sqrt(variance) : inf; };
   BatchProblem::Uncertainty u = uncertainty.value_or(BatchProblem::Uncertainty{});
-  const double scale = summary.gnss_noise.covariance_scale;
+  summary.model_adequacy = assess_model_adequacy(batch.odometry_errors(),
+                                                 batch.tyre_fitted() && !batch.tyre_model().plain()
+                                                     ? tyre_model_option(*batch.tyre_terms())
+                                                     : "");
+  summary.misfit_sigma_scale = misfit_sigma_scale(summary.model_adequacy);
+  const double scale =
+      summary.gnss_noise.covariance_scale * summary.misfit_sigma_scale * summary.misfit_sigma_scale;
   u.params *= scale;
   u.lever *= scale;
   u.gyro_bias *= scale;
@@ -1332,9 +1358,25 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
       parameter.verdict = unidentified_reason(parameter.name, coverage, block_used[i]);
       const bool considered =
           i < 2 && (summary.body_sigma_m[i] > 0.0 || summary.held_sigma_m[i] > 0.0);
-      if (i < 2 && batch.tyre_fitted() && (!batch.tyre_model().plain() || considered))
+      const bool extrapolated =
+          i < 2 && batch.tyre_fitted() && (!batch.tyre_model().plain() || considered);
+      if (extrapolated) {
         parameter.verdict = extrapolation_verdict(summary, i, parameter.sigma, spread[i],
                                                   batch.speed_intervals() > 0);
+      }
+      const double misfit = summary.misfit_sigma_scale;
+      if (i < 2 && misfit > 1.0) {
+        const auto k = static_cast<Eigen::Index>(i);
+        const double widened = data_covariance(k, k) * (1.0 - 1.0 / (misfit * misfit));
+        // Identified but for the misfit's widening: that is the reason, not the log's coverage.
+        if (parameter.sigma * parameter.sigma - widened <= thresholds[i] * thresholds[i]) {
+          parameter.verdict = misfit_verdict(summary);
+        } else if (!extrapolated) {
+          parameter.verdict += fmt::format(
+              "; and its sigma is widened {:.2g} times by the model's misfit (chi2/dof {:.3g})",
+              misfit, summary.model_adequacy.chi2_per_dof);
+        }
+      }
       if (i >= 8 && batch.tyre_held(coefficient)) {
         const double held = batch.tyre_held_value(coefficient);
         parameter.verdict = (held == 0.0 ? std::string("held at zero: ")
@@ -1363,10 +1405,6 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   summary.identifiability = problems.empty()
                                 ? "every requested parameter identified"
                                 : fmt::format("not identified: {}", fmt::join(problems, "; "));
-  summary.model_adequacy = assess_model_adequacy(batch.odometry_errors(),
-                                                 batch.tyre_fitted() && !batch.tyre_model().plain()
-                                                     ? tyre_model_option(*batch.tyre_terms())
-                                                     : "");
   if (!batch.tyre_fitted()) suggest_tyre_model(summary.model_adequacy);
   summary.solver_report = solver.BriefReport();
   summary.gentle_limits = b.gentle_max_speed_mps > 0.0 || b.gentle_max_longitudinal_mps2 > 0.0 ||
@@ -1808,6 +1846,13 @@ std::string BatchSummary::full_report() const {
   } else if (g.residual_sigma_m > 0.0) {
     text += fmt::format("{:<13}residuals {:.3g} m RMS, as configured ({:.3g} m)\n", "gnss noise",
                         g.residual_sigma_m, g.configured_sigma_m);
+  }
+  if (misfit_sigma_scale > 1.0) {
+    text += fmt::format(
+        "{:<13}the odometry residuals are {:.3g} times as wide as their noise model (chi2/dof "
+        "{:.3g} over {} intervals): every sigma widened x{:.3g}\n",
+        "misfit", misfit_sigma_scale, model_adequacy.chi2_per_dof, model_adequacy.intervals,
+        misfit_sigma_scale);
   }
   if (gentle_limits) {
     text += fmt::format(

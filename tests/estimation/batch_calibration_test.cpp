@@ -47,6 +47,9 @@ TEST(BatchCalibration, RecoversTheWearWithinItsReportedUncertainty) {
     expect_within_3_sigma(result, drive.true_params);
     EXPECT_EQ(result.identifiability, "every requested parameter identified");
     EXPECT_LT(result.after.mean_position_m, result.before.mean_position_m);
+    // The model fits: its residuals are inside their noise, and nothing is widened.
+    EXPECT_LT(result.model_adequacy.chi2_per_dof, 1.0);
+    EXPECT_EQ(result.misfit_sigma_scale, 1.0);
   }
 }
 

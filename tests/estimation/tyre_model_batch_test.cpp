@@ -369,6 +369,35 @@ TEST(TyreModelBatch, AutosRegressionFallbackCarriesItsGapToThePhysicalFitInItsSi
   }
 }
 
+TEST(TyreModelBatch, AFitThatItsResidualsRejectCarriesTheirScatterInItsSigma) {
+  // 3 laps of Hockenheim's racing line, rear-driven, a driver who fishtails out of the corners:
+  // no tyre model follows the inner wheel's spin, and auto's regression terms gave c_RL +20.2 mm
+  // at sigma 3.0 mm (6.8 sigma) with odometry residuals 9 times as wide as their noise. Their
+  // width is in the sigma now: inside it, and refused even at a 10 mm limit, the misfit named.
+  const std::string raceline =
+      std::string(ODOCAL_SOURCE_DIR) + "/../shared/data/tracks/hockenheim/raceline.csv";
+  if (!std::filesystem::exists(raceline)) GTEST_SKIP() << "shared data absent: " << raceline;
+  sim::Scenario scenario = load_scenario("circuit");
+  use_track_file(scenario, raceline);
+  scenario.vehicle.wear_rl_mm = 1.5;
+  scenario.vehicle.wear_rr_mm = 1.0;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  BatchOptions options;
+  options.max_sigma_circumference_m = 0.01;
+  const BatchSummary result = calibrate_batch(simulated_log(drive), options);
+  EXPECT_GT(result.model_adequacy.chi2_per_dof, 9.0) << result.full_report();
+  EXPECT_DOUBLE_EQ(result.misfit_sigma_scale, std::sqrt(result.model_adequacy.chi2_per_dof));
+  EXPECT_LT(std::abs(result.estimate.circumference_rl_m - drive.true_params.circumference_rl_m),
+            3.0 * result.sigma_rl_m())
+      << result.full_report();
+  EXPECT_LT(std::abs(result.estimate.circumference_rr_m - drive.true_params.circumference_rr_m),
+            3.0 * result.sigma_rr_m())
+      << result.full_report();
+  EXPECT_FALSE(result.usable()) << result.full_report();
+  EXPECT_NE(result.message.find("does not fit this log"), std::string::npos) << result.message;
+  EXPECT_NE(result.full_report().find("every sigma widened"), std::string::npos);
+}
+
 TEST(TyreModelBatch, GentleSegmentsFitOnlyTheOdometryInsideTheLimits) {
   // Ideal drive with worn tyres: cutting the rough intervals costs information (a wider sigma)
   // but must not bias the estimate.
