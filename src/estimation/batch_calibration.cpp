@@ -1241,12 +1241,6 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
                      fmt::join(advice, "; "));
 }
 
-// How much wider than their noise model the odometry residuals are: sqrt(chi2/dof), never
-// below 1 (a configured noise that is generous is not evidence of a better fit).
-double misfit_sigma_scale(const ModelAdequacy& adequacy) {
-  return adequacy.judged && adequacy.chi2_per_dof > 1.0 ? std::sqrt(adequacy.chi2_per_dof) : 1.0;
-}
-
 // A circumference that only the misfit's widening leaves unidentified.
 std::string misfit_verdict(const BatchSummary& summary) {
   return fmt::format(
@@ -1846,13 +1840,6 @@ std::string BatchSummary::full_report() const {
   } else if (g.residual_sigma_m > 0.0) {
     text += fmt::format("{:<13}residuals {:.3g} m RMS, as configured ({:.3g} m)\n", "gnss noise",
                         g.residual_sigma_m, g.configured_sigma_m);
-  }
-  if (misfit_sigma_scale > 1.0) {
-    text += fmt::format(
-        "{:<13}the odometry residuals are {:.3g} times as wide as their noise model (chi2/dof "
-        "{:.3g} over {} intervals): every sigma widened x{:.3g}\n",
-        "misfit", misfit_sigma_scale, model_adequacy.chi2_per_dof, model_adequacy.intervals,
-        misfit_sigma_scale);
   }
   if (gentle_limits) {
     text += fmt::format(

@@ -49,6 +49,13 @@ std::string report_ending(const CalibrationSummary& s) {
   std::string text;
   if (!s.model_adequacy.verdict.empty())
     text += fmt::format("{:<13}{}\n", "model", s.model_adequacy.verdict);
+  if (s.misfit_sigma_scale > 1.0) {
+    text += fmt::format(
+        "{:<13}the odometry residuals are {:.3g} times as wide as their noise model (chi2/dof "
+        "{:.3g} over {} intervals): every sigma widened x{:.3g}\n",
+        "misfit", s.misfit_sigma_scale, s.model_adequacy.chi2_per_dof, s.model_adequacy.intervals,
+        s.misfit_sigma_scale);
+  }
   // What a constant per wheel is, so that it is not read as the tyre at rest: a residual test
   // cannot see a slip that is the same all drive long (docs/tyre-model.md).
   if (s.usable() && s.tyre_model.plain()) {

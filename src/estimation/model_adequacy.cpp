@@ -62,6 +62,10 @@ std::string likely_cause(const ResidualDependence& d) {
 
 }  // namespace
 
+double misfit_sigma_scale(const ModelAdequacy& adequacy) {
+  return adequacy.judged && adequacy.chi2_per_dof > 1.0 ? std::sqrt(adequacy.chi2_per_dof) : 1.0;
+}
+
 ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& samples,
                                     const std::string& tyre_terms, double min_distance_m,
                                     double min_correlation, double min_t) {

@@ -96,6 +96,7 @@ json core_json(const CalibrationSummary& s, const CalibrationConfig& config) {
               {"configuration", config_to_json(config)}};
   if (!s.model_adequacy.verdict.empty())
     out["model_adequacy"] = model_adequacy_json(s.model_adequacy);
+  out["misfit_sigma_scale"] = s.misfit_sigma_scale;
   return out;
 }
 
@@ -195,7 +196,6 @@ void add_details(json& out, const BatchSummary& s) {
   out["gnss_fixes"] = s.gnss_fixes;
   out["doppler_intervals"] = s.doppler_intervals;
   out["doppler_sigma_scale"] = s.doppler_sigma_scale;
-  out["misfit_sigma_scale"] = s.misfit_sigma_scale;
   out["solves"] = s.solves;
   const GnssNoiseReport& g = s.gnss_noise;
   out["gnss_noise"] = {{"configured_sigma_m", g.configured_sigma_m},

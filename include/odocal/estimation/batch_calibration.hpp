@@ -101,8 +101,6 @@ struct BatchSummary : CalibrationSummary {
   // Of the fit returned: the first, coarse one, the re-linearisations, the adapted one.
   int solves{};
   GnssNoiseReport gnss_noise;
-  // sqrt(chi2/dof) of the odometry residuals where above 1: every sigma is widened by it.
-  double misfit_sigma_scale = 1.0;
   // Of [c_RL, c_RR, t_R] (m^2), inflated as the GNSS noise report says; infinite when Ceres
   // could not compute it.
   Eigen::Matrix3d params_covariance = Eigen::Matrix3d::Zero();

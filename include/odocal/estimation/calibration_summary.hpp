@@ -83,6 +83,9 @@ struct CalibrationSummary {
   // the other methods the plain batch fit judges the two-wheel model (batch_fit.hpp). Empty
   // verdict: not judged (not usable, or judge_model_adequacy off).
   ModelAdequacy model_adequacy;
+  // misfit_sigma_scale(model_adequacy) where the covariance was widened by it (above 1: the
+  // residuals are wider than their noise); 1 otherwise.
+  double misfit_sigma_scale = 1.0;
 
   bool usable() const { return termination == Termination::kConverged; }
   double sigma_rl_m() const;  // 1-sigma from the covariance
