@@ -15,12 +15,16 @@ reference_circumference, the plain model's own circumference; truth.yaml's rolli
 what a constant radius should be in gentle driving), the held-out median drift of 60 s windows
 (`odocal validate`, usable results only) and the mean time of a calibration. The same on 3 laps
 of Hockenheim, with `auto` and the issue's targets, is a section of docs/results.md
-(`make paper`). Run from the repository after `make build`:
+(`make paper`). `--track` drives a centreline or racing line (TUMFTM CSV) instead of a drive's
+own route, `--wear-rl`/`--wear-rr` wear the true tyres, and `--driver grip-sharing` has the
+driver share the grip with the turn at a sedan's power (docs/simulator.md). Run from the
+repository after `make build`:
 
     ODOCAL_CLI=build/apps/odocal/odocal /usr/bin/python3 bench/tyre_model_bench.py \\
         --seeds 10 --work /tmp/tyre-bench [--drives circuit urban] [--cars scenario low-heavy]
         [--models none extended physical auto] [--max-sigma-m 0.001] [--doppler-sigma-mps 0.05]
-        [--fit-doppler-sigma-mps -1] [--json FILE]
+        [--fit-doppler-sigma-mps -1] [--track FILE.csv] [--wear-rl MM] [--wear-rr MM]
+        [--driver scenario|grip-sharing] [--json FILE]
 """
 import argparse
 import json
@@ -52,11 +56,17 @@ def run(*args):
     return subprocess.run([CLI, *args], capture_output=True, text=True)
 
 
-def scenario_file(work, drive, drivetrain, car, doppler_sigma):
+# The scenario's own driver, or one who accelerates and brakes only with the grip that the turn
+# leaves and has a sedan's power (the grip-sharing rows of docs/results.md).
+DRIVERS = {"scenario": {}, "grip-sharing": {"friction_ellipse": True, "max_power_wpkg": 80}}
+
+
+def scenario_file(work, drive, drivetrain, car, doppler_sigma, driver="scenario"):
     scenario = yaml.safe_load(open(os.path.join(SOURCE, "config", "scenarios", f"{drive}.yaml")))
     dynamics = scenario.setdefault("vehicle", {}).setdefault("dynamics", {})
     dynamics["drivetrain"] = drivetrain
     dynamics.update(CARS[car])
+    scenario.setdefault("driver", {}).update(DRIVERS[driver])
     if doppler_sigma is not None:
         sensors = scenario.setdefault("sensors", {})
         sensors.setdefault("gnss", {})["speed_sigma_mps"] = doppler_sigma
@@ -132,6 +142,10 @@ def main():
     # --fit-doppler-sigma-mps says otherwise (-1: odocal's default, 0.1 m/s).
     parser.add_argument("--doppler-sigma-mps", type=float)
     parser.add_argument("--fit-doppler-sigma-mps", type=float)
+    parser.add_argument("--track", help="a closed centreline CSV (TUMFTM) driven instead")
+    parser.add_argument("--wear-rl", type=float, default=0.0, help="mm of radius")
+    parser.add_argument("--wear-rr", type=float, default=0.0, help="mm of radius")
+    parser.add_argument("--driver", choices=list(DRIVERS), default="scenario")
     parser.add_argument("--json", help="write every row here")
     args = parser.parse_args()
     fit_doppler = (args.fit_doppler_sigma_mps if args.fit_doppler_sigma_mps is not None
@@ -147,12 +161,14 @@ def main():
         for drivetrain in args.drivetrains:
             for car in args.cars:
                 scenario = scenario_file(args.work, drive, drivetrain, car,
-                                         args.doppler_sigma_mps)
+                                         args.doppler_sigma_mps, args.driver)
                 logs = []
                 for seed in range(1, args.seeds + 1):
                     log = os.path.join(args.work, f"{drive}-{drivetrain}-{car}-{seed}")
+                    route = ["--track", args.track] if args.track else []
                     made = run("simulate", "--scenario", scenario, "--out", log, "--seed",
-                               str(seed), "--trajectory-seed", str(seed))
+                               str(seed), "--trajectory-seed", str(seed), *route,
+                               "--wear-rl", str(args.wear_rl), "--wear-rr", str(args.wear_rr))
                     assert made.returncode == 0, made.stderr
                     logs.append(log)
                 for model in args.models:
