@@ -44,7 +44,8 @@ struct GnssNoiseReport {
   // The circumferences' sigma after the adaptation over before (1 when not adapted).
   double sigma_inflation = 1.0;
   // The adapted estimate left the plausible band while the first did not: the first estimate
-  // stands, its covariance scaled by covariance_scale (sigma_inflation^2).
+  // stands, its covariance scaled by covariance_scale (sigma_inflation^2, measured at the first
+  // estimate under the adapted noise; infinite where it could not be measured).
   bool reverted{};
   double covariance_scale = 1.0;
 };
