@@ -18,7 +18,7 @@ namespace odocal::experiments {
 // at a car's value; 11: the urban drive with exact wheels and the reference's own uncertainty;
 // 12: held regression terms in the sigma; 13: the grip-sharing driver beside the circuit's;
 // 14: a free-rolling axle's drive slip held at zero.
-inline constexpr int kTyreModelExperimentVersion = 15;
+inline constexpr int kTyreModelExperimentVersion = 16;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_ideal: {none}} with
