@@ -1601,14 +1601,16 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
                          report.model_gauss_markov_tau_s);
     solver = solve_relinearised(batch, options, summary);
   }
-  const auto inflation_since_first = [&] {
+  // The circumferences' sigma at the current solution over the first's; none where either could
+  // not be computed.
+  const auto inflation_since_first = [&]() -> std::optional<double> {
     const auto after = measure ? batch.uncertainty() : std::nullopt;
-    if (before && after) {
-      report.sigma_inflation = std::sqrt(after->params.topLeftCorner<2, 2>().trace() /
-                                         before->params.topLeftCorner<2, 2>().trace());
-    }
+    if (!before || !after) return std::nullopt;
+    return std::sqrt(after->params.topLeftCorner<2, 2>().trace() /
+                     before->params.topLeftCorner<2, 2>().trace());
   };
-  inflation_since_first();
+  const std::optional<double> at_adapted = inflation_since_first();
+  if (at_adapted) report.sigma_inflation = *at_adapted;
   // The adaptation changes weights; it must not carry a plausible estimate out of the plausible
   // band (GNSS weighted down so far that a misfit of the odometry model decides), nor a tyre model
   // into coefficients that are no tyre (on a circuit's hard braking, GNSS loosened to a metres-
@@ -1636,13 +1638,11 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
       batch.build();
     };
     rebuild();
-    const double at_runaway = report.sigma_inflation;
-    report.sigma_inflation = 1.0;
-    inflation_since_first();
-    if (report.sigma_inflation == 1.0) report.sigma_inflation = at_runaway;
-    report.covariance_scale = report.sigma_inflation == 1.0 && measure
-                                  ? std::numeric_limits<double>::infinity()
-                                  : report.sigma_inflation * report.sigma_inflation;
+    const std::optional<double> at_first = inflation_since_first();
+    if (at_first) report.sigma_inflation = *at_first;
+    report.covariance_scale = at_first || at_adapted || !measure
+                                  ? report.sigma_inflation * report.sigma_inflation
+                                  : std::numeric_limits<double>::infinity();
     batch.set_gnss_noise(1.0, 0.0, 60.0);
     rebuild();
     solver = first_solver;

@@ -17,7 +17,8 @@ namespace odocal::experiments {
 // drift with the tick counts smoothed, and without; 9: held coefficients in the sigma; 10: held
 // at a car's value; 11: the urban drive with exact wheels and the reference's own uncertainty;
 // 12: held regression terms in the sigma; 13: the grip-sharing driver beside the circuit's;
-// 14: a free-rolling axle's drive slip held at zero.
+// 14: a free-rolling axle's drive slip held at zero; 15: sigma widened by the odometry misfit;
+// 16: a reverted GNSS noise adaptation's first estimate standing as it was.
 inline constexpr int kTyreModelExperimentVersion = 16;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},

@@ -52,16 +52,16 @@ struct ModelAdequacy {
   std::string verdict;  // in words
 };
 
-// Intervals shorter than min_distance_m are left out (standing, creeping). A dependence counts
-// when |rho| >= min_correlation and its t statistic >= min_t. `tyre_terms` names the tyre model
-// whose residuals these are ("physical", "extended"); empty: the plain two-wheel model's. The
-// verdict names the model it judges.
 // How much wider than their noise model the odometry residuals are: sqrt(chi2/dof), never below 1
 // (the odometry noise is set generously: a log that fits shows 0.1-0.3, which is no evidence of a
 // better fit). A fit's covariance assumes its model fits; where the residuals say otherwise every
 // sigma is widened by this (docs/batch-calibration.md, "A fit that its residuals reject").
 double misfit_sigma_scale(const ModelAdequacy& adequacy);
 
+// Intervals shorter than min_distance_m are left out (standing, creeping). A dependence counts
+// when |rho| >= min_correlation and its t statistic >= min_t. `tyre_terms` names the tyre model
+// whose residuals these are ("physical", "extended"); empty: the plain two-wheel model's. The
+// verdict names the model it judges.
 ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& samples,
                                     const std::string& tyre_terms = "",
                                     double min_distance_m = 0.25, double min_correlation = 0.3,
