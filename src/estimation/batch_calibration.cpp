@@ -1555,7 +1555,6 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
   if (noise.gauss_markov_sigma_m == 0.0 && white_ratio > 0.8 && white_ratio < 1.25) return;
   const bool measure = inflation == SigmaInflation::kMeasure;
   const auto before = measure ? batch.uncertainty() : std::nullopt;
-  const auto first_params = batch.params();
   // Where the first estimate stands again, it is put back as it was: solved again from where an
   // adapted solve ran away, the regression terms went to 1e38 and c_RL to -9e16 m (3 laps of
   // Hockenheim's racing line, rear-driven, seed 7).
@@ -1624,7 +1623,7 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
   const bool tyre_ran_away =
       max_tyre_effect(batch) > batch::kMaxTyreEffect && first_tyre_effect <= batch::kMaxTyreEffect;
   if ((implausible(batch.params()[0], batch.params()[1]) &&
-       !implausible(first_params[0], first_params[1])) ||
+       !implausible(first_solution.unknowns.params[0], first_solution.unknowns.params[1])) ||
       tyre_ran_away) {
     // Not solved again: from the first estimate, the relinearised solve walks on (this log's
     // regression terms: c_RL from -60 to +24 mm of nominal). Its widening is measured there,

@@ -55,6 +55,17 @@ const EstimatedParameter& parameter(const BatchSummary& s, const std::string& na
   throw std::runtime_error("no parameter " + name);
 }
 
+// Both rear circumferences inside 3 reported sigma of the truth.
+void expect_inside_3_sigma(const CalibrationSummary& result, const OdometryParams& truth,
+                           const std::string& report) {
+  EXPECT_LT(std::abs(result.estimate.circumference_rl_m - truth.circumference_rl_m),
+            3.0 * result.sigma_rl_m())
+      << report;
+  EXPECT_LT(std::abs(result.estimate.circumference_rr_m - truth.circumference_rr_m),
+            3.0 * result.sigma_rr_m())
+      << report;
+}
+
 const std::string kHockenheimTrack =
     std::string(ODOCAL_SOURCE_DIR) + "/../shared/data/tracks/hockenheim/track.csv";
 
@@ -293,12 +304,7 @@ TEST(TyreModelBatch, AutoComparesUnderTheGnssNoiseTheResidualsShow) {
   const BatchSummary chosen = calibrate_batch(log, options, claimed);
   ASSERT_TRUE(chosen.gnss_noise.adapted) << chosen.full_report();
   EXPECT_TRUE(chosen.tyre_model.plain()) << chosen.full_report();
-  EXPECT_LT(std::abs(chosen.estimate.circumference_rl_m - drive.true_params.circumference_rl_m),
-            3.0 * chosen.sigma_rl_m())
-      << chosen.full_report();
-  EXPECT_LT(std::abs(chosen.estimate.circumference_rr_m - drive.true_params.circumference_rr_m),
-            3.0 * chosen.sigma_rr_m())
-      << chosen.full_report();
+  expect_inside_3_sigma(chosen, drive.true_params, chosen.full_report());
 }
 
 TEST(TyreModelBatch, AutoKeepsThePlainFitWhereTheExtendedOneDeadReckonsWorse) {
@@ -420,12 +426,7 @@ TEST(TyreModelBatch, AFitThatItsResidualsRejectCarriesTheirScatterInItsSigma) {
   const BatchSummary result = calibrate_batch(log, options);
   EXPECT_GT(result.model_adequacy.chi2_per_dof, 9.0) << result.full_report();
   EXPECT_DOUBLE_EQ(result.misfit_sigma_scale, std::sqrt(result.model_adequacy.chi2_per_dof));
-  EXPECT_LT(std::abs(result.estimate.circumference_rl_m - drive.true_params.circumference_rl_m),
-            3.0 * result.sigma_rl_m())
-      << result.full_report();
-  EXPECT_LT(std::abs(result.estimate.circumference_rr_m - drive.true_params.circumference_rr_m),
-            3.0 * result.sigma_rr_m())
-      << result.full_report();
+  expect_inside_3_sigma(result, drive.true_params, result.full_report());
   EXPECT_FALSE(result.usable()) << result.full_report();
   EXPECT_NE(result.message.find("does not fit this log"), std::string::npos) << result.message;
   EXPECT_NE(result.full_report().find("every sigma widened"), std::string::npos);
