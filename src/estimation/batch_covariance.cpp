@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace odocal::batch {
 namespace {
@@ -19,23 +20,39 @@ struct FreeBlock {
   RowMajor plus_jacobian;
 };
 
-// Free blocks numbered with the requested ones first, so that their coordinates are the first
-// columns of the information.
+// Every parameter block in an order that the problem's construction fixes: the requested ones
+// first, then as the residual blocks (kept in insertion order) first name them. Ceres lists
+// parameter blocks by address, and the factorisation's elimination order, hence its pivots and
+// the last digits of every covariance, would follow the heap's layout.
+std::vector<const double*> construction_order(const ceres::Problem& problem,
+                                              const std::vector<RequestedBlock>& first) {
+  std::vector<const double*> order;
+  std::unordered_set<const double*> seen;
+  const auto add = [&](const double* block) {
+    if (seen.insert(block).second) order.push_back(block);
+  };
+  for (const RequestedBlock& block : first) add(block.values);
+  std::vector<ceres::ResidualBlockId> residual_blocks;
+  problem.GetResidualBlocks(&residual_blocks);
+  std::vector<double*> parameters;
+  for (const ceres::ResidualBlockId id : residual_blocks) {
+    problem.GetParameterBlocksForResidualBlock(id, &parameters);
+    for (const double* block : parameters) add(block);
+  }
+  std::vector<double*> all;  // blocks without residuals: undetermined, so never ordered
+  problem.GetParameterBlocks(&all);
+  for (const double* block : all) add(block);
+  return order;
+}
+
+// Free blocks numbered in construction order, so that the requested ones' coordinates are the
+// first columns of the information.
 std::unordered_map<const double*, FreeBlock> free_blocks(const ceres::Problem& problem,
                                                          const std::vector<RequestedBlock>& first,
                                                          int& size) {
-  std::vector<double*> all;
-  problem.GetParameterBlocks(&all);
-  std::vector<const double*> order;
-  for (const RequestedBlock& block : first) order.push_back(block.values);
-  for (const double* block : all) {
-    if (std::find(order.begin(), order.begin() + static_cast<long>(first.size()), block) ==
-        order.begin() + static_cast<long>(first.size()))
-      order.push_back(block);
-  }
   std::unordered_map<const double*, FreeBlock> blocks;
   size = 0;
-  for (const double* block : order) {
+  for (const double* block : construction_order(problem, first)) {
     if (!problem.HasParameterBlock(block) || problem.IsParameterBlockConstant(block)) continue;
     const int ambient = problem.ParameterBlockSize(block);
     const int tangent = problem.ParameterBlockTangentSize(block);
