@@ -1259,6 +1259,16 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
                      fmt::join(advice, "; "));
 }
 
+// A plain circumference whose sigma carries its gap to the physical terms' fit (tyre_model none
+// chosen by hand, judged: tyre_model_selection.cpp).
+std::string plain_gap_verdict(double sigma_m, double gap_m) {
+  return fmt::format(
+      "the plain model's circumference is the one this drive rolled on, slip and load in it: the "
+      "physical tyre terms, which fit this log better, put the circumference at rest {:.3g} mm "
+      "away (of its 1-sigma, {:.2g} mm from the log's own noise); use tyre_model: auto",
+      1e3 * gap_m, 1e3 * std::sqrt(std::max(0.0, sigma_m * sigma_m - gap_m * gap_m)));
+}
+
 // A circumference that only the misfit's widening leaves unidentified.
 std::string misfit_verdict(const BatchSummary& summary) {
   return fmt::format(
@@ -1377,6 +1387,8 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
       if (extrapolated) {
         parameter.verdict = extrapolation_verdict(summary, i, parameter.sigma, spread[i],
                                                   batch.speed_intervals() > 0);
+      } else if (i < 2 && spread[i] > 0.0) {
+        parameter.verdict = plain_gap_verdict(parameter.sigma, spread[i]);
       }
       const double misfit = summary.misfit_sigma_scale;
       if (i < 2 && misfit > 1.0) {
@@ -1800,29 +1812,44 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
   return true;
 }
 
-ModelAdequacy batch::judge_model_adequacy(const CalibrationRun& run, const OdometryParams& start,
-                                          const CalibrationOptions& common) {
+batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
+                                                  const OdometryParams& start,
+                                                  const CalibrationOptions& common) {
   // The plain model (no tyre terms are given) with the batch's defaults (its 1 s keyframes, its
   // noises), its GNSS noise adapted as its own fit's is: under a configured sigma far above the
   // receiver's the poses follow the wheels and hide their slip (comma2k19: 3 m configured,
   // 0.13 m found).
   const BatchOptions options;
-  BatchProblem batch(run.log(), run.reference(), options, common, start);
   BatchSummary scratch;
   scratch.nominal = run.log().vehicle.nominal_params();
-  ceres::Solver::Summary solver = solve_relinearised(batch, options, scratch);
-  adapt_gnss_noise(batch, options, common, scratch, solver, SigmaInflation::kSkip);
-  if (!solver.IsSolutionUsable()) {
-    ModelAdequacy none;
-    none.verdict = fmt::format("not judged: the batch pose graph did not solve ({})",
-                               ceres::TerminationTypeToString(solver.termination_type));
-    return none;
+  const BatchSummary unfitted = scratch;
+  ModelJudgement judgement;
+  double plain_bic = 0.0;
+  {
+    BatchProblem batch(run.log(), run.reference(), options, common, start);
+    ceres::Solver::Summary solver = solve_relinearised(batch, options, scratch);
+    if (solver.IsSolutionUsable()) plain_bic = batch.information_criterion(solver);
+    adapt_gnss_noise(batch, options, common, scratch, solver, SigmaInflation::kSkip);
+    if (!solver.IsSolutionUsable()) {
+      judgement.adequacy.verdict =
+          fmt::format("not judged: the batch pose graph did not solve ({})",
+                      ceres::TerminationTypeToString(solver.termination_type));
+      return judgement;
+    }
+    judgement.adequacy = assess_model_adequacy(batch.odometry_errors());
+  }  // freed before the physical terms' problem
+  ModelAdequacy& adequacy = judgement.adequacy;
+  suggest_tyre_model(adequacy);
+  const PhysicalJudgement physical =
+      judge_against_physical(run, options, common, unfitted, scratch.gnss_noise, plain_bic);
+  if (physical.circumference) {
+    judgement.gap_m = {std::abs(start.circumference_rl_m - (*physical.circumference)[0]),
+                       std::abs(start.circumference_rr_m - (*physical.circumference)[1])};
+    say_physical_fits_better(adequacy, physical, judgement.gap_m, "this estimate's");
   }
-  ModelAdequacy adequacy = assess_model_adequacy(batch.odometry_errors());
   // Said, so that the residuals are not taken for the other method's.
   adequacy.verdict += " [judged on a batch fit of this log]";
-  suggest_tyre_model(adequacy);
-  return adequacy;
+  return judgement;
 }
 
 BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
@@ -1837,6 +1864,8 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   bool finished = false;  // auto scores its candidates itself
   if (options.tyre_model == TyreModelChoice::kAuto) {
     finished = batch::fit_auto(run, options, common, summary);
+  } else if (options.tyre_model == TyreModelChoice::kNone && common.judge_model_adequacy) {
+    batch::fit_plain_judged(run, options, common, summary);
   } else {
     const std::optional<TyreTerms> terms =
         options.tyre_model == TyreModelChoice::kExtended   ? std::optional(TyreTerms::kRegression)
@@ -1938,9 +1967,13 @@ std::string BatchSummary::full_report() const {
   if (model_spread_m[0] > 0.0 || model_spread_m[1] > 0.0) {
     text += fmt::format(
         "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm, their gap to the physical "
-        "terms' fit of this log: the regression terms extrapolate to rest no surer than the two "
-        "models agree\n",
-        "spread", 1e3 * model_spread_m[0], 1e3 * model_spread_m[1]);
+        "terms' fit of this log: {}\n",
+        "spread", 1e3 * model_spread_m[0], 1e3 * model_spread_m[1],
+        tyre_selection.judges_plain
+            ? "the plain circumferences are the ones this drive rolled on, slip "
+              "and load in them, not the ones at rest"
+            : "the regression terms extrapolate to rest no surer than the two "
+              "models agree");
   }
   text += fmt::format("{:<13}{}\n", "solver", usable() ? message : solver_report);
   return text + report_ending(*this);

@@ -35,6 +35,33 @@ bool sound(const BatchSummary& summary) {
          summary.termination == Termination::kNotIdentifiable;
 }
 
+// A model's information criterion, solved under `noise` from the start (the fit itself is
+// discarded); its solves are added to `solves`.
+double criterion_under(const CalibrationRun& run, const BatchOptions& options,
+                       const CalibrationOptions& common, const BatchSummary& unfitted,
+                       std::optional<TyreTerms> terms, const GnssNoiseModel& noise, int& solves) {
+  double bic = std::numeric_limits<double>::infinity();
+  BatchSummary scratch = unfitted;
+  fit_model(
+      run, options, common, terms, scratch,
+      [&](const FitFacts& facts) {
+        bic = facts.bic;
+        return false;
+      },
+      std::nullopt, noise);
+  solves += scratch.solves;
+  return bic;
+}
+
+// Coefficients that change the circumference by percents at the log's typical driving state are
+// not a tyre: they are the model explaining something else (a skid-steer robot, a wrong input),
+// and so is a circumference that leaves the plausible band.
+bool is_tyre(const FitFacts& facts, const OdometryParams& nominal, double max_change) {
+  return facts.max_tyre_effect <= kMaxTyreEffect &&
+         std::abs(facts.circumference[0] / nominal.circumference_rl_m - 1.0) <= max_change &&
+         std::abs(facts.circumference[1] / nominal.circumference_rr_m - 1.0) <= max_change;
+}
+
 }  // namespace
 
 std::optional<GnssNoiseModel> adapted_noise(const GnssNoiseReport& report) {
@@ -69,17 +96,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
   // TyreModelBatch.RecoversKnownCoefficientsWhereThePlainModelIsBiased).
   const std::optional<GnssNoiseModel> shared_noise = adapted_noise(summary.gnss_noise);
   const auto criterion_under_shared_noise = [&](std::optional<TyreTerms> terms, int& solves) {
-    double bic = std::numeric_limits<double>::infinity();
-    BatchSummary scratch = unfitted;
-    fit_model(
-        run, options, common, terms, scratch,
-        [&](const FitFacts& facts) {
-          bic = facts.bic;
-          return false;
-        },
-        std::nullopt, shared_noise);
-    solves += scratch.solves;
-    return bic;
+    return criterion_under(run, options, common, unfitted, terms, *shared_noise, solves);
   };
   if (shared_noise) plain.bic = criterion_under_shared_noise(std::nullopt, all_solves);
   TyreModelSelection selection;
@@ -110,14 +127,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
       candidate.bic = shared_bic.value_or(facts.bic);
       if (!facts.usable) return false;
       if (terms == TyreTerms::kPhysical) physical_circumference = facts.circumference;
-      // Coefficients that change the circumference by percents at the log's typical driving
-      // state are not a tyre: they are the model explaining something else (a skid-steer robot,
-      // a wrong input), and so is a circumference that leaves the plausible band.
-      candidate.tyre =
-          facts.max_tyre_effect <= kMaxTyreEffect &&
-          std::abs(facts.circumference[0] / summary.nominal.circumference_rl_m - 1.0) <=
-              max_change &&
-          std::abs(facts.circumference[1] / summary.nominal.circumference_rr_m - 1.0) <= max_change;
+      candidate.tyre = is_tyre(facts, summary.nominal, max_change);
       const bool better =
           candidate.tyre && facts.free_tyre_coefficients > 0 && candidate.bic < best_bic;
       // Circumferences at rest that the log cannot pin down (an extrapolation from the states
@@ -170,9 +180,95 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
   return finished;
 }
 
+PhysicalJudgement judge_against_physical(const CalibrationRun& run, const BatchOptions& options,
+                                         const CalibrationOptions& common,
+                                         const BatchSummary& unfitted,
+                                         const GnssNoiseReport& plain_noise, double plain_bic) {
+  PhysicalJudgement judgement{TyreCandidate{tyre_model_option(TyreTerms::kPhysical)}, plain_bic};
+  // Compared as auto compares them: under the noise the plain fit's residuals showed, where they
+  // showed that the configured one is wrong.
+  const std::optional<GnssNoiseModel> shared_noise = adapted_noise(plain_noise);
+  int& solves = judgement.candidate.solves;
+  // The problem measures the driving states only where a tyre model may be fitted.
+  BatchOptions with_tyre = options;
+  with_tyre.tyre_model = TyreModelChoice::kPhysical;
+  if (shared_noise) {
+    judgement.plain_bic =
+        criterion_under(run, options, common, unfitted, std::nullopt, *shared_noise, solves);
+  }
+  const std::optional<double> shared_bic =
+      shared_noise ? std::optional(criterion_under(run, with_tyre, common, unfitted,
+                                                   TyreTerms::kPhysical, *shared_noise, solves))
+                   : std::nullopt;
+  BatchSummary fitted = unfitted;
+  TyreCandidate& candidate = judgement.candidate;
+  fit_model(run, with_tyre, common, TyreTerms::kPhysical, fitted, [&](const FitFacts& facts) {
+    candidate.bic = shared_bic.value_or(facts.bic);
+    candidate.tyre = facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
+    candidate.needed =
+        candidate.tyre && facts.free_tyre_coefficients > 0 && candidate.bic < judgement.plain_bic;
+    if (candidate.needed) judgement.circumference = facts.circumference;
+    return false;
+  });
+  solves += fitted.solves;
+  return judgement;
+}
+
+void say_physical_fits_better(ModelAdequacy& adequacy, const PhysicalJudgement& judgement,
+                              const std::array<double, 2>& gap_m, const char* whose) {
+  if (!adequacy.judged) return;
+  const std::string better = fmt::format(
+      "tyre_model: physical fits it better (BIC {:.1f} against {:.1f}) and puts the "
+      "circumferences at rest {:.3g} / {:.3g} mm from {}, which their sigma carries; use "
+      "the batch's tyre_model: auto",
+      judgement.candidate.bic, judgement.plain_bic, 1e3 * gap_m[0], 1e3 * gap_m[1], whose);
+  adequacy.verdict = adequacy.explains ? "the two-wheel model does not explain this log: " + better
+                                       : adequacy.verdict + "; " + better;
+  adequacy.explains = false;
+}
+
+void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
+                      const CalibrationOptions& common, BatchSummary& summary) {
+  const BatchSummary unfitted = summary;
+  FitFacts plain;
+  fit_model(run, options, common, std::nullopt, summary, [&](const FitFacts& facts) {
+    plain = facts;
+    return true;
+  });
+  if (!plain.usable) return;
+  const PhysicalJudgement judgement =
+      judge_against_physical(run, options, common, unfitted, summary.gnss_noise, plain.bic);
+  int other_solves = judgement.candidate.solves;
+  if (judgement.circumference) {
+    // Solved again, so that the gap enters every sigma and verdict as summarise forms them.
+    other_solves += summary.solves;
+    summary = unfitted;
+    fit_model(run, options, common, std::nullopt, summary, {}, judgement.circumference);
+    say_physical_fits_better(summary.model_adequacy, judgement, summary.model_spread_m,
+                             "the plain ones");
+  }
+  TyreModelSelection selection;
+  selection.compared = true;
+  selection.judges_plain = true;
+  selection.plain_bic = judgement.plain_bic;
+  selection.candidates = {judgement.candidate};
+  selection.candidates.front().solves = other_solves;
+  selection.other_solves = other_solves;
+  summary.tyre_selection = selection;
+}
+
 std::string tyre_selection_report(const BatchSummary& summary) {
   const TyreModelSelection& selection = summary.tyre_selection;
   if (!selection.compared) return "";
+  if (selection.judges_plain) {
+    const TyreCandidate& judge = selection.candidates.front();
+    return fmt::format(
+        "{:<13}plain, as configured ({}): BIC plain {:.1f}, {} {:.1f}\n", "tyre model",
+        judge.needed  ? "the physical terms fit the log better: their gap is in the sigma"
+        : !judge.tyre ? "the physical terms' fit was not a tyre"
+                      : "the physical terms do not fit the log better",
+        selection.plain_bic, judge.model, judge.bic);
+  }
   std::string why =
       selection.chosen == "none" ? "the log does not need more" : "the log supports it";
   for (const TyreCandidate& c : selection.candidates) {

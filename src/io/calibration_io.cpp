@@ -185,7 +185,8 @@ void add_details(json& out, const BatchSummary& s) {
     out["tyre_selection"] = {{"plain_bic", number_or_null(s.tyre_selection.plain_bic)},
                              {"candidates", candidates},
                              {"other_solves", s.tyre_selection.other_solves},
-                             {"chosen", s.tyre_selection.chosen}};
+                             {"chosen", s.tyre_selection.chosen},
+                             {"judges_plain", s.tyre_selection.judges_plain}};
   }
   if (s.gentle_limits) {
     out["gentle_segments"] = {{"odometry_intervals_used", s.odometry_intervals_used},

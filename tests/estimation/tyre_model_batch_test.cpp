@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "../support/drifting_gnss.hpp"
+#include "../support/unjudged_options.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/drift_validation.hpp"
 #include "odocal/estimation/driving_state.hpp"
@@ -123,7 +124,12 @@ TEST(TyreModelBatch, RecoversKnownCoefficientsWhereThePlainModelIsBiased) {
   }
   const double plain_error = std::abs(plain.estimate.circumference_rl_m - truth_m);
   const double extended_error = std::abs(extended.estimate.circumference_rl_m - truth_m);
-  EXPECT_GT(plain_error, 3.0 * plain.sigma_rl_m());
+  // Biased beyond its sigma as it fits; judged against the physical terms, its sigma carries the
+  // gap to their circumferences at rest.
+  const BatchSummary bare = calibrate_batch(log, plain_options, testing::unjudged_options());
+  EXPECT_EQ(bare.estimate.circumference_rl_m, plain.estimate.circumference_rl_m);
+  EXPECT_GT(plain_error, 3.0 * bare.sigma_rl_m());
+  EXPECT_LT(plain_error, 3.0 * plain.sigma_rl_m()) << plain.full_report();
   EXPECT_LT(extended_error, plain_error);
   EXPECT_LT(extended.after.mean_position_m, plain.after.mean_position_m);
 
@@ -201,9 +207,13 @@ TEST(TyreModelBatch, AutoRefusesAPlainFitThatTheTyreModelMovesBeyondTheThreshold
   const double truth_m = drive.true_params.circumference_rl_m;
   BatchOptions options;
   options.tyre_model = TyreModelChoice::kNone;
-  const BatchSummary plain = calibrate_batch(log, options);
+  const BatchSummary plain = calibrate_batch(log, options, testing::unjudged_options());
   ASSERT_TRUE(plain.usable()) << plain.full_report();
   ASSERT_GT(std::abs(plain.estimate.circumference_rl_m - truth_m), 3.0 * plain.sigma_rl_m());
+  // Chosen by hand and judged, the plain fit carries that gap itself.
+  const BatchSummary judged = calibrate_batch(log, options);
+  EXPECT_EQ(judged.termination, Termination::kNotIdentifiable) << judged.full_report();
+  EXPECT_LT(std::abs(judged.estimate.circumference_rl_m - truth_m), 3.0 * judged.sigma_rl_m());
   options.tyre_model = TyreModelChoice::kAuto;
   const BatchSummary chosen = calibrate_batch(log, options);
   EXPECT_EQ(chosen.tyre_selection.chosen, "physical") << chosen.full_report();
@@ -237,7 +247,7 @@ TEST(TyreModelBatch, AutoKeepsAnIdentifiedPlainFitThatTheTyreModelAgreesWith) {
   options.tyre_model = TyreModelChoice::kPhysical;
   const BatchSummary physical = calibrate_batch(log, options);
   options.tyre_model = TyreModelChoice::kNone;
-  const BatchSummary plain = calibrate_batch(log, options);
+  const BatchSummary plain = calibrate_batch(log, options, testing::unjudged_options());
   const double gap =
       std::max(std::abs(physical.estimate.circumference_rl_m - plain.estimate.circumference_rl_m),
                std::abs(physical.estimate.circumference_rr_m - plain.estimate.circumference_rr_m));
@@ -278,7 +288,11 @@ TEST(TyreModelBatch, AutoKeepsThePlainModelWhereTheLogNeedsNoMore) {
   BatchOptions plain_options;
   plain_options.tyre_model = TyreModelChoice::kNone;
   const BatchSummary plain = calibrate_batch(log, plain_options);
-  EXPECT_FALSE(plain.tyre_selection.compared);
+  // Chosen by hand, the plain fit is judged against the physical terms, which do not win here.
+  EXPECT_TRUE(plain.tyre_selection.judges_plain);
+  ASSERT_EQ(plain.tyre_selection.candidates.size(), 1u);
+  EXPECT_FALSE(plain.tyre_selection.candidates[0].needed);
+  EXPECT_EQ(plain.model_spread_m[0], 0.0);
   EXPECT_EQ(chosen.estimate.circumference_rl_m, plain.estimate.circumference_rl_m);
   EXPECT_EQ(chosen.estimate.circumference_rr_m, plain.estimate.circumference_rr_m);
   EXPECT_NEAR(chosen.sigma_rl_m(), plain.sigma_rl_m(), 1e-6 * plain.sigma_rl_m());

@@ -68,9 +68,13 @@ struct TyreCandidate {
   bool dead_reckons = true;
 };
 
-// tyre_model auto: the information criteria of every model fitted and which one stands.
+// tyre_model auto: the information criteria of every model fitted and which one stands. Under
+// tyre_model none chosen by hand (and judge_model_adequacy), the physical terms' fit as the
+// plain fit's judge: `chosen` stays "none", and where the candidate is `needed` (a tyre that wins
+// the criterion) the plain circumferences carry their gap to its in their sigma.
 struct TyreModelSelection {
   bool compared = false;
+  bool judges_plain = false;
   double plain_bic{};
   std::vector<TyreCandidate> candidates;  // in the order fitted
   std::string chosen = "none";
