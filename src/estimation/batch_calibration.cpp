@@ -1263,9 +1263,9 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
 // chosen by hand, judged: tyre_model_selection.cpp).
 std::string plain_gap_verdict(double sigma_m, double gap_m) {
   return fmt::format(
-      "the plain model's circumference is the one this drive rolled on, slip and load in it: the "
-      "physical tyre terms, which fit this log better, put the circumference at rest {:.3g} mm "
-      "away (of its 1-sigma, {:.2g} mm from the log's own noise); use tyre_model: auto",
+      "the plain model's circumference is the one this drive rolled on, slip and load in it: a "
+      "tyre model, which fits this log better, puts the circumference at rest {:.3g} mm away (of "
+      "its 1-sigma, {:.2g} mm from the log's own noise); use tyre_model: auto",
       1e3 * gap_m, 1e3 * std::sqrt(std::max(0.0, sigma_m * sigma_m - gap_m * gap_m)));
 }
 
@@ -1840,12 +1840,12 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
   }  // freed before the physical terms' problem
   ModelAdequacy& adequacy = judgement.adequacy;
   suggest_tyre_model(adequacy);
-  const PhysicalJudgement physical =
-      judge_against_physical(run, options, common, unfitted, scratch.gnss_noise, plain_bic);
-  if (physical.circumference) {
-    judgement.gap_m = {std::abs(start.circumference_rl_m - (*physical.circumference)[0]),
-                       std::abs(start.circumference_rr_m - (*physical.circumference)[1])};
-    say_physical_fits_better(adequacy, physical, judgement.gap_m, "this estimate's");
+  const TyreJudgement tyre =
+      judge_against_tyre_models(run, options, common, unfitted, scratch.gnss_noise, plain_bic);
+  if (tyre.circumference) {
+    judgement.gap_m = {std::abs(start.circumference_rl_m - (*tyre.circumference)[0]),
+                       std::abs(start.circumference_rr_m - (*tyre.circumference)[1])};
+    say_a_tyre_model_fits_better(adequacy, tyre, judgement.gap_m, "this estimate's");
   }
   // Said, so that the residuals are not taken for the other method's.
   adequacy.verdict += " [judged on a batch fit of this log]";
@@ -1966,14 +1966,14 @@ std::string BatchSummary::full_report() const {
   }
   if (model_spread_m[0] > 0.0 || model_spread_m[1] > 0.0) {
     text += fmt::format(
-        "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm, their gap to the physical "
-        "terms' fit of this log: {}\n",
-        "spread", 1e3 * model_spread_m[0], 1e3 * model_spread_m[1],
+        "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm, their gap to {}\n", "spread",
+        1e3 * model_spread_m[0], 1e3 * model_spread_m[1],
         tyre_selection.judges_plain
-            ? "the plain circumferences are the ones this drive rolled on, slip "
-              "and load in them, not the ones at rest"
-            : "the regression terms extrapolate to rest no surer than the two "
-              "models agree");
+            ? "a tyre model's fit of this log (the tyre model line names it): the plain "
+              "circumferences are the ones this drive rolled on, slip and load in them, not the "
+              "ones at rest"
+            : "the physical terms' fit of this log: the regression terms extrapolate to rest no "
+              "surer than the two models agree");
   }
   text += fmt::format("{:<13}{}\n", "solver", usable() ? message : solver_report);
   return text + report_ending(*this);

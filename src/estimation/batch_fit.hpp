@@ -7,6 +7,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "calibration_run.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
@@ -61,32 +62,34 @@ bool fit_model(const CalibrationRun& run, const BatchOptions& options,
 bool fit_auto(CalibrationRun& run, const BatchOptions& options, const CalibrationOptions& common,
               BatchSummary& summary);
 
-// tyre_model none chosen by hand: the plain fit, judged as auto's first candidate judges it
-// (tyre_model_selection.cpp). Where the physical terms are a tyre and fit the log better under
-// the same GNSS noise, the plain circumferences are the ones this drive rolled on, not the ones
-// at rest: the plain fit is solved again with its gap to the physical terms' circumferences in
-// its sigma, and its model verdict says that it does not explain the log. The caller scores the
-// result (run.finish).
+// tyre_model none chosen by hand: the plain fit, judged by the tyre models as auto judges it
+// (judge_against_tyre_models below). Where one is a tyre and fits the log better under the same
+// GNSS noise, the plain circumferences are the ones this drive rolled on, not the ones at rest:
+// the plain fit is solved again with its gap to that model's circumferences in its sigma, and
+// its model verdict says that it does not explain the log. The caller scores the result
+// (run.finish).
 void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, BatchSummary& summary);
 
-// The physical terms fitted as the plain model's judge, as auto's first candidate: their
-// criterion against the plain fit's `plain_bic` (both under the noise the plain fit adapted to,
-// where it adapted: `plain_noise`), and where they are a tyre that fits the log better, their
+// The tyre models fitted as the plain model's judges, as auto fits its candidates: the physical
+// terms, then the regression terms only where the physical ones fit the log better but are no
+// tyre. Their criteria against the plain fit's `plain_bic` (all under the noise the plain fit
+// adapted to, where it adapted: `plain_noise`); where one is a tyre that fits the log better, its
 // circumferences at rest.
-struct PhysicalJudgement {
-  TyreCandidate candidate;  // its solves: every solve of the judgement
-  double plain_bic{};       // as compared
-  std::optional<std::array<double, 2>> circumference;
+struct TyreJudgement {
+  std::vector<TyreCandidate> candidates;               // in the order fitted
+  double plain_bic{};                                  // as compared
+  std::optional<std::array<double, 2>> circumference;  // the last candidate's, where it won
+  int solves() const;
 };
-PhysicalJudgement judge_against_physical(const CalibrationRun& run, const BatchOptions& options,
-                                         const CalibrationOptions& common,
-                                         const BatchSummary& unfitted,
-                                         const GnssNoiseReport& plain_noise, double plain_bic);
+TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOptions& options,
+                                        const CalibrationOptions& common,
+                                        const BatchSummary& unfitted,
+                                        const GnssNoiseReport& plain_noise, double plain_bic);
 
-// The verdict, where the physical terms fit the log better: `gap_m` from `whose` circumferences.
-void say_physical_fits_better(ModelAdequacy& adequacy, const PhysicalJudgement& judgement,
-                              const std::array<double, 2>& gap_m, const char* whose);
+// The verdict, where a tyre model fits the log better: `gap_m` from `whose` circumferences.
+void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& judgement,
+                                  const std::array<double, 2>& gap_m, const char* whose);
 
 // Whether the two-wheel model explains the log, for a method that has no pose graph of its own
 // (iterative, fixed-P, augmented): the plain batch fit, started at `start`, judged on its
@@ -95,11 +98,12 @@ void say_physical_fits_better(ModelAdequacy& adequacy, const PhysicalJudgement& 
 // tenths of a per mille off, the pose graph's correlated GNSS error takes up the drift and buries
 // the dependences (comma2k19: rho against a_x -0.16 held, -0.70 free). The problem is freed on
 // return.
-// Judged against the physical terms too: where they fit the log better, the judgement says how
-// far their circumferences at rest lie from `start`'s, which the method's sigma then carries.
+// Judged by the tyre models too (judge_against_tyre_models): where one fits the log better, the
+// judgement says how far its circumferences at rest lie from `start`'s, which the method's sigma
+// then carries.
 struct ModelJudgement {
   ModelAdequacy adequacy;
-  std::array<double, 2> gap_m{};  // zero where the physical terms do not fit the log better
+  std::array<double, 2> gap_m{};  // zero where no tyre model fits the log better
 };
 ModelJudgement judge_model_adequacy(const CalibrationRun& run, const OdometryParams& start,
                                     const CalibrationOptions& common);

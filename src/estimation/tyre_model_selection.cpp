@@ -180,50 +180,66 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
   return finished;
 }
 
-PhysicalJudgement judge_against_physical(const CalibrationRun& run, const BatchOptions& options,
-                                         const CalibrationOptions& common,
-                                         const BatchSummary& unfitted,
-                                         const GnssNoiseReport& plain_noise, double plain_bic) {
-  PhysicalJudgement judgement{TyreCandidate{tyre_model_option(TyreTerms::kPhysical)}, plain_bic};
+TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOptions& options,
+                                        const CalibrationOptions& common,
+                                        const BatchSummary& unfitted,
+                                        const GnssNoiseReport& plain_noise, double plain_bic) {
+  TyreJudgement judgement{{}, plain_bic, std::nullopt};
   // Compared as auto compares them: under the noise the plain fit's residuals showed, where they
   // showed that the configured one is wrong.
   const std::optional<GnssNoiseModel> shared_noise = adapted_noise(plain_noise);
-  int& solves = judgement.candidate.solves;
+  int comparison_solves = 0;
+  if (shared_noise) {
+    judgement.plain_bic = criterion_under(run, options, common, unfitted, std::nullopt,
+                                          *shared_noise, comparison_solves);
+  }
   // The problem measures the driving states only where a tyre model may be fitted.
   BatchOptions with_tyre = options;
-  with_tyre.tyre_model = TyreModelChoice::kPhysical;
-  if (shared_noise) {
-    judgement.plain_bic =
-        criterion_under(run, options, common, unfitted, std::nullopt, *shared_noise, solves);
+  with_tyre.tyre_model = TyreModelChoice::kAuto;
+  for (const TyreTerms terms : kCandidates) {
+    TyreCandidate candidate{tyre_model_option(terms)};
+    candidate.solves = comparison_solves;
+    comparison_solves = 0;
+    const std::optional<double> shared_bic =
+        shared_noise ? std::optional(criterion_under(run, with_tyre, common, unfitted, terms,
+                                                     *shared_noise, candidate.solves))
+                     : std::nullopt;
+    BatchSummary fitted = unfitted;
+    fit_model(run, with_tyre, common, terms, fitted, [&](const FitFacts& facts) {
+      candidate.bic = shared_bic.value_or(facts.bic);
+      candidate.tyre = facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
+      candidate.needed =
+          candidate.tyre && facts.free_tyre_coefficients > 0 && candidate.bic < judgement.plain_bic;
+      if (candidate.needed) judgement.circumference = facts.circumference;
+      return false;
+    });
+    candidate.solves += fitted.solves;
+    judgement.candidates.push_back(candidate);
+    // The regression terms speak only where the physical ones fit the log better but are no
+    // tyre (a body that vehicle.yaml gets wrong): they confirm that the plain model does not
+    // explain it and say where the circumferences at rest lie.
+    if (judgement.circumference || !(candidate.bic < judgement.plain_bic) || candidate.tyre) break;
   }
-  const std::optional<double> shared_bic =
-      shared_noise ? std::optional(criterion_under(run, with_tyre, common, unfitted,
-                                                   TyreTerms::kPhysical, *shared_noise, solves))
-                   : std::nullopt;
-  BatchSummary fitted = unfitted;
-  TyreCandidate& candidate = judgement.candidate;
-  fit_model(run, with_tyre, common, TyreTerms::kPhysical, fitted, [&](const FitFacts& facts) {
-    candidate.bic = shared_bic.value_or(facts.bic);
-    candidate.tyre = facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
-    candidate.needed =
-        candidate.tyre && facts.free_tyre_coefficients > 0 && candidate.bic < judgement.plain_bic;
-    if (candidate.needed) judgement.circumference = facts.circumference;
-    return false;
-  });
-  solves += fitted.solves;
   return judgement;
 }
 
-void say_physical_fits_better(ModelAdequacy& adequacy, const PhysicalJudgement& judgement,
-                              const std::array<double, 2>& gap_m, const char* whose) {
-  if (!adequacy.judged) return;
-  const std::string better = fmt::format(
-      "tyre_model: physical fits it better (BIC {:.1f} against {:.1f}) and puts the "
-      "circumferences at rest {:.3g} / {:.3g} mm from {}, which their sigma carries; use "
-      "the batch's tyre_model: auto",
-      judgement.candidate.bic, judgement.plain_bic, 1e3 * gap_m[0], 1e3 * gap_m[1], whose);
-  adequacy.verdict = adequacy.explains ? "the two-wheel model does not explain this log: " + better
-                                       : adequacy.verdict + "; " + better;
+int TyreJudgement::solves() const {
+  int total = 0;
+  for (const TyreCandidate& candidate : candidates) total += candidate.solves;
+  return total;
+}
+
+void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& judgement,
+                                  const std::array<double, 2>& gap_m, const char* whose) {
+  if (!adequacy.judged || !judgement.circumference) return;
+  const TyreCandidate& better = judgement.candidates.back();
+  const std::string text = fmt::format(
+      "tyre_model: {} fits it better (BIC {:.1f} against {:.1f}) and puts the circumferences at "
+      "rest {:.3g} / {:.3g} mm from {}, which their sigma carries; use the batch's tyre_model: "
+      "auto",
+      better.model, better.bic, judgement.plain_bic, 1e3 * gap_m[0], 1e3 * gap_m[1], whose);
+  adequacy.verdict = adequacy.explains ? "the two-wheel model does not explain this log: " + text
+                                       : adequacy.verdict + "; " + text;
   adequacy.explains = false;
 }
 
@@ -236,23 +252,22 @@ void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
     return true;
   });
   if (!plain.usable) return;
-  const PhysicalJudgement judgement =
-      judge_against_physical(run, options, common, unfitted, summary.gnss_noise, plain.bic);
-  int other_solves = judgement.candidate.solves;
+  const TyreJudgement judgement =
+      judge_against_tyre_models(run, options, common, unfitted, summary.gnss_noise, plain.bic);
+  int other_solves = judgement.solves();
   if (judgement.circumference) {
     // Solved again, so that the gap enters every sigma and verdict as summarise forms them.
     other_solves += summary.solves;
     summary = unfitted;
     fit_model(run, options, common, std::nullopt, summary, {}, judgement.circumference);
-    say_physical_fits_better(summary.model_adequacy, judgement, summary.model_spread_m,
-                             "the plain ones");
+    say_a_tyre_model_fits_better(summary.model_adequacy, judgement, summary.model_spread_m,
+                                 "the plain ones");
   }
   TyreModelSelection selection;
   selection.compared = true;
   selection.judges_plain = true;
   selection.plain_bic = judgement.plain_bic;
-  selection.candidates = {judgement.candidate};
-  selection.candidates.front().solves = other_solves;
+  selection.candidates = judgement.candidates;
   selection.other_solves = other_solves;
   summary.tyre_selection = selection;
 }
@@ -261,13 +276,16 @@ std::string tyre_selection_report(const BatchSummary& summary) {
   const TyreModelSelection& selection = summary.tyre_selection;
   if (!selection.compared) return "";
   if (selection.judges_plain) {
-    const TyreCandidate& judge = selection.candidates.front();
-    return fmt::format(
-        "{:<13}plain, as configured ({}): BIC plain {:.1f}, {} {:.1f}\n", "tyre model",
-        judge.needed  ? "the physical terms fit the log better: their gap is in the sigma"
-        : !judge.tyre ? "the physical terms' fit was not a tyre"
-                      : "the physical terms do not fit the log better",
-        selection.plain_bic, judge.model, judge.bic);
+    std::string criteria = fmt::format("plain {:.1f}", selection.plain_bic);
+    for (const TyreCandidate& c : selection.candidates)
+      criteria += fmt::format(", {} {:.1f}", c.model, c.bic);
+    const TyreCandidate& last = selection.candidates.back();
+    const std::string why =
+        last.needed
+            ? fmt::format("the {} terms fit the log better: their gap is in the sigma", last.model)
+        : !last.tyre ? fmt::format("the {} terms' fit was not a tyre", last.model)
+                     : fmt::format("the {} terms do not fit the log better", last.model);
+    return fmt::format("{:<13}plain, as configured ({}): BIC {}\n", "tyre model", why, criteria);
   }
   std::string why =
       selection.chosen == "none" ? "the log does not need more" : "the log supports it";
