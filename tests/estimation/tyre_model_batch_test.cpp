@@ -191,6 +191,41 @@ TEST(TyreModelBatch, AutoDoesNotKeepAConfidentPlainFitThatTheTyreModelContradict
   EXPECT_EQ(strict.termination, Termination::kNotIdentifiable) << strict.full_report();
 }
 
+TEST(TyreModelBatch, APlainFitWhosePhysicalJudgeIsNoTyreIsJudgedByTheRegressionTerms) {
+  // The realistic circuit of a rear-driven car lower and heavier than vehicle.yaml's, with softer,
+  // more load-sensitive tyres: the plain fit lands ~60 mm off at a sigma of 1.5 mm. The physical
+  // terms, with the wrong body, win the criterion but are no tyre (coefficients of percents); the
+  // regression terms, which need no body, win it too and judge.
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.dynamics.cg_height_m = 0.45;
+  scenario.dynamics.mass_kg = 1800.0;
+  scenario.dynamics.slip_stiffness_per_load = 14.0;
+  scenario.dynamics.radius_load_sensitivity_m_per_n = 6e-7;
+  scenario.dynamics.rolling_resistance = 0.009;
+  scenario.dynamics.front_roll_share = 0.6;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log log = simulated_log(drive);
+  const double truth_m = drive.true_params.circumference_rl_m;
+  BatchOptions options;
+  options.tyre_model = TyreModelChoice::kNone;
+  options.max_sigma_circumference_m = 0.01;
+  const BatchSummary bare = calibrate_batch(log, options, testing::unjudged_options());
+  EXPECT_GT(std::abs(bare.estimate.circumference_rl_m - truth_m), 3.0 * bare.sigma_rl_m());
+  const BatchSummary judged = calibrate_batch(log, options);
+  const TyreModelSelection& selection = judged.tyre_selection;
+  ASSERT_EQ(selection.candidates.size(), 2u) << judged.full_report();
+  EXPECT_FALSE(selection.candidates[0].tyre);
+  EXPECT_LT(selection.candidates[0].bic, selection.plain_bic);
+  EXPECT_TRUE(selection.candidates[1].needed);
+  EXPECT_EQ(judged.estimate.circumference_rl_m, bare.estimate.circumference_rl_m);
+  EXPECT_LT(std::abs(judged.estimate.circumference_rl_m - truth_m), 3.0 * judged.sigma_rl_m())
+      << judged.full_report();
+  EXPECT_EQ(judged.termination, Termination::kNotIdentifiable);
+  EXPECT_NE(judged.model_adequacy.verdict.find("tyre_model: extended fits it better"),
+            std::string::npos)
+      << judged.model_adequacy.verdict;
+}
+
 TEST(TyreModelBatch, AutoRefusesAPlainFitThatTheTyreModelMovesBeyondTheThreshold) {
   // The realistic urban drive with a rear-driven car (2 km; seeds 3): the mean drive slip puts
   // the plain fit's circumferences ~11 mm short at a sigma of 0.6 mm. The physical terms win the
