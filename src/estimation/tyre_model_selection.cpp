@@ -12,6 +12,8 @@
 // candidate is finished (noise adaptation, covariance) only when it beats the best fit so far.
 // The criteria are compared under one GNSS noise model: the configured one, or the one the plain
 // fit's residuals showed where it adapted it (each model then solved once more, for its criterion).
+// The same candidates judge a plain fit that was not chosen among them (tyre_model none by hand,
+// and the other methods' judge): where one wins, the plain circumferences carry the gap to it.
 
 #include <fmt/format.h>
 
