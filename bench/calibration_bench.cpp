@@ -82,16 +82,20 @@ void BM_Calibrate(benchmark::State& state) {
 }
 BENCHMARK(BM_Calibrate)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 
-// The batch with the paper's model alone (tyre_model none, the default until 2026-11-27).
+// The batch with the paper's model alone (tyre_model none, the default until 2026-11-27),
+// without the tyre models that judge it by default since 2026-11-29 (BM_CalibrateJudged measures
+// the judge).
 void BM_CalibrateBatchPlain(benchmark::State& state) {
   CalibrationConfig options;
   options.method = CalibrationMethod::kBatch;
   options.batch.tyre_model = TyreModelChoice::kNone;
+  options.common.judge_model_adequacy = false;
   for (auto _ : state) benchmark::DoNotOptimize(core(calibrate(three_lap_log(), options)).usable());
 }
 BENCHMARK(BM_CalibrateBatchPlain)->Unit(benchmark::kMillisecond);
 
-// The iterative method as `odocal calibrate` runs it by default: with the model-adequacy judge.
+// The iterative method as `odocal calibrate` runs it by default: with the model-adequacy judge
+// (a plain batch fit, then the tyre models' fits).
 void BM_CalibrateJudged(benchmark::State& state) {
   CalibrationConfig options;
   for (auto _ : state) benchmark::DoNotOptimize(core(calibrate(three_lap_log(), options)).usable());

@@ -523,11 +523,13 @@ def speed(report, command):
             report.write(f"| whole calibration, {runs[name].get('label', method)} | `{name}` | "
                          f"{fmt(ms(name), 1)} ms |")
     if "BM_CalibrateBatchPlain" in runs:
-        report.write("| whole calibration, batch with the plain model alone (`tyre_model: none`) | "
+        report.write("| whole calibration, batch with the plain model alone (`tyre_model: none`, "
+                     "unjudged) | "
                      f"`BM_CalibrateBatchPlain` | {fmt(ms('BM_CalibrateBatchPlain'), 1)} ms |")
     if "BM_CalibrateJudged" in runs:
-        report.write("| whole calibration, iterative with the model-adequacy judge (a batch fit; "
-                     "the default) | `BM_CalibrateJudged` | "
+        report.write("| whole calibration, iterative with the model-adequacy judge (a plain batch "
+                     "fit and the tyre models' with the track width free; the default) | "
+                     "`BM_CalibrateJudged` | "
                      f"{fmt(ms('BM_CalibrateJudged'), 1)} ms |")
     if "BM_CalibrateThirtyIterations" in runs:
         report.write("| whole calibration, iterative forced through all 30 iterations | "

@@ -125,13 +125,23 @@ TEST(ModelAdequacyBatch, EveryMethodIsJudgedUnlessAskedNotTo) {
     EXPECT_FALSE(summary_to_json(unjudged, config).contains("model_adequacy"));
     EXPECT_EQ(full_report(unjudged).find("model "), std::string::npos);
   }
+  // The wrong track is geometry, not tyres: the tyre models judge with the track width free, and
+  // do not move a plain fit (held at the stated track, the load terms took it for load transfer
+  // and put the circumferences at rest 43 mm off).
+  BatchOptions plain;
+  plain.tyre_model = TyreModelChoice::kNone;
+  const BatchSummary judged = calibrate_batch(wide, plain);
+  ASSERT_TRUE(judged.tyre_selection.judges_plain);
+  for (const TyreCandidate& candidate : judged.tyre_selection.candidates)
+    EXPECT_FALSE(candidate.needed) << judged.full_report();
+  EXPECT_EQ(judged.model_spread_m[0], 0.0);
 }
 
 // The realistic circuit of a rear-driven car, worn tyres: its residuals are white (the generous
 // odometry noise takes the slip in), yet the physical tyre terms fit it far better and put the
 // circumferences at rest ~30 mm from what the drive rolled on. The iterative method's estimate
 // of the rolled ones is off the true ones by many times its own sigma; judged, its sigma carries
-// that gap and the verdict says why.
+// that gap, the verdict says why, and the result is refused: the gap is 25 of its own sigma.
 TEST(ModelAdequacyBatch, AnEstimateThatTheTyreModelMovesCarriesThatGapInItsSigma) {
   sim::Scenario scenario = load_scenario("circuit");
   scenario.vehicle.wear_rl_mm = 1.5;
@@ -154,6 +164,10 @@ TEST(ModelAdequacyBatch, AnEstimateThatTheTyreModelMovesCarriesThatGapInItsSigma
   EXPECT_NE(judged.model_adequacy.verdict.find("tyre_model: physical fits it better"),
             std::string::npos)
       << judged.model_adequacy.verdict;
+  // Contradicted at its own precision (the gap is many of its own sigma): not a result.
+  EXPECT_EQ(judged.termination, Termination::kNotIdentifiable);
+  EXPECT_NE(judged.message.find("calibrate with --method batch"), std::string::npos)
+      << judged.message;
 }
 
 }  // namespace
