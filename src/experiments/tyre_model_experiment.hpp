@@ -18,8 +18,9 @@ namespace odocal::experiments {
 // at a car's value; 11: the urban drive with exact wheels and the reference's own uncertainty;
 // 12: held regression terms in the sigma; 13: the grip-sharing driver beside the circuit's;
 // 14: a free-rolling axle's drive slip held at zero; 15: sigma widened by the odometry misfit;
-// 16: a reverted GNSS noise adaptation's first estimate standing as it was.
-inline constexpr int kTyreModelExperimentVersion = 16;
+// 16: a reverted GNSS noise adaptation's first estimate standing as it was; 17: auto refuses a
+// tyre model that the plain model with the track width freed fits as well.
+inline constexpr int kTyreModelExperimentVersion = 17;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_ideal: {none}} with

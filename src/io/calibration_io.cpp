@@ -179,10 +179,12 @@ void add_details(json& out, const BatchSummary& s) {
                             {"bic", number_or_null(c.bic)},
                             {"solves", c.solves},
                             {"tyre", c.tyre},
+                            {"beyond_track", c.beyond_track},
                             {"needed", c.needed},
                             {"dead_reckons", c.dead_reckons}});
     }
     out["tyre_selection"] = {{"plain_bic", number_or_null(s.tyre_selection.plain_bic)},
+                             {"free_track_bic", number_or_null(s.tyre_selection.free_track_bic)},
                              {"candidates", candidates},
                              {"other_solves", s.tyre_selection.other_solves},
                              {"chosen", s.tyre_selection.chosen},

@@ -226,6 +226,31 @@ TEST(TyreModelBatch, APlainFitWhosePhysicalJudgeIsNoTyreIsJudgedByTheRegressionT
       << judged.model_adequacy.verdict;
 }
 
+TEST(TyreModelBatch, AutoDoesNotTakeATrackThatVehicleYamlGetsWrongForTyres) {
+  // An ideal lap whose wheels run on a track 10 % wider than vehicle.yaml states: the wheels'
+  // heading turns with the curvature, which the load terms mimic as load transfer. With the
+  // track held they won the criterion and put the circumferences 43 mm off at a sigma of 3.3 mm;
+  // the plain model with the track freed fits the log better, and the plain fit stands.
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;
+  scenario.route.laps = 1;
+  scenario.vehicle.effective_track_width_m = 1.76;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log log = simulated_log(drive);
+  BatchOptions options;
+  options.max_sigma_circumference_m = 0.01;
+  const BatchSummary chosen = calibrate_batch(log, options);
+  EXPECT_EQ(chosen.tyre_selection.chosen, "none") << chosen.full_report();
+  ASSERT_FALSE(chosen.tyre_selection.candidates.empty());
+  const TyreCandidate& physical = chosen.tyre_selection.candidates[0];
+  EXPECT_LT(physical.bic, chosen.tyre_selection.plain_bic);
+  EXPECT_FALSE(physical.beyond_track);
+  EXPECT_NE(chosen.full_report().find("set estimate_track_width"), std::string::npos);
+  EXPECT_LT(std::abs(chosen.estimate.circumference_rl_m - drive.true_params.circumference_rl_m),
+            3.0 * chosen.sigma_rl_m())
+      << chosen.full_report();
+}
+
 TEST(TyreModelBatch, AutoRefusesAPlainFitThatTheTyreModelMovesBeyondTheThreshold) {
   // The realistic urban drive with a rear-driven car (2 km; seeds 3): the mean drive slip puts
   // the plain fit's circumferences ~11 mm short at a sigma of 0.6 mm. The physical terms win the

@@ -58,6 +58,9 @@ struct TyreCandidate {
   // false: refused: coefficients that move a circumference by percents at the log's typical
   // state, or circumferences out of their plausible band (the model explains something else).
   bool tyre = true;
+  // false: refused: the plain model with the track width freed fits the log as well (a track
+  // that vehicle.yaml gets wrong, which the load terms mimic). Only where the track is held.
+  bool beyond_track = true;
   // false: refused: its circumferences at rest were not identified (sigma above
   // max_sigma_circumference_m) and agree with the identified plain fit's: the plain fit's sigma
   // widened by the gap between them is still within max_sigma_circumference_m. (Where they do
@@ -76,6 +79,8 @@ struct TyreModelSelection {
   bool compared = false;
   bool judges_plain = false;
   double plain_bic{};
+  // The plain model's with the track width freed, where auto held it (NaN otherwise).
+  double free_track_bic = std::numeric_limits<double>::quiet_NaN();
   std::vector<TyreCandidate> candidates;  // in the order fitted
   std::string chosen = "none";
   int other_solves{};  // the solves of the fits not chosen (BatchSummary::solves: the chosen's)
