@@ -58,13 +58,18 @@ struct ModelAdequacy {
 // sigma is widened by this (docs/batch-calibration.md, "A fit that its residuals reject").
 double misfit_sigma_scale(const ModelAdequacy& adequacy);
 
+// What makes a dependence count, by default: strong (|rho|) and certain (t).
+inline constexpr double kMinCorrelation = 0.3;
+inline constexpr double kMinTStatistic = 5.0;
+
 // Intervals shorter than min_distance_m are left out (standing, creeping). A dependence counts
 // when |rho| >= min_correlation and its t statistic >= min_t. `tyre_terms` names the tyre model
 // whose residuals these are ("physical", "extended"); empty: the plain two-wheel model's. The
 // verdict names the model it judges.
 ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& samples,
                                     const std::string& tyre_terms = "",
-                                    double min_distance_m = 0.25, double min_correlation = 0.3,
-                                    double min_t = 5.0);
+                                    double min_distance_m = 0.25,
+                                    double min_correlation = kMinCorrelation,
+                                    double min_t = kMinTStatistic);
 
 }  // namespace odocal
