@@ -1259,8 +1259,8 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
                      fmt::join(advice, "; "));
 }
 
-// A plain circumference whose sigma carries its gap to the physical terms' fit (tyre_model none
-// chosen by hand, judged: tyre_model_selection.cpp).
+// A plain circumference whose sigma carries its gap to a tyre model's fit (tyre_model none chosen
+// by hand, judged: tyre_model_selection.cpp).
 std::string plain_gap_verdict(double sigma_m, double gap_m) {
   return fmt::format(
       "the plain model's circumference is the one this drive rolled on, slip and load in it: a "
@@ -1837,7 +1837,7 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
       return judgement;
     }
     judgement.adequacy = assess_model_adequacy(batch.odometry_errors());
-  }  // freed before the physical terms' problem
+  }  // freed before the tyre models' problems
   ModelAdequacy& adequacy = judgement.adequacy;
   suggest_tyre_model(adequacy);
   const TyreJudgement tyre =

@@ -72,14 +72,16 @@ struct TyreCandidate {
 };
 
 // tyre_model auto: the information criteria of every model fitted and which one stands. Under
-// tyre_model none chosen by hand (and judge_model_adequacy), the physical terms' fit as the
-// plain fit's judge: `chosen` stays "none", and where the candidate is `needed` (a tyre that wins
-// the criterion) the plain circumferences carry their gap to its in their sigma.
+// tyre_model none chosen by hand (and judge_model_adequacy), the tyre models' fits as the plain
+// fit's judges, the track width free in each: `chosen` stays "none", and where a candidate is
+// `needed` (a tyre that wins the criterion) the plain circumferences carry their gap to its in
+// their sigma.
 struct TyreModelSelection {
   bool compared = false;
   bool judges_plain = false;
   double plain_bic{};
-  // The plain model's with the track width freed, where auto held it (NaN otherwise).
+  // The plain model's with the track width freed, where auto fitted it (the track held and the
+  // plain fit's heading residual following the curvature; NaN otherwise).
   double free_track_bic = std::numeric_limits<double>::quiet_NaN();
   std::vector<TyreCandidate> candidates;  // in the order fitted
   std::string chosen = "none";
