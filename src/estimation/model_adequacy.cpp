@@ -159,7 +159,7 @@ ModelAdequacy assess_model_adequacy(const std::vector<OdometryResidualSample>& s
 
   const ResidualDependence* strongest = nullptr;
   for (const ResidualDependence& d : result.dependences) {
-    if (std::abs(d.correlation) < min_correlation || d.t_statistic < min_t) continue;
+    if (!d.counts(min_correlation, min_t)) continue;
     if (strongest == nullptr || std::abs(d.correlation) > std::abs(strongest->correlation))
       strongest = &d;
   }

@@ -68,11 +68,10 @@ bool is_tyre(const FitFacts& facts, const OdometryParams& nominal, double max_ch
 
 // The dependence that a track width off by a fraction leaves in the plain fit's residuals.
 bool heading_follows_curvature(const ModelAdequacy& adequacy) {
-  return std::any_of(
-      adequacy.dependences.begin(), adequacy.dependences.end(), [](const ResidualDependence& d) {
-        return d.residual == "heading" && d.quantity == "curvature" &&
-               std::abs(d.correlation) >= kMinCorrelation && d.t_statistic >= kMinTStatistic;
-      });
+  return std::any_of(adequacy.dependences.begin(), adequacy.dependences.end(),
+                     [](const ResidualDependence& d) {
+                       return d.residual == "heading" && d.quantity == "curvature" && d.counts();
+                     });
 }
 
 }  // namespace
@@ -122,13 +121,11 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
   // curvature, a tyre model that the plain model with the track freed matches or beats on the
   // criterion is not taken: the geometry explains the log. (Only then: on the 10-hour drive with
   // a Doppler column that fit took 33 s.)
-  std::optional<double> free_track_bic;
   if (!options.estimate_track_width && heading_follows_curvature(summary.model_adequacy)) {
     BatchOptions free_track = options;
     free_track.estimate_track_width = true;
-    free_track_bic =
+    selection.free_track_bic =
         criterion_under(run, free_track, common, unfitted, std::nullopt, shared_noise, all_solves);
-    selection.free_track_bic = *free_track_bic;
   }
   const double max_change = common.max_relative_change;
   const double max_variance = options.max_sigma_circumference_m * options.max_sigma_circumference_m;
@@ -158,7 +155,8 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
       candidate.tyre = is_tyre(facts, summary.nominal, max_change);
       const bool wins =
           candidate.tyre && facts.free_tyre_coefficients > 0 && candidate.bic < best_bic;
-      candidate.beyond_track = !wins || !free_track_bic || candidate.bic < *free_track_bic;
+      // Not fitted (NaN): nothing to refuse on.
+      candidate.beyond_track = !wins || !(selection.free_track_bic <= candidate.bic);
       const bool better = wins && candidate.beyond_track;
       // Circumferences at rest that the log cannot pin down (an extrapolation from the states
       // driven: on a long drive the BIC prefers effects of a few 1e-4) are no better answer than

@@ -11,6 +11,7 @@
 // docs/model-adequacy.md.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -31,6 +32,10 @@ struct OdometryResidualSample {
   double doppler_error_m{std::numeric_limits<double>::quiet_NaN()};
 };
 
+// What makes a dependence count, by default: strong (|rho|) and certain (t).
+inline constexpr double kMinCorrelation = 0.3;
+inline constexpr double kMinTStatistic = 5.0;
+
 // A residual's linear dependence on one driving quantity.
 struct ResidualDependence {
   std::string residual;  // "heading", "along-track" or "Doppler speed"
@@ -38,6 +43,10 @@ struct ResidualDependence {
                          // "speed squared", "grade" (over the intervals whose grade is known)
   double correlation{};  // partial correlation over the moving intervals (model_adequacy.cpp)
   double t_statistic{};  // rho sqrt(n - 2) / sqrt(1 - rho^2)
+
+  bool counts(double min_correlation = kMinCorrelation, double min_t = kMinTStatistic) const {
+    return std::abs(correlation) >= min_correlation && t_statistic >= min_t;
+  }
 };
 
 struct ModelAdequacy {
@@ -57,10 +66,6 @@ struct ModelAdequacy {
 // better fit). A fit's covariance assumes its model fits; where the residuals say otherwise every
 // sigma is widened by this (docs/batch-calibration.md, "A fit that its residuals reject").
 double misfit_sigma_scale(const ModelAdequacy& adequacy);
-
-// What makes a dependence count, by default: strong (|rho|) and certain (t).
-inline constexpr double kMinCorrelation = 0.3;
-inline constexpr double kMinTStatistic = 5.0;
 
 // Intervals shorter than min_distance_m are left out (standing, creeping). A dependence counts
 // when |rho| >= min_correlation and its t statistic >= min_t. `tyre_terms` names the tyre model
