@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../support/hilly_urban.hpp"
+#include "../support/test_scenarios.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/io/calibration_io.hpp"
@@ -21,11 +22,7 @@ namespace odocal {
 namespace {
 
 sim::SimulatedDrive ideal_lap(double effective_track_m) {
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.route.laps = 1;
-  scenario.vehicle.effective_track_width_m = effective_track_m;
-  return sim::simulate(scenario);
+  return sim::simulate(testing::ideal_lap_on_track(effective_track_m));
 }
 
 TEST(ModelAdequacyBatch, IdealVehicleIsExplainedAWrongTrackIsNot) {

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "../support/hilly_urban.hpp"
+#include "../support/test_scenarios.hpp"
 #include "../support/unjudged_options.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/driving_state.hpp"
@@ -115,13 +116,7 @@ TEST(PhysicalTyreBatch, CalibratesARealisticUrbanDriveToTheCircumferenceAtRest) 
   // The realistic urban drive of a rear-driven car whose body is not vehicle.yaml's (lower and
   // heavier, softer and more load-sensitive tyres, less rolling resistance): the drive slip that
   // the plain model averages into the circumferences (~10 mm) is taken out.
-  sim::Scenario scenario = load_scenario("urban");
-  scenario.dynamics.cg_height_m = 0.45;
-  scenario.dynamics.mass_kg = 1800.0;
-  scenario.dynamics.slip_stiffness_per_load = 14.0;
-  scenario.dynamics.radius_load_sensitivity_m_per_n = 6e-7;
-  scenario.dynamics.rolling_resistance = 0.009;
-  scenario.dynamics.front_roll_share = 0.6;
+  sim::Scenario scenario = testing::with_low_heavy_body(load_scenario("urban"));
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   const Log log = simulated_log(drive);
   const double truth_m = drive.true_params.circumference_rl_m;
@@ -425,13 +420,7 @@ TEST(PhysicalTyreBatch, SigmaCoversTheBodyThatVehicleYamlGetsWrong) {
   // the circuit's speeds and accelerations the body's numbers move the circumference at rest by
   // millimetres (the drag's slip, the load transfer), which the log cannot tell from it. The
   // sigma says so; the regression terms and the plain model carry no body.
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.dynamics.cg_height_m = 0.45;
-  scenario.dynamics.mass_kg = 1800.0;
-  scenario.dynamics.slip_stiffness_per_load = 14.0;
-  scenario.dynamics.radius_load_sensitivity_m_per_n = 6e-7;
-  scenario.dynamics.rolling_resistance = 0.009;
-  scenario.dynamics.front_roll_share = 0.6;
+  sim::Scenario scenario = testing::with_low_heavy_body(load_scenario("circuit"));
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   const Log log = simulated_log(drive);
   const BatchSummary physical = calibrate(log, TyreModelChoice::kPhysical);

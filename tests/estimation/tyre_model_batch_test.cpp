@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "../support/drifting_gnss.hpp"
+#include "../support/test_scenarios.hpp"
 #include "../support/unjudged_options.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/drift_validation.hpp"
@@ -196,13 +197,7 @@ TEST(TyreModelBatch, APlainFitWhosePhysicalJudgeIsNoTyreIsJudgedByTheRegressionT
   // more load-sensitive tyres: the plain fit lands ~60 mm off at a sigma of 1.5 mm. The physical
   // terms, with the wrong body, win the criterion but are no tyre (coefficients of percents); the
   // regression terms, which need no body, win it too and judge.
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.dynamics.cg_height_m = 0.45;
-  scenario.dynamics.mass_kg = 1800.0;
-  scenario.dynamics.slip_stiffness_per_load = 14.0;
-  scenario.dynamics.radius_load_sensitivity_m_per_n = 6e-7;
-  scenario.dynamics.rolling_resistance = 0.009;
-  scenario.dynamics.front_roll_share = 0.6;
+  sim::Scenario scenario = testing::with_low_heavy_body(load_scenario("circuit"));
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   const Log log = simulated_log(drive);
   const double truth_m = drive.true_params.circumference_rl_m;
@@ -231,11 +226,7 @@ TEST(TyreModelBatch, AutoDoesNotTakeATrackThatVehicleYamlGetsWrongForTyres) {
   // heading turns with the curvature, which the load terms mimic as load transfer. With the
   // track held they won the criterion and put the circumferences 43 mm off at a sigma of 3.3 mm;
   // the plain model with the track freed fits the log better, and the plain fit stands.
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.route.laps = 1;
-  scenario.vehicle.effective_track_width_m = 1.76;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const sim::SimulatedDrive drive = sim::simulate(testing::ideal_lap_on_track(1.76));
   const Log log = simulated_log(drive);
   BatchOptions options;
   options.max_sigma_circumference_m = 0.01;

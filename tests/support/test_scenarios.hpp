@@ -1,0 +1,33 @@
+#pragma once
+// Simulated drives that several test files share: a car whose body vehicle.yaml does not describe,
+// and an ideal lap whose wheels run on another track than vehicle.yaml states.
+
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/sim/scenario.hpp"
+
+namespace odocal::testing {
+
+// Lower and heavier than vehicle.yaml's body, with softer, more load-sensitive tyres, less
+// rolling resistance and more of the roll stiffness at the front (bench/tyre_model_bench.py's
+// "low-heavy" car).
+inline sim::Scenario with_low_heavy_body(sim::Scenario scenario) {
+  scenario.dynamics.cg_height_m = 0.45;
+  scenario.dynamics.mass_kg = 1800.0;
+  scenario.dynamics.slip_stiffness_per_load = 14.0;
+  scenario.dynamics.radius_load_sensitivity_m_per_n = 6e-7;
+  scenario.dynamics.rolling_resistance = 0.009;
+  scenario.dynamics.front_roll_share = 0.6;
+  return scenario;
+}
+
+// One ideal lap of the built-in circuit, the wheels on an effective track of `effective_track_m`
+// (0: the stated one).
+inline sim::Scenario ideal_lap_on_track(double effective_track_m) {
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;
+  scenario.route.laps = 1;
+  scenario.vehicle.effective_track_width_m = effective_track_m;
+  return scenario;
+}
+
+}  // namespace odocal::testing
