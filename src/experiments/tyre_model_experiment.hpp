@@ -19,8 +19,10 @@ namespace odocal::experiments {
 // 12: held regression terms in the sigma; 13: the grip-sharing driver beside the circuit's;
 // 14: a free-rolling axle's drive slip held at zero; 15: sigma widened by the odometry misfit;
 // 16: a reverted GNSS noise adaptation's first estimate standing as it was; 17: auto refuses a
-// tyre model that the plain model with the track width freed fits as well.
-inline constexpr int kTyreModelExperimentVersion = 17;
+// tyre model that the plain model with the track width freed fits as well; 18: where auto doubts
+// the track, each tyre model fitted both ways, and the plain model with it free where no tyre
+// model stands.
+inline constexpr int kTyreModelExperimentVersion = 18;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_ideal: {none}} with

@@ -180,11 +180,15 @@ void add_details(json& out, const BatchSummary& s) {
                             {"solves", c.solves},
                             {"tyre", c.tyre},
                             {"beyond_track", c.beyond_track},
+                            {"track_free", c.track_free},
+                            {"held_track_bic", number_or_null(c.held_track_bic)},
+                            {"free_track_bic", number_or_null(c.free_track_bic)},
                             {"needed", c.needed},
                             {"dead_reckons", c.dead_reckons}});
     }
     out["tyre_selection"] = {{"plain_bic", number_or_null(s.tyre_selection.plain_bic)},
                              {"free_track_bic", number_or_null(s.tyre_selection.free_track_bic)},
+                             {"plain_track_free", s.tyre_selection.plain_track_free},
                              {"candidates", candidates},
                              {"other_solves", s.tyre_selection.other_solves},
                              {"chosen", s.tyre_selection.chosen},

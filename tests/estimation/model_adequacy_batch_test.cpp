@@ -30,13 +30,20 @@ TEST(ModelAdequacyBatch, IdealVehicleIsExplainedAWrongTrackIsNot) {
   EXPECT_TRUE(calibrate_batch(ideal).model_adequacy.explains)
       << calibrate_batch(ideal).model_adequacy.verdict;
   const Log wide = simulated_log(ideal_lap(1.76));  // wheels 10 % further apart than stated
-  const ModelAdequacy fixed_track = calibrate_batch(wide).model_adequacy;
+  BatchOptions plain;
+  plain.tyre_model = TyreModelChoice::kNone;
+  const ModelAdequacy fixed_track = calibrate_batch(wide, plain).model_adequacy;
   EXPECT_FALSE(fixed_track.explains);
   EXPECT_NE(fixed_track.verdict.find("heading residual follows curvature"), std::string::npos)
       << fixed_track.verdict;
   BatchOptions with_track;
   with_track.estimate_track_width = true;
   EXPECT_TRUE(calibrate_batch(wide, with_track).model_adequacy.explains);
+  // auto frees the track itself there
+  // (TyreModelBatch.AutoDoesNotTakeATrackThatVehicleYamlGetsWrongForTyres).
+  const BatchSummary chosen = calibrate_batch(wide);
+  EXPECT_TRUE(chosen.tyre_selection.plain_track_free);
+  EXPECT_TRUE(chosen.model_adequacy.explains) << chosen.model_adequacy.verdict;
 }
 
 // Hills of up to 6 % on the realistic urban drive: driven from the rear, the wheels slip with

@@ -61,6 +61,12 @@ struct TyreCandidate {
   // false: refused: the plain model with the track width freed fits the log as well (a track
   // that vehicle.yaml gets wrong, which the load terms mimic). Only where the track is held.
   bool beyond_track = true;
+  // Fitted with the track width free: where auto freed the track for its plain comparison, each
+  // candidate's criterion is taken both ways, and it is fitted the way whose criterion (`bic`)
+  // is lower. Both criteria are kept (NaN where only the held one was taken).
+  bool track_free = false;
+  double held_track_bic = std::numeric_limits<double>::quiet_NaN();
+  double free_track_bic = std::numeric_limits<double>::quiet_NaN();
   // false: refused: its circumferences at rest were not identified (sigma above
   // max_sigma_circumference_m) and agree with the identified plain fit's: the plain fit's sigma
   // widened by the gap between them is still within max_sigma_circumference_m. (Where they do
@@ -83,6 +89,9 @@ struct TyreModelSelection {
   // The plain model's with the track width freed, where auto fitted it (the track held and the
   // plain fit's heading residual following the curvature; NaN otherwise).
   double free_track_bic = std::numeric_limits<double>::quiet_NaN();
+  // The plain model stands with the track width free: it fitted the log better so than with the
+  // track held, and no tyre model stood.
+  bool plain_track_free = false;
   std::vector<TyreCandidate> candidates;  // in the order fitted
   std::string chosen = "none";
   int other_solves{};  // the solves of the fits not chosen (BatchSummary::solves: the chosen's)
