@@ -10,6 +10,7 @@
 
 #include "diagnosis_facts.hpp"
 #include "diagnosis_signals.hpp"
+#include "diagnosis_track.hpp"
 #include "doppler_scale.hpp"
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/median.hpp"
@@ -86,6 +87,7 @@ class Doctor {
       const bool signs_ok = check_wheel_speeds();
       if (signs_ok) check_yaw_rates();
       check_clock_offsets();
+      if (signs_ok) check_track_width();
       if (signs_ok) check_imu_axes();
       // The wheels were compared with the Doppler speed where there is one: in another unit it
       // makes right wheels look wrong by its factor.
@@ -250,6 +252,7 @@ class Doctor {
     };
     const double rl = ratio_of(signals_.speed_rl_mps, signals_.speed_long_rl_mps);
     const double rr = ratio_of(signals_.speed_rr_mps, signals_.speed_long_rr_mps);
+    distance_ratio_ = 0.5 * (rl + rr);
     if (rl < 0.0 && rr < 0.0) {
       add("wheels.sign", FindingSeverity::kBlocking,
           "both rear wheels count backwards while the car drives forward",
@@ -598,9 +601,42 @@ class Doctor {
     }
   }
 
+  // The track the wheels roll on, from their yaw rate against the gyro's at rest speed, the
+  // circumferences' scale (wheel against GNSS distance) taken out. Only where nothing else
+  // scales the wheels' or the gyro's turn (a unit, a sign, a circumference far off).
+  void check_track_width() {
+    if (!(distance_ratio_ > 0.0) || has("imu.yaw_unit") || has("imu.yaw_sign") ||
+        has("wheels.swapped") || has("gnss.mirrored") || has("vehicle.rl_circumference") ||
+        has("vehicle.rr_circumference") || has("wheels.rl_unit") || has("wheels.rr_unit"))
+      return;
+    const detail::WheelTurnScale turn = detail::wheel_turn_scale(signals_, moving_);
+    const double stated = facts_.vehicle.track_width_m;
+    if (!std::isfinite(turn.at_rest) || !(stated > 0.0)) return;
+    // Wheels that turn faster than the gyro roll on a wider track than stated.
+    const double ratio = turn.at_rest / distance_ratio_;
+    constexpr double kTolerance = 0.05, kSigmas = 5.0;
+    if (std::abs(ratio - 1.0) <= kTolerance ||
+        std::abs(ratio - 1.0) <= kSigmas * turn.sigma / distance_ratio_)
+      return;
+    add("vehicle.track_width", FindingSeverity::kWarning,
+        fmt::format("the wheels roll on a track {:.1f} % {} than vehicle.yaml states",
+                    100.0 * std::abs(ratio - 1.0), ratio > 1.0 ? "wider" : "narrower"),
+        fmt::format("wheel / gyro yaw rate {:.3f} (1-sigma {:.3f}) at rest speed over {:.0f} s "
+                    "turning, wheel / GNSS distance {:.3f}; track_width_m {:.3f} m, the wheels "
+                    "say about {:.3f} m",
+                    turn.at_rest, turn.sigma, seconds(turn.turning), distance_ratio_, stated,
+                    stated * ratio),
+        "track_width_m is not the rear track the wheels roll on (the front track, a distance "
+        "between tyre edges, another car's), or the wheels slip sideways (a skid-steer robot)",
+        fmt::format("track_width_m: {:.3f} in vehicle.yaml, or calibrate with "
+                    "estimate_track_width: true",
+                    stated * ratio));
+  }
+
   detail::DiagnosisFacts facts_;
   DiagnosisSignals signals_;
   std::vector<bool> moving_, turning_;
+  double distance_ratio_ = std::numeric_limits<double>::quiet_NaN();  // wheels / GNSS, straight
   Diagnosis out_;
 };
 

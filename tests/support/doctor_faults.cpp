@@ -157,6 +157,9 @@ std::vector<Fault> faults() {
       {"circumference 15 % off", "",
        [](const fs::path& log) { scale_vehicle_value(log, "circumference_rr_m", 1.15); },
        "vehicle.rr_circumference"},
+      {"track 10 % short", "",
+       [](const fs::path& log) { scale_vehicle_value(log, "track_width_m", 1 / 1.1); },
+       "vehicle.track_width", FindingSeverity::kWarning},
       {"rpm as rad/s", "--wheel-output radps",
        [](const fs::path& log) {
          edit_csv(log / "wheels.csv", [](Row& r) {
