@@ -252,10 +252,7 @@ TEST(TyreModelBatch, AutoFreesTheTrackOfATyreModelWhereVehicleYamlGetsItWrong) {
   // the track held they took the track's share as load transfer too and put the circumferences
   // at rest 32.6 mm off at a sigma of 4.4 mm; fitted with it free, they land within their sigma
   // and find the wider track.
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.route.laps = 1;
-  scenario.vehicle.effective_track_width_m = 1.76;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const sim::SimulatedDrive drive = sim::simulate(testing::realistic_lap_on_track(1.76, 1));
   const Log log = simulated_log(drive);
   BatchOptions options;
   options.max_sigma_circumference_m = 0.01;
@@ -284,12 +281,7 @@ TEST(TyreModelBatch, AutoDoubtsTheTrackWhereOnlyATyreModelShowsIt) {
   // metres, and its heading residual hardly follows the curvature; it lands 76 mm off at a sigma
   // of 2.9 mm. The physical terms that win the criterion show the track: auto fits them with it
   // free as well.
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.route.laps = 1;
-  scenario.seeds.noise = 3;
-  scenario.seeds.trajectory = 3;
-  scenario.vehicle.effective_track_width_m = 1.5;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const sim::SimulatedDrive drive = sim::simulate(testing::realistic_lap_on_track(1.5, 3));
   const Log log = simulated_log(drive);
   const double truth_m = drive.true_params.circumference_rl_m;
   BatchOptions options;

@@ -1,6 +1,8 @@
 #pragma once
 // Simulated drives that several test files share: a car whose body vehicle.yaml does not describe,
-// and an ideal lap whose wheels run on another track than vehicle.yaml states.
+// and laps whose wheels run on another track than vehicle.yaml states.
+
+#include <cstdint>
 
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/sim/scenario.hpp"
@@ -26,6 +28,17 @@ inline sim::Scenario ideal_lap_on_track(double effective_track_m) {
   sim::Scenario scenario = load_scenario("circuit");
   scenario.ideal = true;
   scenario.route.laps = 1;
+  scenario.vehicle.effective_track_width_m = effective_track_m;
+  return scenario;
+}
+
+// One lap of the built-in circuit, realistic (rear-driven, its tyres slipping), noise and
+// trajectory seed `seed`, the wheels on an effective track of `effective_track_m`.
+inline sim::Scenario realistic_lap_on_track(double effective_track_m, std::uint64_t seed) {
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.route.laps = 1;
+  scenario.seeds.noise = seed;
+  scenario.seeds.trajectory = seed;
   scenario.vehicle.effective_track_width_m = effective_track_m;
   return scenario;
 }
