@@ -45,11 +45,6 @@ void decide_difference_identifiability(const CalibrationOptions& options,
                 turned, deg_from_rad(options.min_turning_for_difference_rad));
 }
 
-// Mean position error plus the paper's 10 m/rad of mean heading error.
-double dead_reckoning_score(const DeadReckoningSummary& s) {
-  return s.mean_position_m + 10.0 * s.mean_heading_rad;
-}
-
 // The squared Mahalanobis distance of the nominal circumferences from the estimate under its
 // covariance; infinite when the estimate changed more than the circumferences (track width, tyre
 // model) or moved along a direction its covariance says it cannot (a rank-deficient covariance:
@@ -93,6 +88,10 @@ void refuse_a_gap_beyond_the_estimates_own_sigma(const std::array<double, 2>& ga
 }
 
 }  // namespace
+
+double dead_reckoning_score(const DeadReckoningSummary& s) {
+  return s.mean_position_m + 10.0 * s.mean_heading_rad;
+}
 
 void check_plausibility(const Log& log, const CalibrationOptions& options,
                         CalibrationSummary& summary) {
@@ -182,19 +181,22 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
                                 with_tyre_model(this->log(), summary.nominal, nominal_tyre));
 }
 
+DeadReckoningSummary CalibrationRun::dead_reckon(const CalibrationSummary& summary) {
+  const OdometryParams& e = summary.estimate;
+  const bool finite = std::isfinite(e.circumference_rl_m) && std::isfinite(e.circumference_rr_m) &&
+                      std::isfinite(e.track_width_m) &&
+                      summary.tyre_model.coefficients().allFinite();
+  if (!finite) return summary.before;
+  if (summary.tyre_model.plain()) return evaluator_.evaluate(e);
+  return evaluator_.evaluate(e, with_tyre_model(log(), e, summary.tyre_model));
+}
+
 void CalibrationRun::finish(CalibrationSummary& summary) {
   const OdometryParams& e = summary.estimate;
   const bool finite_estimate = std::isfinite(e.circumference_rl_m) &&
                                std::isfinite(e.circumference_rr_m) &&
                                std::isfinite(e.track_width_m);
-  const bool finite_tyre = summary.tyre_model.coefficients().allFinite();
-  if (!finite_estimate || !finite_tyre) {
-    summary.after = summary.before;
-  } else if (summary.tyre_model.plain()) {
-    summary.after = evaluator_.evaluate(e);
-  } else {
-    summary.after = evaluator_.evaluate(e, with_tyre_model(log(), e, summary.tyre_model));
-  }
+  summary.after = dead_reckon(summary);
   // The hills' projection is uncertain by the noise of the fitted grades: a common scale.
   if (summary.preparation.grade_scale_variance > 0.0 && finite_estimate) {
     const Eigen::Vector2d c(e.circumference_rl_m, e.circumference_rr_m);

@@ -33,6 +33,10 @@ class CalibrationRun {
   // a converged result that makes no physical sense into Termination::kImplausible: not finite,
   // further than max_relative_change from nominal, or dead-reckoning worse than nominal.
   void finish(CalibrationSummary& summary);
+  // The whole log dead-reckoned with the summary's estimate and tyre model (what finish() puts
+  // in `after`), for comparing two fits before either is finished; `before` where the estimate is
+  // not finite.
+  DeadReckoningSummary dead_reckon(const CalibrationSummary& summary);
 
  private:
   const Log& log_;
@@ -41,6 +45,9 @@ class CalibrationRun {
   ReferenceTrajectory reference_;
   WholeLogEvaluator evaluator_;
 };
+
+// Mean position error plus the paper's 10 m/rad of mean heading error: lower dead-reckons better.
+double dead_reckoning_score(const DeadReckoningSummary& summary);
 
 // Turns a summary whose estimate makes no physical sense into Termination::kImplausible, with
 // the likely input mistake in its message (called by finish()).

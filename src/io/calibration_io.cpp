@@ -183,6 +183,8 @@ void add_details(json& out, const BatchSummary& s) {
                             {"track_free", c.track_free},
                             {"held_track_bic", number_or_null(c.held_track_bic)},
                             {"free_track_bic", number_or_null(c.free_track_bic)},
+                            {"held_track_score_m", number_or_null(c.held_track_score_m)},
+                            {"free_track_score_m", number_or_null(c.free_track_score_m)},
                             {"needed", c.needed},
                             {"dead_reckons", c.dead_reckons}});
     }

@@ -303,6 +303,44 @@ TEST(TyreModelBatch, AutoDoubtsTheTrackWhereOnlyATyreModelShowsIt) {
   EXPECT_LT(std::abs(chosen.estimate.circumference_rl_m - truth_m), 0.005) << chosen.full_report();
 }
 
+TEST(TyreModelBatch, AutoHoldsARightTrackThatFreedDeadReckonsTheLogWorse) {
+  // 3 laps of Hockenheim, front-driven, a driver who shares the grip with the turn, the track as
+  // vehicle.yaml states it: the plain fit's heading residual follows the curvature, so the track
+  // is in doubt, and the physical terms' criterion is lower with it free (by 27). The freed track
+  // (1.590 m, 3.4 sigma off) took up part of the model's misfit: the log dead-reckons 39 m with
+  // it and 28 m with the stated one, whose fit therefore stands.
+  std::optional<sim::Scenario> hockenheim = hockenheim_scenario();
+  if (!hockenheim) GTEST_SKIP() << "shared data absent: " << kHockenheimTrack;
+  sim::Scenario& scenario = *hockenheim;
+  scenario.dynamics.drivetrain = sim::Drivetrain::kFront;
+  scenario.driver.friction_ellipse = true;
+  scenario.driver.max_power_wpkg = 80.0;
+  scenario.seeds.noise = scenario.seeds.trajectory = 1;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log log = simulated_log(drive);
+  BatchOptions options;
+  options.max_sigma_circumference_m = 0.01;
+  const BatchSummary chosen = calibrate_batch(log, options);
+  ASSERT_TRUE(chosen.usable()) << chosen.full_report();
+  EXPECT_EQ(chosen.tyre_selection.chosen, "physical") << chosen.full_report();
+  const TyreCandidate& physical = chosen.tyre_selection.candidates.at(0);
+  EXPECT_LT(physical.free_track_bic, physical.held_track_bic);
+  EXPECT_FALSE(physical.track_free);
+  EXPECT_LT(physical.held_track_score_m, physical.free_track_score_m);
+  EXPECT_EQ(chosen.estimate.track_width_m, chosen.nominal.track_width_m);
+  EXPECT_NEAR(chosen.after.mean_position_m + 10.0 * chosen.after.mean_heading_rad,
+              physical.held_track_score_m, 1e-6);
+  for (const auto& [estimate, truth, sigma] :
+       {std::tuple{chosen.estimate.circumference_rl_m, drive.true_params.circumference_rl_m,
+                   chosen.sigma_rl_m()},
+        std::tuple{chosen.estimate.circumference_rr_m, drive.true_params.circumference_rr_m,
+                   chosen.sigma_rr_m()}}) {
+    EXPECT_LT(std::abs(estimate - truth), 3.0 * sigma) << chosen.full_report();
+  }
+  EXPECT_NE(chosen.full_report().find("the track held; free"), std::string::npos);
+  EXPECT_NE(chosen.full_report().find("dead-reckoning the log"), std::string::npos);
+}
+
 TEST(TyreModelBatch, AutoRefusesAPlainFitThatTheTyreModelMovesBeyondTheThreshold) {
   // The realistic urban drive with a rear-driven car (2 km; seeds 3): the mean drive slip puts
   // the plain fit's circumferences ~11 mm short at a sigma of 0.6 mm. The physical terms win the

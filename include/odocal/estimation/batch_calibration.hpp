@@ -67,6 +67,11 @@ struct TyreCandidate {
   bool track_free = false;
   double held_track_bic = std::numeric_limits<double>::quiet_NaN();
   double free_track_bic = std::numeric_limits<double>::quiet_NaN();
+  // Where the track freed won and was fitted held too: each fit's whole-log dead reckoning
+  // (mean position error + 10 m/rad of mean heading error, m). The freed track stands only where
+  // it dead-reckons the log better than vehicle.yaml's (NaN where not compared).
+  double held_track_score_m = std::numeric_limits<double>::quiet_NaN();
+  double free_track_score_m = std::numeric_limits<double>::quiet_NaN();
   // false: refused: its circumferences at rest were not identified (sigma above
   // max_sigma_circumference_m) and agree with the identified plain fit's: the plain fit's sigma
   // widened by the gap between them is still within max_sigma_circumference_m. (Where they do
