@@ -4,7 +4,9 @@
 // The load transfer in a turn changes the wheels' radii by a share that grows with the speed
 // squared, whatever the lateral acceleration (at 10 m/s on a sedan about a tenth of the turn's
 // speed difference), so the scale is fitted as a + b v^2 and `a` is taken; a gyro bias and a
-// left/right circumference difference are fitted beside it (a constant and v).
+// left/right circumference difference are fitted beside it (a constant and v). Only from a log
+// that turns below 10 m/s for 20 s or more: from fast turns alone the extrapolation to rest
+// speed carries the driven wheels' slip.
 
 #include <vector>
 
