@@ -6,6 +6,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "exit_codes.hpp"
 #include "log_window_args.hpp"
@@ -66,6 +68,9 @@ void run_calibrate(const CalibrateArgs& args) {
   LogReadOptions read_options;
   read_options.read_truth = false;  // estimators never see the truth
   const Log log = args.window.apply(read_log(args.log_dir, read_options));
+  // The doctor's warnings do not stop a calibration, but can explain what it finds (a track
+  // the wheels do not roll on, an IMU clock that cannot be checked): shown with its report.
+  std::optional<std::vector<std::string>> doctor_warnings;
   if (!args.force) {
     // The doctor's blocking findings (a flipped sign, a unit, a clock) make any estimate wrong.
     const Diagnosis diagnosis = doctor_log(log, args.log_dir);
@@ -83,13 +88,22 @@ void run_calibrate(const CalibrateArgs& args) {
                       "for all, or --force to calibrate anyway",
                       first, args.log_dir));
     }
+    doctor_warnings.emplace();
+    for (const Finding& f : diagnosis.findings)
+      if (f.severity == FindingSeverity::kWarning) doctor_warnings->push_back(describe(f));
   }
   const AnyCalibrationSummary summary = calibrate(log, config);
   const CalibrationSummary& result = core(summary);
   fmt::print("{}", full_report(summary));
+  if (doctor_warnings) {
+    for (const std::string& warning : *doctor_warnings) fmt::print("{:<13}{}\n", "doctor", warning);
+  }
   // The JSON says why when the result is not usable; the exports carry usable results only.
-  if (!args.json_file.empty())
-    write_output_file(args.json_file, summary_to_json(summary, config).dump(2) + "\n");
+  if (!args.json_file.empty()) {
+    nlohmann::json json = summary_to_json(summary, config);
+    if (doctor_warnings) json["doctor_warnings"] = *doctor_warnings;
+    write_output_file(args.json_file, json.dump(2) + "\n");
+  }
   if (!result.usable()) throw NotUsableResult(result.message);
   if (!args.vehicle_out.empty())
     write_calibrated_vehicle(log.vehicle, result.estimate, args.vehicle_out, result.tyre_model);

@@ -55,6 +55,33 @@ TEST_F(CalibrateCli, PrintsAReportAndWritesJson) {
   EXPECT_EQ(json["configuration"]["measurement_diagonal"][2], 0.01);
 }
 
+TEST_F(CalibrateCli, ShowsTheDoctorsWarningsWithItsReport) {
+  // A vehicle.yaml whose track is 9 % short of the one the wheels roll on: the doctor warns and
+  // does not block, and calibrate shows the warning beside its report and in its JSON.
+  const std::string copy = dir_->file("short-track");
+  std::filesystem::copy(log(), copy, std::filesystem::copy_options::recursive);
+  std::string vehicle = read_text_file(copy + "/vehicle.yaml");
+  const std::size_t at = vehicle.find("track_width_m: ");
+  ASSERT_NE(at, std::string::npos) << vehicle;
+  vehicle.replace(at, vehicle.find('\n', at) - at, "track_width_m: 1.45");
+  dir_->write("short-track/vehicle.yaml", vehicle);
+  const std::string json_file = dir_->file("short-track.json");
+  const auto run = run_cli("calibrate " + copy + " --json " + json_file);
+  EXPECT_NE(run.out.find("doctor       [warning] the wheels roll on a track"), std::string::npos)
+      << run.out;
+  const auto json = nlohmann::json::parse(read_text_file(json_file));
+  ASSERT_EQ(json["doctor_warnings"].size(), 1u) << json["doctor_warnings"];
+  EXPECT_NE(json["doctor_warnings"][0].get<std::string>().find("(vehicle.track_width)"),
+            std::string::npos);
+  // The clean log: the doctor ran and warned of nothing; with --force it did not run.
+  const auto clean = run_cli("calibrate " + log() + " --json " + json_file);
+  ASSERT_EQ(clean.status, 0) << clean.err;
+  EXPECT_EQ(clean.out.find("doctor "), std::string::npos) << clean.out;
+  EXPECT_TRUE(nlohmann::json::parse(read_text_file(json_file))["doctor_warnings"].empty());
+  ASSERT_EQ(run_cli("calibrate " + copy + " --force --json " + json_file).status, 0);
+  EXPECT_FALSE(nlohmann::json::parse(read_text_file(json_file)).contains("doctor_warnings"));
+}
+
 TEST_F(CalibrateCli, OutputIsIdenticalWithoutTheTruthFiles) {
   const std::string copy = dir_->file("no-truth");
   std::filesystem::copy(log(), copy, std::filesystem::copy_options::recursive);
