@@ -266,7 +266,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
         // A freed track that explains the geometry still takes up some of the model's misfit
         // where vehicle.yaml's is right (3 laps of Hockenheim, the grip-sharing driver,
         // front-driven: 9 mm off a right track, its whole-log dead reckoning 31 -> 42 m). The
-        // model is fitted with the track held too: see stated_track_stands.
+        // model is fitted with the track held too: see stated_track_score.
         if (geometry_explained(fitted)) {
           const double score_m = dead_reckoning_score(run.dead_reckon(fitted));
           freed = Freed{std::move(fitted), candidate, physical_circumference, score_m};
@@ -319,11 +319,14 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
     fit_model(run, free_track, common, std::nullopt, fitted);
     all_solves += fitted.solves;
     if (finished) run.finish(fitted);
-    // As for a tyre model's.
-    const std::optional<double> held_score_m = stated_track_score(run, summary);
-    const bool dead_reckons_better =
-        !held_score_m || dead_reckoning_score(run.dead_reckon(fitted)) < *held_score_m;
-    if (geometry_explained(fitted) && (sound(fitted) || !sound(summary)) && dead_reckons_better) {
+    // As for a tyre model's; dead-reckoned only where the rest holds (finish() already did it).
+    const auto dead_reckons_better = [&] {
+      const std::optional<double> held_score_m = stated_track_score(run, summary);
+      return !held_score_m ||
+             dead_reckoning_score(finished ? fitted.after : run.dead_reckon(fitted)) <
+                 *held_score_m;
+    };
+    if (geometry_explained(fitted) && (sound(fitted) || !sound(summary)) && dead_reckons_better()) {
       summary = std::move(fitted);
       selection.plain_track_free = true;
     }
