@@ -17,14 +17,18 @@ what a constant radius should be in gentle driving), the held-out median drift o
 of Hockenheim, with `auto` and the issue's targets, is a section of docs/results.md
 (`make paper`). `--track` drives a centreline or racing line (TUMFTM CSV) instead of a drive's
 own route, `--wear-rl`/`--wear-rr` wear the true tyres, and `--driver grip-sharing` has the
-driver share the grip with the turn at a sedan's power (docs/simulator.md). Run from the
+driver share the grip with the turn at a sedan's power (docs/simulator.md). `--ideal` drives the
+paper's kinematic car instead (no tyre terms in the truth), `--gnss-gauss-markov` gives the
+simulated receiver a correlated error beyond its white noise, and `--batch-option` passes more
+of calibrate.yaml's batch options (docs/batch-calibration.md, "Not seen yet"). Run from the
 repository after `make build`:
 
     ODOCAL_CLI=build/apps/odocal/odocal /usr/bin/python3 bench/tyre_model_bench.py \\
         --seeds 10 --work /tmp/tyre-bench [--drives circuit urban] [--cars scenario low-heavy]
         [--models none extended physical auto] [--max-sigma-m 0.001] [--doppler-sigma-mps 0.05]
         [--fit-doppler-sigma-mps -1] [--track FILE.csv] [--wear-rl MM] [--wear-rr MM]
-        [--driver scenario|grip-sharing] [--json FILE]
+        [--driver scenario|grip-sharing] [--ideal] [--gnss-gauss-markov SIGMA_M TAU_S]
+        [--batch-option KEY=VALUE ...] [--json FILE]
 """
 import argparse
 import json
@@ -61,7 +65,8 @@ def run(*args):
 DRIVERS = {"scenario": {}, "grip-sharing": {"friction_ellipse": True, "max_power_wpkg": 80}}
 
 
-def scenario_file(work, drive, drivetrain, car, doppler_sigma, driver="scenario"):
+def scenario_file(work, drive, drivetrain, car, doppler_sigma, driver="scenario",
+                  gnss_gauss_markov=None, ideal=False):
     scenario = yaml.safe_load(open(os.path.join(SOURCE, "config", "scenarios", f"{drive}.yaml")))
     dynamics = scenario.setdefault("vehicle", {}).setdefault("dynamics", {})
     dynamics["drivetrain"] = drivetrain
@@ -70,6 +75,11 @@ def scenario_file(work, drive, drivetrain, car, doppler_sigma, driver="scenario"
     if doppler_sigma is not None:
         sensors = scenario.setdefault("sensors", {})
         sensors.setdefault("gnss", {})["speed_sigma_mps"] = doppler_sigma
+    if ideal:  # the paper's kinematic car: the truth has no tyre terms
+        scenario["vehicle"]["ideal"] = True
+    if gnss_gauss_markov:
+        gnss = scenario.setdefault("sensors", {}).setdefault("gnss", {})
+        gnss["gauss_markov_sigma_m"], gnss["gauss_markov_tau_s"] = gnss_gauss_markov
     path = os.path.join(work, f"{drive}-{drivetrain}-{car}.yaml")
     yaml.safe_dump(scenario, open(path, "w"))
     return path
@@ -84,11 +94,13 @@ def truth_of(log):
     return values
 
 
-def calibrate(log, model, work, max_sigma_m, doppler_sigma):
+def calibrate(log, model, work, max_sigma_m, doppler_sigma, batch_options=()):
     config = os.path.join(work, f"batch-{model}.yaml")
     doppler = f"  gnss_speed_sigma_mps: {doppler_sigma}\n" if doppler_sigma is not None else ""
+    extra = "".join(f"  {key}: {value}\n" for key, value in batch_options)
     open(config, "w").write(
-        f"batch:\n  tyre_model: {model}\n  max_sigma_circumference_m: {max_sigma_m}\n{doppler}")
+        f"batch:\n  tyre_model: {model}\n  max_sigma_circumference_m: {max_sigma_m}\n{doppler}"
+        f"{extra}")
     result = os.path.join(log, f"result-{model}.json")
     start = time.perf_counter()
     calibrated = run("calibrate", log, "--method", "batch", "--config", config, "--json", result)
@@ -146,8 +158,17 @@ def main():
     parser.add_argument("--wear-rl", type=float, default=0.0, help="mm of radius")
     parser.add_argument("--wear-rr", type=float, default=0.0, help="mm of radius")
     parser.add_argument("--driver", choices=list(DRIVERS), default="scenario")
+    # The simulated receiver's error beyond its white noise (the simulator's effects varied beyond
+    # their defaults), and batch options beyond the model's (KEY=VALUE, as calibrate.yaml's batch:
+    # section takes them), e.g. gnss_gauss_markov_sigma_m=1 to state such an error.
+    parser.add_argument("--gnss-gauss-markov", type=float, nargs=2, metavar=("SIGMA_M", "TAU_S"))
+    parser.add_argument("--ideal", action="store_true", help="kinematic motion, constant radius")
+    parser.add_argument("--batch-option", action="append", default=[], metavar="KEY=VALUE")
     parser.add_argument("--json", help="write every row here")
     args = parser.parse_args()
+    batch_options = [option.split("=", 1) for option in args.batch_option]
+    if any(len(option) != 2 for option in batch_options):
+        parser.error("--batch-option takes KEY=VALUE")
     fit_doppler = (args.fit_doppler_sigma_mps if args.fit_doppler_sigma_mps is not None
                    else args.doppler_sigma_mps)
     shutil.rmtree(args.work, ignore_errors=True)
@@ -161,7 +182,8 @@ def main():
         for drivetrain in args.drivetrains:
             for car in args.cars:
                 scenario = scenario_file(args.work, drive, drivetrain, car,
-                                         args.doppler_sigma_mps, args.driver)
+                                         args.doppler_sigma_mps, args.driver,
+                                         args.gnss_gauss_markov, args.ideal)
                 logs = []
                 for seed in range(1, args.seeds + 1):
                     log = os.path.join(args.work, f"{drive}-{drivetrain}-{car}-{seed}")
@@ -172,7 +194,8 @@ def main():
                     assert made.returncode == 0, made.stderr
                     logs.append(log)
                 for model in args.models:
-                    rows = [calibrate(log, model, args.work, args.max_sigma_m, fit_doppler)
+                    rows = [calibrate(log, model, args.work, args.max_sigma_m, fit_doppler,
+                                      batch_options)
                             for log in logs]
                     errors = [abs(e) for r in rows for e in r["errors"]]
                     inside = [abs(e) <= 3 * s for r in rows
