@@ -196,6 +196,51 @@ TEST(BatchCalibrationNoise, ADriftTheFirstFitHidesInItsTrajectoryIsModelledAtIts
   EXPECT_LT(std::abs(error_rl), 3.0 * adapted.sigma_rl_m());
 }
 
+// The built-in urban drive (2 km in 300 s), kinematic, its receiver's white 3 m at 50 Hz on a
+// Gauss-Markov error of 2 m over 60 s; gnss.csv's sigma_m carries the total.
+sim::SimulatedDrive urban_drive_under_a_wandering_receiver() {
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.ideal = true;
+  scenario.gnss.gauss_markov_sigma_m = 2.0;
+  scenario.gnss.gauss_markov_tau_s = 60.0;
+  return sim::simulate(scenario);
+}
+
+double error_in_sigmas(const BatchSummary& result, const sim::SimulatedDrive& drive) {
+  return std::abs(result.estimate.circumference_rl_m - drive.true_params.circumference_rl_m) /
+         result.sigma_rl_m();
+}
+
+TEST(BatchCalibrationNoise, AStatedCorrelatedErrorSmallerThanTheResidualsShowIsWidened) {
+  // 0.5 m stated: the adaptation, once off under any stated correlated error, now models what
+  // the residuals show, and never less than what was stated (docs/batch-calibration.md).
+  const sim::SimulatedDrive drive = urban_drive_under_a_wandering_receiver();
+  const Log log = simulated_log(drive);
+  BatchOptions batch;
+  batch.tyre_model = TyreModelChoice::kNone;
+  batch.gnss_gauss_markov_sigma_m = 0.5;
+  const BatchSummary adapted = calibrate_batch(log, batch);
+  batch.adapt_gnss_noise = false;
+  const BatchSummary stated = calibrate_batch(log, batch);
+  SCOPED_TRACE(adapted.full_report());
+  ASSERT_TRUE(adapted.gnss_noise.adapted);
+  EXPECT_GT(adapted.gnss_noise.model_gauss_markov_sigma_m, 1.0);
+  EXPECT_NE(adapted.full_report().find("and a correlated"), std::string::npos);
+  EXPECT_LT(error_in_sigmas(adapted, drive), 3.0);
+  EXPECT_GT(error_in_sigmas(stated, drive), 3.0);  // what the stated error alone gave
+}
+
+TEST(BatchCalibrationNoise, AStatedCorrelatedErrorAsLargeAsTheTruthIsLeftAlone) {
+  const sim::SimulatedDrive drive = urban_drive_under_a_wandering_receiver();
+  BatchOptions batch;
+  batch.tyre_model = TyreModelChoice::kNone;
+  batch.gnss_gauss_markov_sigma_m = 2.0;
+  const BatchSummary result = calibrate_batch(simulated_log(drive), batch);
+  SCOPED_TRACE(result.full_report());
+  EXPECT_FALSE(result.gnss_noise.adapted);
+  EXPECT_LT(error_in_sigmas(result, drive), 3.0);
+}
+
 TEST(BatchCalibrationNoise, ACorrectlyConfiguredWhiteNoiseIsLeftAlone) {
   const sim::SimulatedDrive drive = sim::simulate(ideal_lap());
   const BatchSummary result = calibrate_batch(simulated_log(drive));

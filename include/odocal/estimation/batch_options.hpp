@@ -50,8 +50,9 @@ struct BatchOptions {
   RobustLoss gnss_loss = RobustLoss::kCauchy;
   double gnss_loss_scale = 3.0;  // in standard deviations of the fix
   // After the first solve, estimate the GNSS error from the residuals (white and Gauss-Markov)
-  // and solve again with it when it differs from the configured noise (no Gauss-Markov error
-  // configured): the sigma then covers the error when the configured noise is wrong.
+  // and solve again with it when it differs from the configured noise (a white level off by
+  // more than 25 %, or a correlated part above the stated one, which the adapted model keeps as
+  // its least): the sigma then covers the error when the configured noise is wrong.
   bool adapt_gnss_noise = true;
   // gnss.csv's speed_mps column (Doppler speed over ground) against the wheels' distance over each
   // keyframe interval, with this white noise per fix; errors of fixes closer than
