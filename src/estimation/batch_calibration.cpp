@@ -251,6 +251,12 @@ class BatchProblem {
     heading_bias_ = u.heading_bias;
     gyro_bias_ = u.gyro_bias;
     gnss_bias_ = u.gnss_bias;
+    // A solution from under another GNSS noise model (a white one has no Gauss-Markov states):
+    // the states start at zero. Left as they were, a white first estimate put back under an
+    // adapted model had its folds point past the end of an empty vector, into the storage the
+    // adapted solution's states had left behind.
+    const std::size_t bias_states = gauss_markov() ? keyframes_.size() : 0;
+    if (gnss_bias_.size() != bias_states) gnss_bias_.assign(bias_states, Block2{0.0, 0.0});
     count_error_ = u.count_error;
     if (u.gnss_weights) gnss_weights_ = *u.gnss_weights;
   }

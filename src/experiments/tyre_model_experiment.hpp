@@ -21,8 +21,10 @@ namespace odocal::experiments {
 // 16: a reverted GNSS noise adaptation's first estimate standing as it was; 17: auto refuses a
 // tyre model that the plain model with the track width freed fits as well; 18: where auto doubts
 // the track, each tyre model fitted both ways, and the plain model with it free where no tyre
-// model stands; 19: a freed track only where it dead-reckons the log better than the stated one.
-inline constexpr int kTyreModelExperimentVersion = 19;
+// model stands; 19: a freed track only where it dead-reckons the log better than the stated one;
+// 20: GNSS noise adaptation on top of a stated correlated error, and a reverted adaptation's
+// Gauss-Markov states at zero.
+inline constexpr int kTyreModelExperimentVersion = 20;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_ideal: {none}} with
