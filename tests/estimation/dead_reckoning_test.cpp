@@ -107,7 +107,8 @@ Log circle_log(const Circle& circle, double gnss_error_m) {
   Log log;
   log.wheels = circle.wheels;
   std::mt19937 rng(11);
-  std::normal_distribution<double> noise(0.0, gnss_error_m);
+  std::normal_distribution<double> unit(0.0, 1.0);  // times the error: a sigma of 0 is allowed
+  const auto noise = [&](std::mt19937& g) { return gnss_error_m * unit(g); };
   for (std::size_t k = 0; k < circle.truth.size(); k += 5) {
     log.gnss.t_s.push_back(circle.truth.t_s[k]);
     log.gnss.x_m.push_back(circle.truth.pose[k].x() + noise(rng));

@@ -20,7 +20,8 @@ const OdometryParams kParams{2.0, 2.0, 1.6};
 // Appends `seconds` at 50 Hz of speed v and yaw rate w (exact wheel revolutions), plus noise.
 void drive(Log& log, double seconds, double v, double w, double noise_rev = 0.0) {
   std::mt19937 rng(static_cast<unsigned>(log.wheels.size()));
-  std::normal_distribution<double> normal(0.0, noise_rev);
+  std::normal_distribution<double> unit(0.0, 1.0);  // times noise_rev: a sigma of 0 is allowed
+  const auto normal = [&](std::mt19937& g) { return noise_rev * unit(g); };
   const double dt = 0.02;
   for (int i = 0; i < static_cast<int>(seconds / dt + 0.5); ++i) {
     const double t = log.wheels.t_s.empty() ? 0.0 : log.wheels.t_s.back() + dt;
