@@ -344,22 +344,12 @@ class BatchProblem {
   double gauss_markov_tau_s() const { return gm_tau_s_; }
   // RMS over the fixes of the white part of their sigma.
   double white_gnss_sigma_rms_m() const {
-    if (log_.gnss.size() == 0) return 0.0;
-    double sum = 0.0;
-    for (std::size_t j = 0; j < log_.gnss.size(); ++j) {
-      const double given = log_.gnss.sigma_m.empty() ? sensors_.gnss_sigma_m : log_.gnss.sigma_m[j];
-      const double white = white_gnss_sigma_unshared(given);
-      sum += white * white;
-    }
-    return std::sqrt(sum / static_cast<double>(log_.gnss.size()));
+    return rms_over_given_sigmas([this](double given) { return white_gnss_sigma_unshared(given); });
   }
 
   // RMS of the white sigma the fixes were given (gnss.csv's sigma_m, else the configured one).
   double gnss_sigma_rms_m() const {
-    if (log_.gnss.sigma_m.empty()) return white_scale_ * sensors_.gnss_sigma_m;
-    double sum = 0.0;
-    for (const double sigma : log_.gnss.sigma_m) sum += sigma * sigma;
-    return white_scale_ * std::sqrt(sum / static_cast<double>(log_.gnss.sigma_m.size()));
+    return white_scale_ * rms_over_given_sigmas([](double given) { return given; });
   }
 
   // Every fix in the problem: measured minus fitted position (metres), robust loss not applied;
@@ -1003,6 +993,14 @@ class BatchProblem {
     return std::sqrt(std::max(given * given - gm_sigma_m_ * gm_sigma_m_, 0.01 * given * given));
   }
   static double square(double v) { return v * v; }
+  // RMS over the fixes of sigma(the sigma each was given: gnss.csv's, else the configured one).
+  template <typename Sigma>
+  double rms_over_given_sigmas(const Sigma& sigma) const {
+    if (log_.gnss.sigma_m.empty()) return sigma(sensors_.gnss_sigma_m);
+    double sum = 0.0;
+    for (const double given : log_.gnss.sigma_m) sum += square(sigma(given));
+    return std::sqrt(sum / static_cast<double>(log_.gnss.sigma_m.size()));
+  }
 
   ceres::LossFunction* gnss_loss() const {
     switch (batch_.gnss_loss) {
@@ -1648,11 +1646,13 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
   // first fit hid (residuals 0.33 m), the cap modelled 0.99 m and the sigma fell to 0.6 times the
   // Cramer-Rao sigma (bench/honest_sigma.cpp: 87.5 % inside 3 sigma, 100 % without the cap).
   const double min_tau_s = 0.1 * batch.duration_s();
+  const double stretched_sigma_m =
+      noise.gauss_markov_tau_s > 0.0
+          ? noise.gauss_markov_sigma_m * std::sqrt(min_tau_s / noise.gauss_markov_tau_s)
+          : 0.0;
   if (noise.gauss_markov_sigma_m > 0.0 && noise.gauss_markov_tau_s < min_tau_s &&
-      noise.gauss_markov_sigma_m * std::sqrt(min_tau_s / noise.gauss_markov_tau_s) >
-          stated_sigma_m) {
-    set_noise(noise.gauss_markov_sigma_m * std::sqrt(min_tau_s / noise.gauss_markov_tau_s),
-              min_tau_s);
+      stretched_sigma_m > stated_sigma_m) {
+    set_noise(stretched_sigma_m, min_tau_s);
     report.model_gauss_markov_sigma_m = batch.gauss_markov_sigma_m();
     report.model_gauss_markov_tau_s = batch.gauss_markov_tau_s();
     solver = solve_relinearised(batch, options, summary);
