@@ -1,6 +1,7 @@
 #pragma once
 // One batch fit of the plain model or of a tyre model's family of terms, and what tyre_model
-// auto compares of it: batch_calibration.cpp fits, tyre_model_selection.cpp chooses.
+// auto compares of it: batch_calibration.cpp fits (its steps: batch_solve_steps.hpp),
+// tyre_model_selection.cpp chooses.
 
 #include <array>
 #include <functional>

@@ -1,0 +1,34 @@
+#pragma once
+// What vehicle.yaml's body is taken to be uncertain by (1 sigma): a data sheet's numbers for a
+// car as it is loaded and tyred on the day (docs/tyre-model.md). The batch moves each by a step
+// of it to see what the estimate does (batch_considered_uncertainty.cpp) and names them in its
+// verdicts.
+
+#include <fmt/format.h>
+
+#include <string>
+
+#include "odocal/model/tyre_model.hpp"
+
+namespace odocal::batch {
+
+struct BodyUncertainty {
+  const char* key;  // vehicle.yaml's
+  double VehicleBody::*member;
+  double absolute;  // sigma = absolute + relative * value
+  double relative;
+  double sigma(const VehicleBody& body) const { return absolute + relative * (body.*member); }
+  std::string text() const {
+    return absolute > 0.0 ? fmt::format("{} +-{:g}", key, absolute)
+                          : fmt::format("{} +-{:g} %", key, 100.0 * relative);
+  }
+};
+inline constexpr BodyUncertainty kBodyUncertainties[] = {
+    {"rear_axle_load_share", &VehicleBody::rear_axle_load_share, 0.04, 0.0},
+    {"cg_height_m", &VehicleBody::cg_height_m, 0.1, 0.0},
+    {"rear_roll_share", &VehicleBody::rear_roll_share, 0.1, 0.0},
+    {"drag_area_m2", &VehicleBody::drag_area_m2, 0.0, 0.3},
+    {"rolling_resistance", &VehicleBody::rolling_resistance, 0.004, 0.0},
+};
+
+}  // namespace odocal::batch

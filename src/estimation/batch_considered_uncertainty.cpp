@@ -1,0 +1,55 @@
+// The circumferences' sigma from what the batch takes as known: the body's numbers and the held
+// tyre coefficients, each moved by a step of its uncertainty (docs/tyre-model.md).
+#include "batch_body_uncertainty.hpp"
+#include "batch_problem.hpp"
+
+namespace odocal::batch {
+
+void BatchProblem::add_considered_uncertainty() {
+  body_covariance_.setZero();
+  held_covariance_.setZero();
+  body_responses_.clear();
+  held_responses_.clear();
+  if (!tyre_terms_) return;
+  preintegrate_all(0.0, false);
+  const Unknowns solution = unknowns(Folds::kKeep);
+  const VehicleBody stated = body_;
+  const batch::ParamsVector at = Eigen::Map<const batch::ParamsVector>(params_.data());
+  constexpr double kStep = 0.25;
+  const auto respond = [&] {
+    solve(1);
+    const batch::ParamsVector moved =
+        (Eigen::Map<const batch::ParamsVector>(params_.data()) - at) / kStep;
+    set_unknowns(solution);
+    return moved;
+  };
+  for (int j = 0; j < TyreModel::kCoefficients; ++j) {
+    if (!tyre_in_fit(j) || !tyre_held(j)) continue;
+    const auto index = static_cast<std::size_t>(j);
+    const CarCoefficient car = car_coefficient(j);
+    // A regression term has no car's value, and a fit that wandered no word of its own.
+    if (!(car.sigma > 0.0) && tyre_held_wandered_[index]) continue;
+    const double sigma = held_coefficient_sigma(tyre_held_estimate_[index], tyre_held_sigma_[index],
+                                                car, tyre_held_value_[index]);
+    if (!(sigma > 0.0)) continue;
+    params_[static_cast<std::size_t>(kTyreOffset) + index] += kStep * sigma;
+    const batch::ParamsVector moved = respond();
+    held_covariance_ += moved * moved.transpose();
+    held_responses_.push_back({j, {stated, kStep * moved, kStep}});
+  }
+  if (*tyre_terms_ == TyreTerms::kPhysical && !tyre_model().plain()) {
+    for (const BodyUncertainty& uncertainty : kBodyUncertainties) {
+      body_ = stated;
+      body_.*(uncertainty.member) += kStep * uncertainty.sigma(stated);
+      preintegrate_all(0.0, false, Folds::kKeep);
+      const batch::ParamsVector moved = respond();
+      body_covariance_ += moved * moved.transpose();
+      body_responses_.push_back({body_, kStep * moved, kStep});
+    }
+    body_ = stated;
+    preintegrate_all(0.0, false, Folds::kKeep);
+  }
+  solve();  // the solution's own problem again, for the summary (it starts converged)
+}
+
+}  // namespace odocal::batch
