@@ -1,0 +1,97 @@
+// The doctor's check of the streams' clock offsets: each stream's delay against the wheels.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "doctor.hpp"
+
+namespace odocal::detail {
+
+std::vector<double> Doctor::wheel_acceleration() const {
+  const auto half = static_cast<std::size_t>(std::lround(0.5 / signals_.step_s));
+  std::vector<double> acceleration(signals_.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t k = half; half > 0 && k + half < signals_.size(); ++k) {
+    const auto speed = [&](std::size_t i) {
+      return 0.5 * (signals_.speed_rl_mps[i] + signals_.speed_rr_mps[i]);
+    };
+    acceleration[k] =
+        (speed(k + half) - speed(k - half)) / (2.0 * static_cast<double>(half) * signals_.step_s);
+  }
+  return acceleration;
+}
+
+void Doctor::check_clock_offsets() {
+  constexpr double kMaxLagS = 5.0, kMinOffsetS = 0.15;
+  std::vector<double> wheel_speed(signals_.size());
+  for (std::size_t k = 0; k < signals_.size(); ++k)
+    wheel_speed[k] =
+        0.5 * (std::abs(signals_.speed_rl_mps[k]) + std::abs(signals_.speed_rr_mps[k]));
+  // A stronger anti-correlation means the signals disagree in sign (swapped wheels, a negated
+  // gyro): their best positive match is then a spurious lag, not a clock. A peak hardly above
+  // the zero-lag correlation is the vehicle's own dynamics (the course trails the heading
+  // through a turn by its side slip), not a clock.
+  const auto shows_offset = [](const Lag& lag) {
+    return std::isfinite(lag.lag_s) && lag.peak >= 0.5 && lag.peak > -lag.trough &&
+           std::abs(lag.lag_s) >= kMinOffsetS && lag.peak - lag.at_zero >= 0.02;
+  };
+  const auto report = [&](const char* check, const char* stream, const Lag& lag) {
+    if (!shows_offset(lag)) return;
+    add(check, FindingSeverity::kBlocking,
+        fmt::format("the {} clock is offset from the wheels' by {:+.2f} s", stream, lag.lag_s),
+        fmt::format("cross-correlation peaks at {:+.2f} s ({:.2f}; {:.2f} at zero lag)", lag.lag_s,
+                    lag.peak, lag.at_zero),
+        "two loggers on different clocks, or a latency not taken out",
+        fmt::format("time.offset_s: {:+.3f} for {} in the import map", -lag.lag_s, stream));
+    out_.findings.back().estimate = lag.lag_s;
+  };
+  // The GNSS clock from two signals that must agree: the speeds alone would read drive slip
+  // (wheels run ahead while accelerating) as a lag, the course rate alone is noisy.
+  const Lag by_speed =
+      cross_correlation_lag(wheel_speed, signals_.gnss_speed_mps, signals_.step_s, kMaxLagS);
+  std::vector<double> course = signals_.gnss_course_rate_radps;
+  for (double& v : course) v = std::isfinite(v) ? v : 0.0;
+  const Lag by_course =
+      cross_correlation_lag(signals_.wheel_yaw_rate_radps, course, signals_.step_s, kMaxLagS);
+  // Yaw rates carry a clock only where the car turns.
+  const bool turns = count(turning_) >= 50;
+  if (turns && std::isfinite(by_course.lag_s) && by_course.peak > 0.5) {
+    if (std::abs(by_course.lag_s - by_speed.lag_s) < 0.3 || !std::isfinite(by_speed.lag_s))
+      report("time.gnss_offset", "GNSS", by_course);
+  } else if (std::abs(by_speed.lag_s) > 3 * kMinOffsetS) {
+    report("time.gnss_offset", "GNSS", by_speed);
+  }
+  // A slow robot never passes the car-scale motion gate above; its gyro says when it turns.
+  const std::size_t gyro_turning =
+      static_cast<std::size_t>(std::count_if(signals_.gyro_radps.begin(), signals_.gyro_radps.end(),
+                                             [](double w) { return std::abs(w) > 0.1; }));
+  if ((turns || gyro_turning >= 100) && !signals_.gyro_radps.empty()) {
+    // The IMU's clock from two signals that must agree, as the GNSS's: the yaw rates alone
+    // read a rear-driven car's inner wheel, spinning out of every corner, as a lag (3 laps of
+    // Hockenheim: +1.0 s, 0.85 against 0.82 at zero lag). Its forward acceleration against
+    // the wheels' judges, where it varies enough to say anything.
+    const Lag by_yaw = cross_correlation_lag(signals_.wheel_yaw_rate_radps, signals_.gyro_radps,
+                                             signals_.step_s, kMaxLagS);
+    const Lag by_acceleration =
+        cross_correlation_lag(wheel_acceleration(), signals_.ax_mps2, signals_.step_s, kMaxLagS);
+    if (!(std::isfinite(by_acceleration.lag_s) && by_acceleration.peak > 0.5) ||
+        std::abs(by_yaw.lag_s - by_acceleration.lag_s) < 0.3) {
+      report("time.imu_offset", "IMU", by_yaw);
+    } else if (shows_offset(by_yaw) || shows_offset(by_acceleration)) {
+      // Disagreeing, neither is the clock's for sure: said, not blocked.
+      add("time.imu_offset", FindingSeverity::kWarning,
+          "the IMU clock cannot be checked against the wheels'",
+          fmt::format("the yaw rates' cross-correlation peaks at {:+.2f} s ({:.2f}; {:.2f} at "
+                      "zero lag), the forward accelerations' at {:+.2f} s ({:.2f}; {:.2f})",
+                      by_yaw.lag_s, by_yaw.peak, by_yaw.at_zero, by_acceleration.lag_s,
+                      by_acceleration.peak, by_acceleration.at_zero),
+          "a driven wheel spinning out of the corners (its yaw rate trails them), or an IMU "
+          "clock offset",
+          "none for a car driven hard on a driven rear axle; otherwise time.offset_s for IMU "
+          "in the import map");
+    }
+  }
+}
+
+}  // namespace odocal::detail

@@ -1,0 +1,90 @@
+// The doctor's checks of the IMU and the Doppler speed: axes, units and biases at standstill.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "doctor.hpp"
+#include "doppler_scale.hpp"
+#include "odocal/estimation/median.hpp"
+#include "odocal/estimation/standstill.hpp"
+#include "odocal/model/angle.hpp"
+
+namespace odocal::detail {
+
+void Doctor::check_imu_axes() {
+  if (signals_.gyro_radps.empty() || count(turning_) < 50) return;
+  // The wheels' yaw rate unless they are the ones found swapped.
+  const auto& yaw_rate =
+      has("wheels.swapped") ? signals_.gyro_radps : signals_.wheel_yaw_rate_radps;
+  std::vector<double> centripetal(signals_.size());
+  for (std::size_t k = 0; k < signals_.size(); ++k)
+    centripetal[k] = signals_.gnss_speed_mps[k] * yaw_rate[k];
+  const double with_ay = correlation(centripetal, signals_.ay_mps2, turning_);
+  const double with_ax = correlation(centripetal, signals_.ax_mps2, turning_);
+  const std::string evidence =
+      fmt::format("correlation with speed x yaw rate: ay {:+.2f}, ax {:+.2f}", with_ay, with_ax);
+  if (std::abs(with_ax) > 0.5 && std::abs(with_ax) > std::abs(with_ay) + 0.2) {
+    add("imu.axes_swapped", FindingSeverity::kBlocking, "the IMU's x and y axes are swapped",
+        evidence, "the IMU is mounted turned by 90 deg, or its columns are mixed up",
+        "swap ax and ay");
+  } else if (with_ay < -0.5) {
+    add("imu.ay_sign", FindingSeverity::kBlocking, "the lateral acceleration has the wrong sign",
+        evidence, "a forward-right-down IMU read as forward-left-up",
+        "negate ay (import map: imu frame: frd)");
+  }
+}
+
+bool Doctor::check_doppler_unit() {
+  const auto& doppler = signals_.doppler_speed_mps;
+  const auto& positions = signals_.position_speed_long_mps;
+  if (doppler.size() != signals_.size() || positions.size() != signals_.size()) return false;
+  std::vector<double> ratios;
+  for (std::size_t k = 0; k < doppler.size(); ++k) {
+    if (moving_[k] && !turning_[k] && positions[k] > 5.0 && std::isfinite(doppler[k]))
+      ratios.push_back(doppler[k] / positions[k]);
+  }
+  const std::size_t compared = ratios.size();
+  if (compared < 50) return false;
+  const double ratio = median(std::move(ratios));
+  if (std::abs(ratio - 1.0) <= 0.1) return false;
+  std::string likely = likely_speed_unit(ratio);
+  if (likely.empty()) likely = "the column is not a speed over ground in m/s";
+  add("gnss.speed_unit", FindingSeverity::kBlocking, "the GNSS Doppler speed is not in m/s",
+      fmt::format("median Doppler / position speed {:.3f} over {:.0f} s driving straight", ratio,
+                  seconds(compared)),
+      likely, "convert speed_mps to m/s (import map: speed unit), or drop the column");
+  return true;
+}
+
+void Doctor::check_standstill_biases() {
+  if (!facts_.standing) return;
+  if (facts_.imu.samples > 0) {
+    const double sum = facts_.gyro_standing_sum, sum_squares = facts_.gyro_standing_sum_squares;
+    const std::size_t n = facts_.gyro_standing_samples;
+    // A bias, not the gyro's noise over a few standing seconds: 4 standard errors.
+    const double mean = n > 0 ? sum / static_cast<double>(n) : 0.0;
+    const double spread =
+        n > 1 ? std::sqrt(std::max(0.0, (sum_squares - sum * mean) / static_cast<double>(n - 1)))
+              : 0.0;
+    const double standard_error = n > 0 ? spread / std::sqrt(static_cast<double>(n)) : 0.0;
+    if (n > 10 && std::abs(mean) > std::max(rad_from_deg(0.2), 4.0 * standard_error)) {
+      add("imu.gyro_bias", FindingSeverity::kNote, "the gyro has a zero-rate bias",
+          fmt::format("{:+.3f} deg/s at standstill ({} samples, standard error {:.3f} deg/s)",
+                      deg_from_rad(mean), n, deg_from_rad(standard_error)),
+          "an uncalibrated gyro", "none needed: the reference filter estimates it");
+    }
+  }
+  if (const auto& bias = facts_.wheel_rate_bias) {
+    if (std::max(std::abs(bias->rl_rev_per_s), std::abs(bias->rr_rev_per_s)) * 360.0 > 0.1) {
+      add("wheels.rate_bias", FindingSeverity::kNote,
+          "the wheel rate sensors have zero-rate biases",
+          fmt::format("RL {:+.3f} deg/s, RR {:+.3f} deg/s over {:.1f} s standing",
+                      360.0 * bias->rl_rev_per_s, 360.0 * bias->rr_rev_per_s, bias->standing_s),
+          "angular-rate wheel sensors read a little at rest",
+          "none needed: removed before calibrating");
+    }
+  }
+}
+
+}  // namespace odocal::detail
