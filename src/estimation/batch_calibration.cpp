@@ -10,6 +10,7 @@
 #include <cmath>
 #include <optional>
 
+#include "batch_consistency.hpp"
 #include "batch_fit.hpp"
 #include "batch_problem.hpp"
 #include "batch_solve_steps.hpp"
@@ -130,6 +131,7 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
     batch::fit_model(run, options, common, terms, summary);
   }
   if (!finished) run.finish(summary);
+  batch::check_parts_consistency(log, options, common, summary);
   return summary;
 }
 

@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 33> kFields{{
+  static const std::array<OptionField<O>, 34> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -27,6 +27,10 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"adapt_gnss_noise", "", 0, 0,
        "re-solve with the GNSS noise the residuals show when it differs from the configured one",
        &O::adapt_gnss_noise},
+      {"consistency_parts", "1", 0.0, 20.0,
+       "calibrate the log again in this many parts and widen the circumferences' sigma where "
+       "the parts disagree beyond theirs (0: off; at least 2)",
+       &O::consistency_parts},
       {"gnss_speed_sigma_mps", "m/s", -1.0, 100.0,
        "white noise per fix of gnss.csv's speed_mps (Doppler), fitted against the wheels' "
        "distance per keyframe interval; 0: not used; negative: 0.05 where the log has the column, "
@@ -91,7 +95,12 @@ OptionTable<BatchOptions> BatchOptions::fields() {
   return kFields;
 }
 
-std::string BatchOptions::validate() const { return check_option_ranges(fields(), *this); }
+std::string BatchOptions::validate() const {
+  std::string problem = check_option_ranges(fields(), *this);
+  if (problem.empty() && consistency_parts == 1)
+    problem = "consistency_parts = 1 compares a part with nothing: expected 0 (off) or 2 to 20";
+  return problem;
+}
 
 double BatchOptions::doppler_sigma_mps(bool log_has_speed) const {
   if (!log_has_speed) return 0.0;

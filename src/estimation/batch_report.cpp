@@ -113,6 +113,7 @@ std::string BatchSummary::full_report() const {
             : "the physical terms' fit of this log: the regression terms extrapolate to rest no "
               "surer than the two models agree");
   }
+  if (consistency) text += fmt::format("{:<13}{}\n", "consistency", consistency->verdict);
   text += fmt::format("{:<13}{}\n", "solver", usable() ? message : solver_report);
   return text + report_ending(*this);
 }

@@ -156,6 +156,26 @@ void add_details(json& out, const BatchSummary& s) {
   }
   if (s.model_spread_m[0] > 0.0 || s.model_spread_m[1] > 0.0)
     out["model_spread_m"] = {s.model_spread_m[0], s.model_spread_m[1]};
+  if (s.consistency) {
+    const PartsConsistency& c = *s.consistency;
+    nlohmann::json parts = nlohmann::json::array();
+    for (const PartsConsistency::Part& part : c.parts) {
+      nlohmann::json p = {{"from_s", part.from_s}, {"to_s", part.to_s}, {"fitted", part.fitted}};
+      if (part.fitted) {
+        p["circumference_m"] = {part.circumference_m[0], part.circumference_m[1]};
+        p["sigma_m"] = {part.sigma_m[0], part.sigma_m[1]};
+      }
+      parts.push_back(p);
+    }
+    out["consistency"] = {
+        {"parts", parts},
+        {"fitted_parts", c.fitted_parts},
+        {"birge_ratio", {number_or_null(c.birge_ratio[0]), number_or_null(c.birge_ratio[1])}},
+        {"bound", c.bound},
+        {"consistent", c.consistent},
+        {"sigma_scale", {c.sigma_scale[0], c.sigma_scale[1]}},
+        {"verdict", c.verdict}};
+  }
   if (s.body_sigma_m[0] > 0.0 || s.body_sigma_m[1] > 0.0) {
     out["body_sigma_m"] = {s.body_sigma_m[0], s.body_sigma_m[1]};
     nlohmann::json parts = nlohmann::json::object();

@@ -30,5 +30,20 @@ TEST(BatchOptions, TheDopplerSpeedIsFittedByDefaultWhereTheLogHasIt) {
   EXPECT_FALSE(options.validate().empty());
 }
 
+TEST(BatchOptions, ConsistencyPartsAreOffOrAtLeastTwo) {
+  BatchOptions options;
+  EXPECT_EQ(options.consistency_parts, 0);
+  for (const int parts : {0, 2, 4, 20}) {
+    options.consistency_parts = parts;
+    EXPECT_TRUE(options.validate().empty()) << parts;
+  }
+  options.consistency_parts = 1;
+  EXPECT_NE(options.validate().find("consistency_parts = 1"), std::string::npos);
+  options.consistency_parts = 21;
+  EXPECT_NE(options.validate().find("consistency_parts"), std::string::npos);
+  options.consistency_parts = -1;
+  EXPECT_FALSE(options.validate().empty());
+}
+
 }  // namespace
 }  // namespace odocal

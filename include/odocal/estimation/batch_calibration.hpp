@@ -114,6 +114,27 @@ struct ReferenceCircumference {
   bool identified{};  // both sigmas within max_sigma_circumference_m (reported, not judged)
 };
 
+// BatchOptions::consistency_parts: the log calibrated again in consecutive parts, each part's
+// circumferences against the whole log's.
+struct PartsConsistency {
+  struct Part {
+    double from_s{}, to_s{};  // the log's clock
+    // false: the part could not be fitted (too little in it, or its solve failed): left out.
+    bool fitted{};
+    std::array<double, 2> circumference_m{}, sigma_m{};
+  };
+  std::vector<Part> parts;
+  std::size_t fitted_parts{};
+  // Per rear wheel: sqrt(sum over the fitted parts of ((c_k - c) / sigma_k)^2 / (n - 1)), c the
+  // whole log's estimate; about 1 where the sigmas are right. NaN with fewer than 2 parts.
+  std::array<double, 2> birge_ratio{};
+  double bound{};  // the chi-square 95 % quantile for n - 1 degrees of freedom, as a ratio
+  bool consistent = true;
+  // The factor the circumferences' sigma was widened by (1: not widened).
+  std::array<double, 2> sigma_scale{1.0, 1.0};
+  std::string verdict;  // in words
+};
+
 struct BatchSummary : CalibrationSummary {
   std::vector<EstimatedParameter> parameters;  // every unknown besides the poses
   std::string solver_report;                   // Ceres' brief report of the last solve
@@ -164,6 +185,9 @@ struct BatchSummary : CalibrationSummary {
   bool gentle_limits{};
   std::size_t odometry_intervals_used{};
   std::size_t odometry_intervals{};
+  // The split-sample check (BatchOptions::consistency_parts); none where it is off or the whole
+  // log's result was not usable.
+  std::optional<PartsConsistency> consistency;
 
   std::string full_report() const;
 };

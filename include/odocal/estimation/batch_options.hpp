@@ -54,6 +54,14 @@ struct BatchOptions {
   // more than 25 %, or a correlated part above the stated one, which the adapted model keeps as
   // its least): the sigma then covers the error when the configured noise is wrong.
   bool adapt_gnss_noise = true;
+  // Split-sample check (0: off): the log is calibrated again in this many consecutive parts of
+  // equal duration, each with the whole log's tyre model, and the parts' circumferences are
+  // compared with the whole log's by the Birge ratio R (BatchSummary::consistency). Where R is
+  // above the chi-square bound (95 %), an error common to stretches of the log, which the
+  // residuals hide (a GNSS error that wanders over tens of seconds), moves the estimate further
+  // than its sigma says, and the circumferences' sigma is widened by R
+  // (docs/batch-calibration.md, "A check that sees it"). It costs about one more fit of the log.
+  int consistency_parts = 0;
   // gnss.csv's speed_mps column (Doppler speed over ground) against the wheels' distance over each
   // keyframe interval, with this white noise per fix; errors of fixes closer than
   // gnss_speed_correlation_s are taken as one (a receiver filters its velocity). 0: not used.
