@@ -115,26 +115,26 @@ void check_parts_consistency(const Log& log, const BatchOptions& options,
     }
     check.birge_ratio[w] = std::sqrt(sum / dof);
   }
-  const double part_s = (end - begin) / n;
+  const std::string compared =
+      fmt::format("{} of the log's {} parts of {:.0f} s, each calibrated alone,",
+                  check.fitted_parts, n, (end - begin) / n);
   check.consistent = std::max(check.birge_ratio[0], check.birge_ratio[1]) <= check.bound;
   if (check.consistent) {
     check.verdict = fmt::format(
-        "{} of the log's {} parts of {:.0f} s, each calibrated alone, agree with the whole log "
-        "within their sigma (R {:.2f} / {:.2f}, bound {:.2f})",
-        check.fitted_parts, n, part_s, check.birge_ratio[0], check.birge_ratio[1], check.bound);
+        "{} agree with the whole log within their sigma (R {:.2f} / {:.2f}, bound {:.2f})",
+        compared, check.birge_ratio[0], check.birge_ratio[1], check.bound);
     summary.consistency = check;
     return;
   }
   check.sigma_scale = {std::max(1.0, check.birge_ratio[0]), std::max(1.0, check.birge_ratio[1])};
   widen_sigma(check.sigma_scale, summary);
   check.verdict = fmt::format(
-      "{} of the log's {} parts of {:.0f} s, each calibrated alone, disagree with the whole log "
-      "beyond their sigma (R {:.2f} / {:.2f}, above "
-      "{:.2f}): an error shared by stretches of the log moves the estimate further than its "
-      "residuals show, most likely a GNSS error correlated over tens of seconds (state it: "
+      "{} disagree with the whole log beyond their sigma (R {:.2f} / {:.2f}, above {:.2f}): an "
+      "error shared by stretches of the log moves the estimate further than its residuals show, "
+      "most likely a GNSS error correlated over tens of seconds (state it: "
       "gnss_gauss_markov_sigma_m), or a tyre model that fits some of the drive and not the rest; "
       "the circumferences' sigma is widened by R",
-      check.fitted_parts, n, part_s, check.birge_ratio[0], check.birge_ratio[1], check.bound);
+      compared, check.birge_ratio[0], check.birge_ratio[1], check.bound);
   summary.consistency = check;
   std::vector<std::string> refused;
   for (std::size_t w = 0; w < 2; ++w) {
