@@ -29,7 +29,7 @@ test: build
 # -O1 (cmake/odocalSanitizers.cmake, docs/reliability.md "Sanitizers").
 sanitize: deps
 	cmake -S . -B $(ASAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DODOCAL_SANITIZE=ON \
-	      -DODOCAL_BUILD_BENCHMARKS=OFF
+	      -DODOCAL_BUILD_BENCHMARKS=OFF -DODOCAL_BUILD_SLOW_TESTS=OFF
 	cmake --build $(ASAN_DIR) -j $(JOBS)
 	ctest --test-dir $(ASAN_DIR) --output-on-failure -j $(JOBS) -LE 'install|slow'
 
@@ -42,6 +42,7 @@ fuzz-build: deps
 	cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	      -DCMAKE_CXX_COMPILER=clang++ -DODOCAL_FUZZ=ON -DODOCAL_FUNCTION_CLONES=OFF \
 	      -DODOCAL_BUILD_TESTS=OFF -DODOCAL_BUILD_BENCHMARKS=OFF -DODOCAL_BUILD_APPS=OFF \
+	      -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON \
 	      "-DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -DEIGEN_MALLOC_ALREADY_ALIGNED=1"
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target $(FUZZERS:%=%_fuzzer)
 

@@ -3,11 +3,12 @@
 # use: odocal/error.hpp and odocal/options/ (used by all), its own headers and those of the
 # layers it names in SEES. An include in the wrong direction then fails to build.
 #
-#   odocal_add_layer(NAME SOURCES file... SEES layer... [LINK target...])
+#   odocal_add_layer(NAME SOURCES file... SEES layer... [LINK target...] [PRECOMPILE header...])
 #
 # makes the OBJECT library odocal_<NAME>; the odocal library is assembled from their objects.
+# PRECOMPILE names third-party headers to precompile for it (cmake/odocalPrecompiledHeaders.cmake).
 function(odocal_add_layer name)
-  cmake_parse_arguments(arg "" "" "SOURCES;SEES;LINK" ${ARGN})
+  cmake_parse_arguments(arg "" "" "SOURCES;SEES;LINK;PRECOMPILE" ${ARGN})
   set(root "${PROJECT_BINARY_DIR}/layer-include/${name}")
   file(REMOVE_RECURSE "${root}")
   file(MAKE_DIRECTORY "${root}/odocal")
@@ -26,4 +27,5 @@ function(odocal_add_layer name)
   set_target_properties(odocal_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   odocal_set_warnings(odocal_${name})
   odocal_set_sanitizers(odocal_${name})
+  odocal_precompile_headers(odocal_${name} ${arg_PRECOMPILE})
 endfunction()
