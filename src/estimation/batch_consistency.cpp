@@ -1,5 +1,6 @@
 // The split-sample check: each part of the log fitted alone, with the whole log's tyre model and
-// without the refusal and the model judgement (its sigma is the data's, which is what is compared).
+// without the refusal, the model judgement and the dead-reckoning judgement (its sigma is the
+// data's, which is what is compared).
 #include "batch_consistency.hpp"
 
 #include <fmt/format.h>
@@ -83,6 +84,10 @@ void check_parts_consistency(const Log& log, const BatchOptions& options,
   part_options.max_sigma_circumference_m = 1.0;  // the parts' sigma is compared, not judged
   CalibrationOptions part_common = common;
   part_common.judge_model_adequacy = false;
+  // Nor is a part's dead reckoning: a part pulled off by the error the check looks for can
+  // dead-reckon its stretch worse than nominal, and leaving it out would drop the very
+  // disagreement to be measured. The option's maximum (101 times worse) turns the judgement off.
+  part_common.max_dead_reckoning_increase = 100.0;
 
   PartsConsistency check;
   const double begin = log.wheels.t_s.front(), end = log.wheels.t_s.back();
