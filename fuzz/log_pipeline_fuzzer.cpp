@@ -2,6 +2,10 @@
 // input separated by a line "#--") with a fixed vehicle.yaml; read, dead-reckoned and calibrated
 // by the iterative and the augmented method. Bad input ends in an odocal::Error; a result called
 // usable has finite circumferences inside the plausible band, and dead reckoning is finite.
+//
+// The model judgement (batch fits of the same log) is 99 % of a unit's time under the fuzz build:
+// a 7 KB log calibrates in 0.17 s without it and 18 s with it after both methods. It runs after
+// the iterative method on inputs of even length, half of them, so that the mutations get runs.
 
 #include <cmath>
 
@@ -22,7 +26,7 @@ void check_usable(const CalibrationSummary& summary, const CalibrationOptions& o
   fuzz::require(std::isfinite(summary.sigma_rl_m()) && std::isfinite(summary.sigma_rr_m()));
 }
 
-void run(const fs::path& log_dir) {
+void run(const fs::path& log_dir, bool judge) {
   LogReadOptions read_options;
   read_options.read_truth = false;
   const Log log = read_log(log_dir, read_options);
@@ -35,6 +39,7 @@ void run(const fs::path& log_dir) {
   for (const CalibrationMethod method :
        {CalibrationMethod::kIterative, CalibrationMethod::kAugmented}) {
     config.method = method;
+    config.common.judge_model_adequacy = judge && method == CalibrationMethod::kIterative;
     fuzz::expect_only_odocal_errors(
         [&] { check_usable(core(calibrate(log, config)), config.common); });
   }
@@ -55,6 +60,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::error_code ignored;
   fs::remove(dir / "imu.csv", ignored);
   if (parts.size() > 2) fuzz::write_file(dir / "imu.csv", parts[2]);
-  fuzz::expect_only_odocal_errors([&] { run(dir); });
+  fuzz::expect_only_odocal_errors([&] { run(dir, size % 2 == 0); });
   return 0;
 }

@@ -76,6 +76,9 @@ def log_pipeline():
     # so that a fuzzer with a small -max_len reaches every layer.
     parts = [every(EXAMPLE / "wheels.csv", 10), every(EXAMPLE / "gnss.csv", 5)]
     write("log_pipeline", "compact-calibrates", "#--\n".join(parts))
+    # The harness judges the model on inputs of even length: this one is, by a final newline.
+    judged = "#--\n".join(parts)
+    write("log_pipeline", "compact-judged", judged + "\n" * (len(judged.encode()) % 2))
     parts.append(every(EXAMPLE / "imu.csv", 25))
     write("log_pipeline", "compact-with-imu", "#--\n".join(parts))
 
