@@ -25,8 +25,8 @@ test: build
 
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer. The install test is left
 # out (an instrumented static library cannot link into the uninstrumented consumer), and so are
-# the end-to-end runs labelled slow, which `make test` runs in Release. odocal's code is built at
-# -O1 (cmake/odocalSanitizers.cmake, docs/reliability.md "Sanitizers").
+# the end-to-end runs labelled slow (not even built), which `make test` runs in Release. odocal's
+# code is built at -O1 (cmake/odocalSanitizers.cmake, docs/reliability.md "Sanitizers").
 sanitize: deps
 	cmake -S . -B $(ASAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DODOCAL_SANITIZE=ON \
 	      -DODOCAL_BUILD_BENCHMARKS=OFF -DODOCAL_BUILD_SLOW_TESTS=OFF
