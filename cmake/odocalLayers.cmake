@@ -3,12 +3,15 @@
 # use: odocal/error.hpp and odocal/options/ (used by all), its own headers and those of the
 # layers it names in SEES. An include in the wrong direction then fails to build.
 #
-#   odocal_add_layer(NAME SOURCES file... SEES layer... [LINK target...] [PRECOMPILE header...])
+#   odocal_add_layer(NAME SOURCES file... SEES layer... [LINK target...] [PRECOMPILE header...]
+#                    [FUZZ_COUNTERS_ONLY])
 #
 # makes the OBJECT library odocal_<NAME>; the odocal library is assembled from their objects.
-# PRECOMPILE names third-party headers to precompile for it (cmake/odocalPrecompiledHeaders.cmake).
+# PRECOMPILE names third-party headers to precompile for it (cmake/odocalPrecompiledHeaders.cmake),
+# except in the fuzzing build; FUZZ_COUNTERS_ONLY marks numeric code whose integer comparisons the
+# fuzzing build need not trace (cmake/odocalSanitizers.cmake).
 function(odocal_add_layer name)
-  cmake_parse_arguments(arg "" "" "SOURCES;SEES;LINK;PRECOMPILE" ${ARGN})
+  cmake_parse_arguments(arg "FUZZ_COUNTERS_ONLY" "" "SOURCES;SEES;LINK;PRECOMPILE" ${ARGN})
   set(root "${PROJECT_BINARY_DIR}/layer-include/${name}")
   file(REMOVE_RECURSE "${root}")
   file(MAKE_DIRECTORY "${root}/odocal")
@@ -27,5 +30,14 @@ function(odocal_add_layer name)
   set_target_properties(odocal_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   odocal_set_warnings(odocal_${name})
   odocal_set_sanitizers(odocal_${name})
-  odocal_precompile_headers(odocal_${name} ${arg_PRECOMPILE})
+  if(arg_FUZZ_COUNTERS_ONLY)
+    odocal_instrument_for_fuzzing(odocal_${name} COUNTERS_ONLY)
+  else()
+    odocal_instrument_for_fuzzing(odocal_${name})
+  endif()
+  # The fuzzing build compiles each library file on its own includes, so that a missing #include
+  # still fails a build somewhere (cmake/odocalPrecompiledHeaders.cmake).
+  if(NOT ODOCAL_FUZZ)
+    odocal_precompile_headers(odocal_${name} ${arg_PRECOMPILE})
+  endif()
 endfunction()

@@ -3,8 +3,9 @@
 # (docs/reliability.md, "Build time"). Only third-party headers go in: odocal's own change too
 # often, and the layers' include checks (odocalLayers.cmake) must still see each odocal include.
 #
-# -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON builds every file on its own includes, so that a missing
-# #include still fails a build: the fuzz build does so (Makefile).
+# The library's layers are built without them when ODOCAL_FUZZ is on (the sanitizer build of
+# `make sanitize` and `make fuzz`), so that a missing #include in the library still fails a build;
+# -DCMAKE_DISABLE_PRECOMPILE_HEADERS=ON does so for every target.
 function(odocal_precompile_headers target)
   if(ARGN)
     target_precompile_headers(${target} PRIVATE ${ARGN})

@@ -10,7 +10,6 @@
 #include <fstream>
 #include <functional>
 #include <map>
-#include <numbers>
 #include <sstream>
 
 #include "../support/doctor_faults.hpp"
@@ -26,7 +25,6 @@ namespace fs = std::filesystem;
 using testing::read_text_file;
 using testing::run_cli;
 using testing::TempLogDir;
-constexpr double kPi = std::numbers::pi;
 
 using testing::edit_csv;
 using testing::Fault;
