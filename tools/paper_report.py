@@ -465,10 +465,10 @@ def tyre_models(report):
         report.write(f"| {t['target']} | {t['measured']:.3g} | {t['limit']:g} | "
                      f"{'yes' if t['met'] else '**no**'} |")
     report.write()
-    report.write("docs/tyre-model.md says why the slip of the wheels under braking and drive "
-                 "defeats the linear coefficients on this circuit, effect by effect, and why no "
-                 "rolling circumference, however exact, dead-reckons these runs within 3× the "
-                 "ideal mode (the rear axle's side slip alone exceeds it).")
+    report.write("docs/tyre-model.md says what the slip of the wheels under braking and drive "
+                 "does on this circuit, effect by effect, and where the dead reckoning's error "
+                 "comes from (\"The slip curve and the state of one sample\": the slip curve's "
+                 "bend and each wheel sample's own specific force).")
     report.write()
 
 

@@ -11,8 +11,9 @@ state (speed, a_x, a_y, yaw rate) is the truth's too. The factors of both wheels
 least squares with an intercept (per wheel: the error of the circumference at rest that the
 terms' extrapolation leaves) to the regression terms of tyre_model: extended (the first five,
 and all seven) and to the three physical terms of tyre_model: physical, these computed with
-vehicle.yaml's default body from the accelerometer's specific force in imu.csv (window means)
-as the batch computes them; printed: what is left of the factors' differential (heading) and
+vehicle.yaml's default body (and the log's drivetrain) from the accelerometer's specific force
+in imu.csv (window means; the batch takes each wheel sample's own, as --window 1 does) as the
+batch computes them; printed: what is left of the factors' differential (heading) and
 mean (distance) parts, and the intercepts in millimetres. Last, the best that any rolling
 circumference can dead-reckon the log: each sample's ground distance along the true heading (the
 true factors exactly), without the rear axle's sideways motion (its side slip), which no
@@ -48,12 +49,27 @@ def regressors(side, a_x, a_y, v, w, load_terms):
 # vehicle.yaml's default body (odocal/model/tyre_model.hpp's VehicleBody).
 BODY = {"wheelbase_m": 2.7, "rear_axle_load_share": 0.463, "cg_height_m": 0.55,
         "rear_roll_share": 0.45, "mass_kg": 1500.0, "drag_area_m2": 0.7,
-        "rolling_resistance": 0.012}
+        "rolling_resistance": 0.012, "friction": 1.0, "slip_curve_shape": 1.65,
+        "brake_rear_share": 0.35, "all_wheel_drive_rear_share": 0.6}
 
 
-def physical_regressors(side, f_x, f_y, v, w, track):
+def drive_rear_share(log):
+    """The rear axle's share of the drive, from vehicle.yaml's body.drivetrain (unstated: rear)."""
+    match = re.search(r"drivetrain: (\w+)", open(f"{log}/vehicle.yaml").read())
+    drivetrain = match[1] if match else "rear"
+    return {"rear": 1.0, "front": 0.0, "all": BODY["all_wheel_drive_rear_share"]}[drivetrain]
+
+
+def slip_curve_bend(force_over_load):
+    """The magic formula's slip over its linear part (tyre_model.hpp's slip_curve_bend)."""
+    x = np.clip(np.abs(force_over_load) / BODY["friction"], 1e-6, 0.99)
+    c = BODY["slip_curve_shape"]
+    return np.where(np.abs(force_over_load) < 1e-6, 1.0, c * np.tan(np.arcsin(x) / c) / x)
+
+
+def physical_regressors(side, f_x, f_y, v, w, track, drive_share):
     """The physical terms: minus the wheel's load change, minus its force over load (driving,
-    braking), per vehicle mass, as tyre_regressors computes them."""
+    braking) times the slip curve's bend, per vehicle mass, as tyre_regressors computes them."""
     g, b = 9.81, BODY
     length, h = b["wheelbase_m"], b["cg_height_m"]
     static = 0.5 * g * b["rear_axle_load_share"]
@@ -61,9 +77,10 @@ def physical_regressors(side, f_x, f_y, v, w, track):
     tractive = (f_x + 0.6 * b["drag_area_m2"] / b["mass_kg"] * v * v
                 + b["rolling_resistance"] * g + (1 - b["rear_axle_load_share"]) * length * w * w)
     force_over_load = 0.5 * tractive / np.maximum(static + load_change, 0.1 * static)
-    return np.column_stack([np.ones_like(v), -load_change,
-                            np.where(tractive > 0, -force_over_load, 0.0),
-                            np.where(tractive < 0, -force_over_load, 0.0)])
+    driving = -force_over_load * slip_curve_bend(drive_share * force_over_load)
+    braking = -force_over_load * slip_curve_bend(b["brake_rear_share"] * force_over_load)
+    return np.column_stack([np.ones_like(v), -load_change, np.where(tractive > 0, driving, 0.0),
+                            np.where(tractive < 0, braking, 0.0)])
 
 
 def report(name, A_left, A_right, f_left, f_right, circumferences, names):
@@ -142,7 +159,7 @@ def main():
         raise SystemExit("imu.csv must share truth.csv's times")
     window_mean = lambda column: np.array([imu[a:b, column].mean() for a, b in zip(k, n)])
     f_x, f_y, gyro = window_mean(1), window_mean(2), window_mean(3)
-    physical = (f_x[moving], f_y[moving], v[moving], gyro[moving], track)
+    physical = (f_x[moving], f_y[moving], v[moving], gyro[moving], track, drive_rear_share(args.log))
     report("3 physical terms", physical_regressors(1.0, *physical),
            physical_regressors(-1.0, *physical), f_left, f_right, (c_left, c_right),
            ["k_load", "k_drive_slip", "k_brake_slip"])

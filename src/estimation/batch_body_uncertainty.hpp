@@ -17,6 +17,7 @@ struct BodyUncertainty {
   double VehicleBody::*member;
   double absolute;  // sigma = absolute + relative * value
   double relative;
+  bool all_wheel_drive_only = false;  // moves nothing on a car that one axle drives
   double sigma(const VehicleBody& body) const { return absolute + relative * (body.*member); }
   std::string text() const {
     return absolute > 0.0 ? fmt::format("{} +-{:g}", key, absolute)
@@ -29,6 +30,12 @@ inline constexpr BodyUncertainty kBodyUncertainties[] = {
     {"rear_roll_share", &VehicleBody::rear_roll_share, 0.1, 0.0},
     {"drag_area_m2", &VehicleBody::drag_area_m2, 0.0, 0.3},
     {"rolling_resistance", &VehicleBody::rolling_resistance, 0.004, 0.0},
+    // Dry asphalt to a worn tyre on a dusty road; a tyre's curve from its data (C 1.4-1.9); a
+    // brake balance or a torque split from the car's data sheet.
+    {"friction", &VehicleBody::friction, 0.15, 0.0},
+    {"slip_curve_shape", &VehicleBody::slip_curve_shape, 0.15, 0.0},
+    {"brake_rear_share", &VehicleBody::brake_rear_share, 0.05, 0.0},
+    {"all_wheel_drive_rear_share", &VehicleBody::all_wheel_drive_rear_share, 0.1, 0.0, true},
 };
 
 }  // namespace odocal::batch

@@ -39,6 +39,10 @@ void BatchProblem::add_considered_uncertainty() {
   }
   if (*tyre_terms_ == TyreTerms::kPhysical && !tyre_model().plain()) {
     for (const BodyUncertainty& uncertainty : kBodyUncertainties) {
+      if (uncertainty.all_wheel_drive_only && stated.drivetrain != Drivetrain::kAll) {
+        body_responses_.push_back({stated, batch::ParamsVector::Zero(), kStep});  // moves nothing
+        continue;
+      }
       body_ = stated;
       body_.*(uncertainty.member) += kStep * uncertainty.sigma(stated);
       preintegrate_all(0.0, false, Folds::kKeep);

@@ -122,8 +122,15 @@ void fill_states(const WheelStream& wheels, const ImuStream* imu, const Odometry
     // Where the grade is not known the projection left the increments alone: level, as without.
     const bool graded = !wheels.grade.empty() && std::isfinite(wheels.grade[k]);
     const double slope = graded ? slope_gravity_mps2(wheels.grade[k]) : 0.0;
-    state.specific_force_x_mps2 = stored((imu_here ? forward.at(t, h) : longitudinal) + slope);
-    state.specific_force_y_mps2 = stored(imu_here ? left.at(t, h) : speed * yaw_rate);
+    // The accelerometer over this sample's own increment, not over +-h: the physical terms are
+    // products and quotients of force and load with a split at zero force, so a state averaged
+    // over half a second puts the braking into the turn that follows it, and dead reckoning sums
+    // what that does to the wheels' difference (docs/tyre-model.md, "The slip curve and the state
+    // of one sample").
+    const double from = wheels.t_s[k > 0 ? k - 1 : 0], to = wheels.t_s[k > 0 ? k : 1];
+    const double mid = 0.5 * (from + to), half = 0.5 * (to - from);
+    state.specific_force_x_mps2 = stored((imu_here ? forward.at(mid, half) : longitudinal) + slope);
+    state.specific_force_y_mps2 = stored(imu_here ? left.at(mid, half) : speed * yaw_rate);
   }
 }
 

@@ -25,13 +25,17 @@ struct BodyField {
   double VehicleBody::*member;
   PhysicalRange range;
 };
-constexpr std::array<BodyField, 6> kBodyFields{{
+constexpr std::array<BodyField, 10> kBodyFields{{
     {"rear_axle_load_share", &VehicleBody::rear_axle_load_share, kAxleLoadShare},
     {"cg_height_m", &VehicleBody::cg_height_m, kCgHeightM},
     {"rear_roll_share", &VehicleBody::rear_roll_share, kRollShare},
     {"mass_kg", &VehicleBody::mass_kg, kVehicleMassKg},
     {"drag_area_m2", &VehicleBody::drag_area_m2, kDragAreaM2},
     {"rolling_resistance", &VehicleBody::rolling_resistance, kRollingResistance},
+    {"friction", &VehicleBody::friction, kTyreFriction},
+    {"slip_curve_shape", &VehicleBody::slip_curve_shape, kSlipCurveShape},
+    {"brake_rear_share", &VehicleBody::brake_rear_share, kAxleForceShare},
+    {"all_wheel_drive_rear_share", &VehicleBody::all_wheel_drive_rear_share, kAxleForceShare},
 }};
 
 }  // namespace

@@ -79,11 +79,12 @@ TEST(HuskyBag, TyreModelIsNoModelForASkidSteer) {
   // or where a car's value and the log put it), not repeated to the re-weighting limit at each
   // of its fits (72 and 29 solves of their own, and as many again for their criterion under the
   // GNSS noise the plain fit found here). Every coefficient held, each candidate's criterion is
-  // the plain fit's to within a unit (the held values' own small difference).
+  // the plain fit's to within a few units (the held values' own small difference: 2.7 for the
+  // physical terms since their state is each sample's own, 2026-11-30).
   for (const auto& candidate : chosen.at("tyre_selection").at("candidates")) {
     EXPECT_LE(candidate.at("solves").get<int>(), 40) << candidate;
     EXPECT_NEAR(candidate.at("bic").get<double>(),
-                chosen.at("tyre_selection").at("plain_bic").get<double>(), 1.0)
+                chosen.at("tyre_selection").at("plain_bic").get<double>(), 4.0)
         << candidate;
   }
 }

@@ -354,6 +354,10 @@ TEST(VehicleConfigIo, WriteThenReadRoundTrips) {
   vehicle.body.cg_height_m = 0.62;
   vehicle.body.rear_axle_load_share = 0.41;
   vehicle.body.drivetrain = Drivetrain::kFront;
+  vehicle.body.friction = 0.8;
+  vehicle.body.slip_curve_shape = 1.5;
+  vehicle.body.brake_rear_share = 0.3;
+  vehicle.body.all_wheel_drive_rear_share = 0.5;
   write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
   const VehicleConfig read = read_vehicle_config(dir.file("vehicle.yaml"));
   EXPECT_EQ(read.vehicle_id, "van-07.b");
@@ -369,6 +373,10 @@ TEST(VehicleConfigIo, WriteThenReadRoundTrips) {
   EXPECT_EQ(read.body.rear_axle_load_share, 0.41);
   EXPECT_EQ(read.body.mass_kg, VehicleBody{}.mass_kg);
   EXPECT_EQ(read.body.drivetrain, Drivetrain::kFront);
+  EXPECT_EQ(read.body.friction, 0.8);  // the slip curve's
+  EXPECT_EQ(read.body.slip_curve_shape, 1.5);
+  EXPECT_EQ(read.body.brake_rear_share, 0.3);
+  EXPECT_EQ(read.body.all_wheel_drive_rear_share, 0.5);
   // The physical terms' geometry: the vehicle's own wheelbase and rear track.
   EXPECT_EQ(read.body_geometry().wheelbase_m, 2.7);
   EXPECT_EQ(read.body_geometry().track_width_m, 1.58);
@@ -415,6 +423,10 @@ TEST(LogReaderRejects, BodyBeyondAnyVehicle) {
             "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\n"
             "body:\n  mass_kg: 1400\n  drivetrain: 4wd\n");
   expect_input_error(dir, {"vehicle.yaml", 6, "body.drivetrain", "rear, front or all"});
+  dir.write("vehicle.yaml",
+            "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\n"
+            "body:\n  friction: 1\n  slip_curve_shape: 0.5\n");
+  expect_input_error(dir, {"vehicle.yaml", 6, "body.slip_curve_shape", "out of range"});
 }
 
 TEST(LogReaderRejects, TyreCoefficientBeyondAnyTyre) {

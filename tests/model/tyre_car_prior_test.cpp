@@ -31,13 +31,17 @@ TEST(TyreCarPrior, IsACarsValueOfEachPhysicalCoefficientWithItsSignAndSize) {
   body.drivetrain = Drivetrain::kRear;
   EXPECT_DOUBLE_EQ(car(kDriving).mean, 1.0 / 20.0);
   EXPECT_DOUBLE_EQ(car(kDriving).sigma, 1.0 / 20.0);
-  body.drivetrain = Drivetrain::kAll;
+  body.drivetrain = Drivetrain::kAll;  // the body's share of the drive on the rear axle
+  EXPECT_DOUBLE_EQ(car(kDriving).mean, 0.6 / 20.0);
+  body.all_wheel_drive_rear_share = 0.5;
   EXPECT_DOUBLE_EQ(car(kDriving).mean, 0.5 / 20.0);
   body.drivetrain = Drivetrain::kFront;
   EXPECT_EQ(car(kDriving).mean, 0.0);
   EXPECT_DOUBLE_EQ(car(kDriving).sigma, 0.01 / 20.0);  // the model's slop: a hundredth
   // The rear brakes' share over the slip stiffness; the axle slides outwards (negative).
   EXPECT_DOUBLE_EQ(car(kBraking).mean, 0.35 / 20.0);
+  body.brake_rear_share = 0.3;
+  EXPECT_DOUBLE_EQ(car(kBraking).mean, 0.3 / 20.0);
   EXPECT_NEAR(car(kSideSlip).mean, -1.0 / (9.81 * 19.0), 1e-12);
   EXPECT_NEAR(car(kSideSlip).sigma, 1.0 / (9.81 * 19.0), 1e-12);
   for (int j = 0; j < 7; ++j) EXPECT_EQ(car(j).sigma, 0.0) << "regression term " << j;

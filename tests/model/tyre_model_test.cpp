@@ -1,10 +1,13 @@
 // The tyre model's physical terms against closed-form loads and forces of a simple car (a body
 // with no drag, no cornering drag and an easy geometry): at rest, accelerating straight, braking,
-// and in a steady left turn.
+// and in a steady left turn; the slip curve's bend against the magic formula solved numerically.
 
 #include "odocal/model/tyre_model.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
 
 namespace odocal {
 namespace {
@@ -26,6 +29,24 @@ VehicleBody simple_body() {
   return body;
 }
 
+// The slip over its linear part at force over grip x, from the magic formula itself:
+// x = sin(C atan(s / C)) with s the slip in units of the linear slip's slope, solved by bisection
+// below the curve's peak.
+double magic_formula_bend(double x, double shape) {
+  double low = 0.0, high = shape * std::tan(0.5 * std::numbers::pi / shape);  // the curve's peak
+  for (int i = 0; i < 200; ++i) {
+    const double s = 0.5 * (low + high);
+    (std::sin(shape * std::atan(s / shape)) < x ? low : high) = s;
+  }
+  return 0.5 * (low + high) / x;
+}
+
+// The bend the regressors carry for the default brake share and a driven rear axle.
+double driving_bend(double force_over_load) { return magic_formula_bend(force_over_load, 1.65); }
+double braking_bend(double force_over_load) {
+  return magic_formula_bend(0.35 * std::abs(force_over_load), 1.65);
+}
+
 DrivingState state(double speed, double f_x, double f_y, double yaw_rate) {
   DrivingState s;
   s.speed_mps = static_cast<float>(speed);
@@ -41,7 +62,8 @@ TEST(TyreModelPhysicalTerms, RollingResistanceAloneAtConstantSpeed) {
   for (const RearWheel wheel : {RearWheel::kLeft, RearWheel::kRight}) {
     const TyreModel::Vector x = tyre_regressors(state(10.0, 0.0, 0.0, 0.0), wheel, simple_body());
     EXPECT_NEAR(x(kLoad), 0.0, 1e-12);
-    EXPECT_NEAR(x(kDriving), -0.02, 1e-9);
+    EXPECT_NEAR(x(kDriving), -0.02 * driving_bend(0.02), 1e-9);
+    EXPECT_NEAR(x(kDriving), -0.02, 1e-5);  // a small force: the linear slip
     EXPECT_EQ(x(kBraking), 0.0);
   }
 }
@@ -52,7 +74,8 @@ TEST(TyreModelPhysicalTerms, AcceleratingLoadsTheRearAxle) {
   const TyreModel::Vector x =
       tyre_regressors(state(10.0, 2.0, 0.0, 0.0), RearWheel::kLeft, simple_body());
   EXPECT_NEAR(x(kLoad), -0.25, 1e-6);
-  EXPECT_NEAR(x(kDriving), -(1.0 + 0.5 * 0.01 * g) / (g / 4 + 0.25), 1e-6);
+  const double rho = (1.0 + 0.5 * 0.01 * g) / (g / 4 + 0.25);
+  EXPECT_NEAR(x(kDriving), -rho * driving_bend(rho), 1e-6);
   EXPECT_EQ(x(kBraking), 0.0);
 }
 
@@ -62,7 +85,8 @@ TEST(TyreModelPhysicalTerms, BrakingSlipsTheOtherWay) {
       tyre_regressors(state(10.0, -3.0, 0.0, 0.0), RearWheel::kRight, simple_body());
   EXPECT_NEAR(x(kLoad), 0.375, 1e-6);
   EXPECT_EQ(x(kDriving), 0.0);
-  EXPECT_NEAR(x(kBraking), -(-1.5 + 0.5 * 0.01 * g) / (g / 4 - 0.375), 1e-6);
+  const double rho = (-1.5 + 0.5 * 0.01 * g) / (g / 4 - 0.375);
+  EXPECT_NEAR(x(kBraking), -rho * braking_bend(rho), 1e-6);
   EXPECT_GT(x(kBraking), 0.0);  // a braked wheel turns slower: it covers more per revolution
 }
 
@@ -77,8 +101,9 @@ TEST(TyreModelPhysicalTerms, ALeftTurnMovesLoadToTheRightWheel) {
   EXPECT_NEAR(left(kLoad), 0.5, 1e-6);
   EXPECT_NEAR(right(kLoad), -0.5, 1e-6);
   const double force = 0.5 * (0.01 * g + 1.0 * 0.2 * 0.2);
-  EXPECT_NEAR(left(kDriving), -force / (g / 4 - 0.5), 1e-6);
-  EXPECT_NEAR(right(kDriving), -force / (g / 4 + 0.5), 1e-6);
+  const double rho_left = force / (g / 4 - 0.5), rho_right = force / (g / 4 + 0.5);
+  EXPECT_NEAR(left(kDriving), -rho_left * driving_bend(rho_left), 1e-6);
+  EXPECT_NEAR(right(kDriving), -rho_right * driving_bend(rho_right), 1e-6);
   // The regression terms see the same turn through a_y alone, sided.
   EXPECT_NEAR(left(1), 3.0, 1e-6);
   EXPECT_NEAR(right(1), -3.0, 1e-6);
@@ -88,7 +113,50 @@ TEST(TyreModelPhysicalTerms, ALiftedWheelKeepsATenthOfItsLoad) {
   const TyreModel::Vector x =
       tyre_regressors(state(20.0, 1.0, 20.0, 1.0), RearWheel::kLeft, simple_body());
   const double force = 0.5 * (1.0 + 0.01 * g + 1.0 * 1.0 * 1.0);
-  EXPECT_NEAR(x(kDriving), -force / (0.1 * g / 4), 1e-5);
+  // Far beyond the grip: the bend is held where it is at 0.99 of it.
+  EXPECT_NEAR(x(kDriving), -force / (0.1 * g / 4) * driving_bend(0.99), 1e-4);
+}
+
+TEST(TyreModelSlipCurve, BendIsTheMagicFormulasInverse) {
+  const VehicleBody body;
+  for (const double x : {1e-3, 0.1, 0.3, 0.5, 0.75, 0.9, 0.99})
+    EXPECT_NEAR(slip_curve_bend(x, body), magic_formula_bend(x, 1.65), 1e-9) << x;
+  EXPECT_NEAR(slip_curve_bend(0.75, body), 1.242, 1e-3);  // docs/tyre-model.md
+  EXPECT_EQ(slip_curve_bend(0.0, body), 1.0);
+  EXPECT_EQ(slip_curve_bend(-0.5, body), slip_curve_bend(0.5, body));  // braking as driving
+  EXPECT_EQ(slip_curve_bend(5.0, body), slip_curve_bend(0.99, body));  // held below the grip
+}
+
+TEST(TyreModelSlipCurve, LessGripBendsTheSameForceMore) {
+  VehicleBody wet;
+  wet.friction = 0.5;
+  EXPECT_NEAR(slip_curve_bend(0.3, wet), magic_formula_bend(0.6, 1.65), 1e-9);
+  VehicleBody later;
+  later.slip_curve_shape = 1.9;
+  EXPECT_NEAR(slip_curve_bend(0.6, later), magic_formula_bend(0.6, 1.9), 1e-9);
+  // A larger C bends less below the peak: 1 + (1 / 6 + 1 / (3 C^2)) x^2 + ...
+  EXPECT_LT(slip_curve_bend(0.6, later), slip_curve_bend(0.6, VehicleBody{}));
+}
+
+TEST(TyreModelSlipCurve, EachAxleBendsWithItsOwnShareOfTheForce) {
+  // Braking at 3 m/s^2: the bend is taken at the rear brakes' share of the force over load.
+  VehicleBody body = simple_body();
+  body.brake_rear_share = 0.5;
+  const DrivingState braking = state(10.0, -3.0, 0.0, 0.0);
+  const double rho = (-1.5 + 0.5 * 0.01 * g) / (g / 4 - 0.375);
+  EXPECT_NEAR(tyre_regressors(braking, RearWheel::kLeft, body)(kBraking),
+              -rho * magic_formula_bend(0.5 * std::abs(rho), 1.65), 1e-6);
+  // A front-driven car's rear wheels carry none of the drive: no bend on the driving term, whose
+  // coefficient the batch holds at zero.
+  body.drivetrain = Drivetrain::kFront;
+  const DrivingState accelerating = state(10.0, 2.0, 0.0, 0.0);
+  const double driving = (1.0 + 0.5 * 0.01 * g) / (g / 4 + 0.25);
+  EXPECT_NEAR(tyre_regressors(accelerating, RearWheel::kLeft, body)(kDriving), -driving, 1e-6);
+  // All-wheel drive: the rear axle's share of it.
+  body.drivetrain = Drivetrain::kAll;
+  body.all_wheel_drive_rear_share = 0.6;
+  EXPECT_NEAR(tyre_regressors(accelerating, RearWheel::kLeft, body)(kDriving),
+              -driving * magic_formula_bend(0.6 * driving, 1.65), 1e-6);
 }
 
 TEST(TyreModel, CoefficientTableRoundTripsEveryMember) {

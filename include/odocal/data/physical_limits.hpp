@@ -24,6 +24,9 @@ inline constexpr PhysicalRange kRollShare{0.0, 1.0};
 inline constexpr PhysicalRange kVehicleMassKg{1.0, 1e5};
 inline constexpr PhysicalRange kDragAreaM2{0.0, 50.0};
 inline constexpr PhysicalRange kRollingResistance{0.0, 0.2};
+inline constexpr PhysicalRange kTyreFriction{0.1, 2.0};
+inline constexpr PhysicalRange kSlipCurveShape{1.0, 2.0};
+inline constexpr PhysicalRange kAxleForceShare{0.0, 1.0};
 
 // Log streams. Times are seconds on any clock up to 300 years from its zero (Unix time fits);
 // positions are local metres (UTM northings fit); accelerations reach 50 g and rates 50 rad/s

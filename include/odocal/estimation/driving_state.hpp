@@ -4,7 +4,8 @@
 // model applied. Measured from the log itself: speed from the wheels at the given parameters,
 // the turn rate from the gyro where imu.csv has it (the wheels' own turn is what a tyre model
 // corrects) else from the wheels; smoothed over a short window so that encoder steps do not
-// become accelerations.
+// become accelerations. The accelerometer's specific force, which the physical terms' force and
+// load come from, is its mean over each wheel sample's own increment.
 
 #include <vector>
 
@@ -13,9 +14,9 @@
 
 namespace odocal {
 
-// One state per wheel sample. half_window_s: speeds are mean speeds over +-half_window_s, and
-// accelerations differences of those over the same spacing (the window shrinks at the ends and
-// across chain breaks, whose increments are zero).
+// One state per wheel sample. half_window_s: speeds and the yaw rate are means over
+// +-half_window_s, and the wheels' accelerations differences of those over the same spacing (the
+// window shrinks at the ends and across chain breaks, whose increments are zero).
 std::vector<DrivingState> driving_states(const Log& log, const OdometryParams& params,
                                          double half_window_s = 0.25);
 // The same from a wheel stream and the gyro (null: none).

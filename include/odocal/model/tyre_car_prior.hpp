@@ -12,18 +12,15 @@
 namespace odocal {
 
 // Where a car's tyres usually are: the radius's load sensitivity (m per N), the slip stiffness
-// per unit load, the rear axle's share of the braking force, and the rear tyres' cornering
-// stiffness per unit load (per rad).
+// per unit load and the rear tyres' cornering stiffness per unit load (per rad). The rear axle's
+// shares of the brake and drive forces are the body's (drive_rear_share).
 inline constexpr double kCarRadiusPerNewtonM = 0.4e-6;
 inline constexpr double kCarSlipStiffnessPerLoad = 20.0;
-inline constexpr double kCarRearBrakeShare = 0.35;
 inline constexpr double kCarCorneringStiffnessPerLoad = 19.0;
-// The share of the drive force on the rear axle: all of it, or an all-wheel drive's typical
-// 0.5; a free-rolling axle carries none, and what its coefficient can still take up is the
+// A free-rolling axle carries none of the drive, and what its coefficient can still take up is the
 // model's slop: fitted to the simulator's truth (tools/tyre_truth_regression.py; front-driven
 // circuit, urban drive and Hockenheim) at most 4e-4 where its driver holds the road, 1.4e-3
 // where it fishtails, so a hundredth of a driven axle's at 1 sigma.
-inline constexpr double kRearDriveShareAll = 0.5;
 inline constexpr double kRearDriveShareFreeRolling = 0.01;
 
 // A car's physical coefficient: where it is expected and how far from there a car may be.
@@ -51,11 +48,10 @@ inline CarCoefficient car_tyre_coefficient(int j, const VehicleBody& body, doubl
     if (!body.drivetrain) return {0.0, 1.0 / kCarSlipStiffnessPerLoad};
     if (*body.drivetrain == Drivetrain::kFront)
       return {0.0, kRearDriveShareFreeRolling / kCarSlipStiffnessPerLoad};
-    const double share = *body.drivetrain == Drivetrain::kAll ? kRearDriveShareAll : 1.0;
-    return sized(share / kCarSlipStiffnessPerLoad);
+    return sized(drive_rear_share(body) / kCarSlipStiffnessPerLoad);
   }
   if (member == &TyreModel::k_brake_slip)
-    return sized(kCarRearBrakeShare / kCarSlipStiffnessPerLoad);
+    return sized(body.brake_rear_share / kCarSlipStiffnessPerLoad);
   if (member == &TyreModel::k_side_slip_s2pm)
     return sized(-1.0 / (kTyreGravityMps2 * kCarCorneringStiffnessPerLoad));
   return {};

@@ -13,10 +13,11 @@
 // - the physical terms (tyre_model: physical), from the vehicle's body (VehicleBody) and the
 //   accelerometer: the wheel's vertical load change and the force over load that its slip
 //   follows,
-//     -dz_i, -rho_i (driving), -rho_i (braking),
+//     -dz_i, -rho_i b(s_d rho_i) (driving), -rho_i b(s_b rho_i) (braking),
 //   with dz_i = h a_x / (2 L) - s_i r h a_y / t (per vehicle mass), the tractive acceleration
 //   T = a_x + rho_air c_d A v^2 / (2 m) + f_r g + b w^2 and rho_i = (T / 2) / (z_0 + dz_i), z_0 the
-//   wheel's static load per vehicle mass.
+//   wheel's static load per vehicle mass; b() the slip curve's bend (slip_curve_bend), at the
+//   force over load the wheel carries, its axle's share s_d or s_b of the car's.
 // With the physical terms, beside the circumference: the rear axle's side slip angle, which
 // eqs. 1-2 take as zero, beta = k_side_slip f_y (the rear tyres' slip angle grows with the
 // lateral force they carry): the reference point moves at beta from its heading (eq. 1's beta).
@@ -24,6 +25,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -51,8 +53,15 @@ struct VehicleBody {
   double mass_kg = 1500.0;              // m
   double drag_area_m2 = 0.7;            // c_d A
   double rolling_resistance = 0.012;    // f_r
-  // Not a term of the model: what a coefficient held at zero is taken to be uncertain by
-  // (tyre_car_prior.hpp). Unstated: a driven rear axle's, which covers every car.
+  // The slip curve (slip_curve_bend): the tyres' grip on the road, the magic formula's shape
+  // factor C of the longitudinal force, and the rear axle's share of the brakes' force and, on an
+  // all-wheel-driven car, of the drive's.
+  double friction = 1.0;
+  double slip_curve_shape = 1.65;
+  double brake_rear_share = 0.35;
+  double all_wheel_drive_rear_share = 0.6;
+  // Which axle the drive's share above goes to, and what a coefficient held at zero is taken to
+  // be uncertain by (tyre_car_prior.hpp). Unstated: a driven rear axle's, which covers every car.
   std::optional<Drivetrain> drivetrain;
 };
 
@@ -160,6 +169,31 @@ enum class RearWheel { kLeft, kRight };
 // What the physical terms and a car's values of them (tyre_car_prior.hpp) take g to be.
 inline constexpr double kTyreGravityMps2 = 9.81;
 
+// The rear axle's share of the drive force.
+inline double drive_rear_share(const VehicleBody& body) {
+  switch (body.drivetrain.value_or(Drivetrain::kRear)) {
+    case Drivetrain::kFront:
+      return 0.0;
+    case Drivetrain::kAll:
+      return body.all_wheel_drive_rear_share;
+    case Drivetrain::kRear:
+      break;
+  }
+  return 1.0;
+}
+
+// The slip curve's bend: the slip that transmits a force F on a load F_z, over its linear part
+// F / (C_k F_z). The magic formula F = mu F_z sin(C atan(B k)) with B = C_k / (C mu), inverted,
+// gives k = tan(asin(x) / C) / B at x = F / (mu F_z), so the bend is C tan(asin(x) / C) / x:
+// 1 + (1 / 6 + 1 / (3 C^2)) x^2 + ..., 1.24 at x = 0.75 for C = 1.65. A wheel at its grip limit
+// spins or locks, where the slip follows no force: x is held below 0.99.
+inline double slip_curve_bend(double force_over_load, const VehicleBody& body) {
+  const double x = std::min(std::abs(force_over_load) / body.friction, 0.99);
+  if (x < 1e-6) return 1.0;
+  const double c = body.slip_curve_shape;
+  return c * std::tan(std::asin(x) / c) / x;
+}
+
 // d(c_i,eff / c_i) / d coefficients at this state, for one wheel (zero for the side slip).
 inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wheel,
                                          const VehicleBody& body) {
@@ -181,8 +215,16 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
   // A wheel that the turn lifts keeps a tenth of its load: beyond, nothing is linear anyway.
   const double force_over_load =
       0.5 * tractive / std::max(static_load + load_change, 0.1 * static_load);
-  const double driving = tractive > 0.0 ? -force_over_load : 0.0;
-  const double braking = tractive < 0.0 ? -force_over_load : 0.0;
+  // The wheel carries its axle's share of the car's force over load: k_drive_slip and
+  // k_brake_slip hold that share over the slip stiffness, the bend its force.
+  const double driving =
+      tractive > 0.0
+          ? -force_over_load * slip_curve_bend(drive_rear_share(body) * force_over_load, body)
+          : 0.0;
+  const double braking =
+      tractive < 0.0
+          ? -force_over_load * slip_curve_bend(body.brake_rear_share * force_over_load, body)
+          : 0.0;
   return (TyreModel::Vector() << v * v, turn, drive, brake, w * w, drive * turn, brake * turn,
           -load_change, driving, braking, 0.0)
       .finished();
