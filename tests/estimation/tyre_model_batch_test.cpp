@@ -629,6 +629,7 @@ TEST(TyreModelBatch, AFitThatItsResidualsRejectCarriesTheirScatterInItsSigma) {
   expect_inside_3_sigma(result, drive.true_params, result.full_report());
   EXPECT_FALSE(result.usable()) << result.full_report();
   EXPECT_NE(result.full_report().find("every sigma widened"), std::string::npos);
+  EXPECT_NE(result.message.find("misfit"), std::string::npos) << result.message;
   // auto's physical terms explain it, their estimate inside its sigma.
   options.tyre_model = TyreModelChoice::kAuto;
   const BatchSummary chosen = calibrate_batch(log, options);
