@@ -70,6 +70,14 @@ std::string report_ending(const CalibrationSummary& s) {
   text += "dead reckoning of the whole log against the reference:\n";
   text += errors_line("  before", s.before);
   text += errors_line("  after", s.after);
+  if (s.accelerometer_walk.heading_rad > 0.0) {
+    text += fmt::format(
+        "  {:<11}the tyre model takes each sample's force from the accelerometer: its noise "
+        "({:.3g} / {:.3g} m/s^2 forward / left per sample) alone walks this heading by {:.3g} deg "
+        "(1-sigma at the log's end)\n",
+        "noise", s.accelerometer_walk.noise_x_mps2, s.accelerometer_walk.noise_y_mps2,
+        deg_from_rad(s.accelerometer_walk.heading_rad));
+  }
   if (s.usable() && !s.note.empty()) text += fmt::format("{:<13}{}\n", "note", s.note);
   text += s.usable() ? fmt::format("{:<13}usable ({})\n", "outcome", enum_name(s.termination))
                      : fmt::format("{:<13}NOT USABLE ({}): {}\n", "outcome",

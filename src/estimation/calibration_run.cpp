@@ -191,12 +191,26 @@ DeadReckoningSummary CalibrationRun::dead_reckon(const CalibrationSummary& summa
   return evaluator_.evaluate(e, with_tyre_model(log(), e, summary.tyre_model));
 }
 
+AccelerometerWalk CalibrationRun::accelerometer_walk(const CalibrationSummary& summary) const {
+  const Log& prepared = log();
+  if (summary.tyre_model.plain() || !prepared.imu || !summary.tyre_model.coefficients().allFinite())
+    return {};
+  // The states as with_tyre_model counts them in dead reckoning.
+  const OdometryParams& e = summary.estimate;
+  const VehicleBody body = prepared.vehicle.body_geometry();
+  const std::vector<DrivingState> states = driving_states(
+      prepared.wheels, &*prepared.imu, e, driving_states(prepared, e), summary.tyre_model, body);
+  return accelerometer_heading_walk(prepared.wheels, *prepared.imu, states, summary.tyre_model,
+                                    body, e);
+}
+
 void CalibrationRun::finish(CalibrationSummary& summary) {
   const OdometryParams& e = summary.estimate;
   const bool finite_estimate = std::isfinite(e.circumference_rl_m) &&
                                std::isfinite(e.circumference_rr_m) &&
                                std::isfinite(e.track_width_m);
   summary.after = dead_reckon(summary);
+  if (finite_estimate) summary.accelerometer_walk = accelerometer_walk(summary);
   // The hills' projection is uncertain by the noise of the fitted grades: a common scale.
   if (summary.preparation.grade_scale_variance > 0.0 && finite_estimate) {
     const Eigen::Vector2d c(e.circumference_rl_m, e.circumference_rr_m);

@@ -37,6 +37,8 @@ class CalibrationRun {
   // in `after`), for comparing two fits before either is finished; `before` where the estimate is
   // not finite.
   DeadReckoningSummary dead_reckon(const CalibrationSummary& summary);
+  // The heading walk that the accelerometer's noise makes in that dead reckoning.
+  AccelerometerWalk accelerometer_walk(const CalibrationSummary& summary) const;
 
  private:
   const Log& log_;

@@ -131,6 +131,13 @@ TEST(PhysicalTyreBatch, CalibratesARealisticUrbanDriveToTheCircumferenceAtRest) 
     EXPECT_LT(std::abs(estimate - truth_m), 3.0 * physical.sigma_rl_m()) << physical.full_report();
     EXPECT_LT(std::abs(estimate - truth_m), 0.002) << physical.full_report();
   }
+  // The accelerometer's noise, which the physical terms carry into dead reckoning, is found and
+  // its walk stated (its size against Monte Carlo: accelerometer_walk_test.cpp); the plain model
+  // takes nothing from the accelerometer.
+  EXPECT_NEAR(physical.accelerometer_walk.noise_y_mps2, scenario.imu.acc_sigma_mps2, 0.02);
+  EXPECT_GT(physical.accelerometer_walk.heading_rad, 0.0);
+  EXPECT_NE(physical.full_report().find("alone walks this heading"), std::string::npos);
+  EXPECT_EQ(plain.accelerometer_walk.heading_rad, 0.0);
 }
 
 TEST(PhysicalTyreBatch, TheDopplerSpeedSharpensItsCircumferenceAtRest) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "odocal/estimation/accelerometer_walk.hpp"
 #include "odocal/estimation/log_preparation.hpp"
 #include "odocal/estimation/model_adequacy.hpp"
 #include "odocal/estimation/motion_coverage.hpp"
@@ -74,9 +75,12 @@ struct CalibrationSummary {
   std::string identifiability;  // in words, for the user
   DeadReckoningSummary before;  // nominal parameters
   DeadReckoningSummary after;   // the estimate
-  double distance_m{};          // wheel odometry distance while moving (= coverage.distance_m)
-  MotionCoverage coverage;      // over the reference's span
-  LogPreparation preparation;   // standstill, wheel rate bias, first motion, wheel gaps
+  // What the accelerometer's noise alone makes of `after`'s heading through the tyre model
+  // (accelerometer_walk.hpp); zero for the plain model or without an accelerometer.
+  AccelerometerWalk accelerometer_walk;
+  double distance_m{};         // wheel odometry distance while moving (= coverage.distance_m)
+  MotionCoverage coverage;     // over the reference's span
+  LogPreparation preparation;  // standstill, wheel rate bias, first motion, wheel gaps
   std::size_t reference_samples{};
   std::string reference_heading_source;
   // Whether the model explains the log (model_adequacy.hpp): the batch judges its own fit; for
