@@ -23,11 +23,13 @@ namespace odocal::experiments {
 // the track, each tyre model fitted both ways, and the plain model with it free where no tyre
 // model stands; 19: a freed track only where it dead-reckons the log better than the stated one;
 // 20: GNSS noise adaptation on top of a stated correlated error, and a reverted adaptation's
-// Gauss-Markov states at zero.
-inline constexpr int kTyreModelExperimentVersion = 20;
+// Gauss-Markov states at zero; 21: the accelerometer's heading walk, and the grip-sharing drives
+// again with an automotive-grade accelerometer.
+inline constexpr int kTyreModelExperimentVersion = 21;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
-// grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_ideal: {none}} with
+// grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_quiet_accelerometer: {rear: {auto},
+// front: {auto}}, grip_sharing_ideal: {none}} with
 // method_run_to_json entries, each with "tyre_model_used" (whether the result carries one); the
 // grip_sharing runs are the same drives with a driver who shares the grip with the turn and has
 // a sedan's power (docs/simulator.md, "Driver").

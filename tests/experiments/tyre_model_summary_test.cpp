@@ -10,17 +10,19 @@ namespace odocal::experiments {
 namespace {
 
 nlohmann::json run(double error_mm, double sigma_mm, double dr_m, bool with_model,
-                   double seconds = 1.0) {
-  return {{"error_rl_mm", error_mm},          {"error_rr_mm", -error_mm},
-          {"reported_sigma_rl_mm", sigma_mm}, {"reported_sigma_rr_mm", sigma_mm},
-          {"dr_mean_position_m", dr_m},       {"dr_mean_heading_deg", 0.1},
-          {"milliseconds", 1e3 * seconds},    {"tyre_model_used", with_model}};
+                   double seconds = 1.0, double walk_deg = 0.0) {
+  return {{"error_rl_mm", error_mm},           {"error_rr_mm", -error_mm},
+          {"reported_sigma_rl_mm", sigma_mm},  {"reported_sigma_rr_mm", sigma_mm},
+          {"dr_mean_position_m", dr_m},        {"dr_mean_heading_deg", 0.1},
+          {"milliseconds", 1e3 * seconds},     {"tyre_model_used", with_model},
+          {"accelerometer_walk_deg", walk_deg}};
 }
 
 // Both drivetrains alike: none 10 mm off, extended 0.5 mm inside its sigma, physical 3 mm
 // outside its, auto as extended; ideal: none and auto 0.2 mm off with 4 m of dead reckoning.
 // The grip-sharing driver: rear 0.8 mm inside its sigma with 9 m, front 1.5 mm outside its with
-// 30 m, its ideal mode 3 m.
+// 30 m, its ideal mode 3 m; with a quieter accelerometer rear 0.6 mm with 6 m (walk 0.4 and 0.6
+// deg), front 0.4 mm with 4.5 m.
 nlohmann::json seed(int n, double extended_dr_m) {
   nlohmann::json drive{{"none", run(10.0, 1.0, 500.0, false)},
                        {"extended", run(0.5, 1.0, extended_dr_m, true, 2.0 + n)},
@@ -32,6 +34,9 @@ nlohmann::json seed(int n, double extended_dr_m) {
           {"grip_sharing",
            {{"rear", {{"auto", run(0.8, 1.0, 9.0, true)}}},
             {"front", {{"auto", run(1.5, 0.4, 30.0, true)}}}}},
+          {"grip_sharing_quiet_accelerometer",
+           {{"rear", {{"auto", run(0.6, 1.0, 6.0, true, 1.0, n == 1 ? 0.4 : 0.6)}}},
+            {"front", {{"auto", run(0.4, 1.0, 4.5, true, 1.0, 0.3)}}}}},
           {"grip_sharing_ideal", {{"none", run(0.1, 0.1, 3.0, false)}}}};
 }
 
@@ -57,7 +62,7 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
   // Dead reckoning 10 and 14 m with extended/auto (mean 12 m, 3x the ideal 4 m: on the limit).
   const nlohmann::json summary = summarise_tyre_models(
       {seed(1, 10.0), seed(2, 14.0)}, {urban(1, 0.2), urban(2, 0.5), urban(3, 0.25)});
-  ASSERT_EQ(summary.at("rows").size(), 13u);
+  ASSERT_EQ(summary.at("rows").size(), 15u);
   const nlohmann::json& rear_none = summary["rows"][0];
   EXPECT_EQ(rear_none["tyre_model"], "none");
   EXPECT_DOUBLE_EQ(rear_none["mean_abs_error_mm"].get<double>(), 10.0);
@@ -89,7 +94,16 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
   EXPECT_TRUE((*ideal)["met"].get<bool>());
   // The grip-sharing driver's rows and targets, its dead reckoning against its own ideal mode.
   EXPECT_EQ(summary["rows"][10]["mode"], "realistic, grip-sharing driver");
-  EXPECT_EQ(summary["rows"][12]["mode"], "ideal, grip-sharing driver");
+  EXPECT_EQ(summary["rows"][14]["mode"], "ideal, grip-sharing driver");
+  // The same driver with a quieter accelerometer: its rows beside the targets, not among them.
+  const nlohmann::json& quiet_rear = summary["rows"][12];
+  EXPECT_EQ(quiet_rear["mode"], "realistic, grip-sharing driver, 0.05 m/s² accelerometer");
+  EXPECT_EQ(quiet_rear["drivetrain"], "rear");
+  EXPECT_DOUBLE_EQ(quiet_rear["dr_over_ideal"].get<double>(), 2.0);  // 6 m over 3 m
+  EXPECT_DOUBLE_EQ(quiet_rear["mean_accelerometer_walk_deg"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(summary["rows"][13]["mean_abs_error_mm"].get<double>(), 0.4);
+  for (const nlohmann::json& t : summary.at("targets"))
+    EXPECT_EQ(t.at("target").get<std::string>().find("accelerometer"), std::string::npos);
   const auto met = [&](const std::string& what) {
     const nlohmann::json* t = find_target(summary, "grip-sharing driver, " + what);
     EXPECT_NE(t, nullptr) << what;
