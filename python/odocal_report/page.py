@@ -41,6 +41,12 @@ def summary_rows(result):
         if dr:
             rows.append((f"dead reckoning {when}", f"mean {dr['mean_position_m']:.3f} m / "
                          f"{dr['mean_heading_deg']:.3f} deg, max {dr['max_position_m']:.3f} m"))
+    walk = result.get("accelerometer_walk", {})
+    if walk.get("heading_deg", 0.0) > 0.0:
+        rows.append(("accelerometer noise", f"{walk['noise_x_mps2']:.3g} / "
+                     f"{walk['noise_y_mps2']:.3g} m/s² forward / left per sample: through the "
+                     f"tyre model it alone walks the dead-reckoned heading by "
+                     f"{walk['heading_deg']:.3g} deg (1-sigma at the log's end)"))
     for parameter in result.get("parameters", []):
         if parameter.get("estimated") and not parameter["name"].startswith("circumference"):
             rows.append((parameter["name"], f"{parameter['value']:.6g} (1-sigma "
