@@ -88,6 +88,12 @@ TEST(AccelerometerWalk, NoiseEstimateFindsWhiteNoiseUnderASlowSignal) {
   EXPECT_NEAR(white_noise_sigma(noisy.ay_mps2), 0.2, 0.01);
   EXPECT_LT(white_noise_sigma(d.imu.ay_mps2), 1e-3);  // the signal alone
   EXPECT_EQ(white_noise_sigma({1.0, 2.0}), 0.0);
+  // A long drive's channel, whose differences are taken at a stride.
+  std::normal_distribution<double> noise(0.0, 0.05);
+  std::vector<double> long_channel(1000000);
+  for (std::size_t k = 0; k < long_channel.size(); ++k)
+    long_channel[k] = std::sin(1e-3 * static_cast<double>(k)) + noise(random);
+  EXPECT_NEAR(white_noise_sigma(long_channel), 0.05, 0.0015);
 }
 
 // The stated walk against the scatter of the final heading over draws of the noise.
