@@ -4,15 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "odocal/estimation/median.hpp"
+
 namespace odocal {
 namespace {
-
-double median_of(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 // The heading increment of wheel sample k with the model applied at `state`.
 double heading_step(const WheelStream& wheels, std::size_t k, const DrivingState& state,
@@ -58,7 +53,7 @@ double white_noise_sigma(const std::vector<double>& channel) {
     second.push_back(std::abs(channel[k + 1] - 2.0 * channel[k] + channel[k - 1]));
   // A white sample's second difference has variance 6 sigma^2; |N(0, 1)|'s median is 1 / 1.4826.
   constexpr double kMadToSigma = 1.4826;
-  return kMadToSigma * median_of(std::move(second)) / std::sqrt(6.0);
+  return kMadToSigma * median(std::move(second)) / std::sqrt(6.0);
 }
 
 AccelerometerWalk accelerometer_heading_walk(const WheelStream& wheels, const ImuStream& imu,
