@@ -51,9 +51,8 @@ double white_noise_sigma(const std::vector<double>& channel) {
   second.reserve((channel.size() - 2) / stride + 1);
   for (std::size_t k = 1; k + 1 < channel.size(); k += stride)
     second.push_back(std::abs(channel[k + 1] - 2.0 * channel[k] + channel[k - 1]));
-  // A white sample's second difference has variance 6 sigma^2; |N(0, 1)|'s median is 1 / 1.4826.
-  constexpr double kMadToSigma = 1.4826;
-  return kMadToSigma * median(std::move(second)) / std::sqrt(6.0);
+  // A white sample's second difference has variance 6 sigma^2.
+  return normal_sigma_from_absolute(std::move(second)) / std::sqrt(6.0);
 }
 
 AccelerometerWalk accelerometer_heading_walk(const WheelStream& wheels, const ImuStream& imu,

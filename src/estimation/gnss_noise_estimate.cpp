@@ -4,20 +4,9 @@
 #include <cmath>
 #include <optional>
 
+#include "odocal/estimation/median.hpp"
+
 namespace odocal {
-namespace {
-
-// 1.4826 x the median absolute value: sigma of a normal sample, robust to outliers. Reorders
-// `values`; single precision is plenty for a median and halves a long log's copy.
-double robust_sigma(std::vector<float>& values) {
-  if (values.empty()) return 0.0;
-  for (float& v : values) v = std::abs(v);
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return 1.4826 * *middle;
-}
-
-}  // namespace
 
 GnssNoiseEstimate estimate_gnss_noise(const std::vector<GnssResidualSample>& residuals,
                                       double bin_s) {
@@ -30,18 +19,18 @@ GnssNoiseEstimate estimate_gnss_noise(const std::vector<GnssResidualSample>& res
 
 GnssNoiseEstimate estimate_gnss_noise(const GnssResidualSource& residuals, double bin_s) {
   GnssNoiseEstimate estimate;
-  // First pass: the span, and the components for the outlier limit.
+  // First pass: the span, and the components' sizes for the outlier limit (single precision is
+  // plenty for a median and halves a long log's copy).
   std::vector<float> components;
   double t0 = 0.0, t_end = 0.0;
   residuals([&](double t_s, const Eigen::Vector2d& error) {
     if (components.empty()) t0 = t_s;
     t_end = t_s;
-    components.push_back(static_cast<float>(error.x()));
-    components.push_back(static_cast<float>(error.y()));
+    components.push_back(static_cast<float>(std::abs(error.x())));
+    components.push_back(static_cast<float>(std::abs(error.y())));
   });
   if (components.size() < 20) return estimate;
-  const double limit = 5.0 * robust_sigma(components);
-  components = {};
+  const double limit = 5.0 * normal_sigma_from_absolute(std::move(components));
 
   // Total variance, and the means over time bins (the white part averages out within a bin).
   const auto bins = static_cast<std::size_t>((t_end - t0) / bin_s) + 1;
