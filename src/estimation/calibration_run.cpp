@@ -87,6 +87,13 @@ void refuse_a_gap_beyond_the_estimates_own_sigma(const std::array<double, 2>& ga
       1e3 * gap_m[0], 1e3 * gap_m[1], gap_m[0] / own_sigma_m[0], gap_m[1] / own_sigma_m[1]);
 }
 
+// Whether dead reckoning can take the fit (not a diverged one's).
+bool finite_fit(const CalibrationSummary& summary) {
+  const OdometryParams& e = summary.estimate;
+  return std::isfinite(e.circumference_rl_m) && std::isfinite(e.circumference_rr_m) &&
+         std::isfinite(e.track_width_m) && summary.tyre_model.coefficients().allFinite();
+}
+
 }  // namespace
 
 double dead_reckoning_score(const DeadReckoningSummary& s) {
@@ -183,25 +190,26 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
 
 DeadReckoningSummary CalibrationRun::dead_reckon(const CalibrationSummary& summary) {
   const OdometryParams& e = summary.estimate;
-  const bool finite = std::isfinite(e.circumference_rl_m) && std::isfinite(e.circumference_rr_m) &&
-                      std::isfinite(e.track_width_m) &&
-                      summary.tyre_model.coefficients().allFinite();
-  if (!finite) return summary.before;
+  if (!finite_fit(summary)) return summary.before;
   if (summary.tyre_model.plain()) return evaluator_.evaluate(e);
   return evaluator_.evaluate(e, with_tyre_model(log(), e, summary.tyre_model));
 }
 
-AccelerometerWalk CalibrationRun::accelerometer_walk(const CalibrationSummary& summary) const {
+void CalibrationRun::dead_reckon_with_walk(CalibrationSummary& summary) {
   const Log& prepared = log();
-  if (summary.tyre_model.plain() || !prepared.imu || !summary.tyre_model.coefficients().allFinite())
-    return {};
-  // The states as with_tyre_model counts them in dead reckoning.
+  const TyreModel& model = summary.tyre_model;
+  if (model.plain() || !prepared.imu || !finite_fit(summary)) {
+    summary.after = dead_reckon(summary);
+    return;
+  }
+  // The states as with_tyre_model(log, ...) counts them, computed once for both.
   const OdometryParams& e = summary.estimate;
   const VehicleBody body = prepared.vehicle.body_geometry();
-  const std::vector<DrivingState> states = driving_states(
-      prepared.wheels, &*prepared.imu, e, driving_states(prepared, e), summary.tyre_model, body);
-  return accelerometer_heading_walk(prepared.wheels, *prepared.imu, states, summary.tyre_model,
-                                    body, e);
+  const std::vector<DrivingState> states =
+      driving_states(prepared.wheels, &*prepared.imu, e, driving_states(prepared, e), model, body);
+  summary.after = evaluator_.evaluate(e, with_tyre_model(prepared.wheels, states, model, body));
+  summary.accelerometer_walk =
+      accelerometer_heading_walk(prepared.wheels, *prepared.imu, states, model, body, e);
 }
 
 void CalibrationRun::finish(CalibrationSummary& summary) {
@@ -209,8 +217,7 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
   const bool finite_estimate = std::isfinite(e.circumference_rl_m) &&
                                std::isfinite(e.circumference_rr_m) &&
                                std::isfinite(e.track_width_m);
-  summary.after = dead_reckon(summary);
-  if (finite_estimate) summary.accelerometer_walk = accelerometer_walk(summary);
+  dead_reckon_with_walk(summary);
   // The hills' projection is uncertain by the noise of the fitted grades: a common scale.
   if (summary.preparation.grade_scale_variance > 0.0 && finite_estimate) {
     const Eigen::Vector2d c(e.circumference_rl_m, e.circumference_rr_m);

@@ -37,10 +37,12 @@ class CalibrationRun {
   // in `after`), for comparing two fits before either is finished; `before` where the estimate is
   // not finite.
   DeadReckoningSummary dead_reckon(const CalibrationSummary& summary);
-  // The heading walk that the accelerometer's noise makes in that dead reckoning.
-  AccelerometerWalk accelerometer_walk(const CalibrationSummary& summary) const;
 
  private:
+  // What finish() adds to dead_reckon(): the heading walk that the accelerometer's noise makes in
+  // that dead reckoning, from the same driving states.
+  void dead_reckon_with_walk(CalibrationSummary& summary);
+
   const Log& log_;
   const CalibrationOptions& options_;
   std::optional<Log> prepared_;  // only when preparing changed something
