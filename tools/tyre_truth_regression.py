@@ -10,7 +10,8 @@ f_i = distance_i / (revolutions_i c_i) with c_i the static circumference of trut
 state (speed, a_x, a_y, yaw rate) is the truth's too. The factors of both wheels are fitted by
 least squares with an intercept (per wheel: the error of the circumference at rest that the
 terms' extrapolation leaves) to the regression terms of tyre_model: extended (the first five,
-and all seven) and to the three physical terms of tyre_model: physical, these computed with
+and all seven) and to the three physical terms of tyre_model: physical (their slip dividing the
+circumference, as odocal's factor; and, for comparison, in the linear form), these computed with
 vehicle.yaml's default body (and the log's drivetrain) from the accelerometer's specific force
 in imu.csv (window means; the batch takes each wheel sample's own, as --window 1 does) as the
 batch computes them; printed: what is left of the factors' differential (heading) and
@@ -160,9 +161,17 @@ def main():
     window_mean = lambda column: np.array([imu[a:b, column].mean() for a, b in zip(k, n)])
     f_x, f_y, gyro = window_mean(1), window_mean(2), window_mean(3)
     physical = (f_x[moving], f_y[moving], v[moving], gyro[moving], track, drive_rear_share(args.log))
-    report("3 physical terms", physical_regressors(1.0, *physical),
-           physical_regressors(-1.0, *physical), f_left, f_right, (c_left, c_right),
-           ["k_load", "k_drive_slip", "k_brake_slip"])
+    A_left, A_right = physical_regressors(1.0, *physical), physical_regressors(-1.0, *physical)
+    names = ["k_load", "k_drive_slip", "k_brake_slip"]
+    # The slip divides (c (1 + k_load x_load) / (1 + kappa), tyre_factor_with_gradient): with
+    # 1 + f the true factor, f = delta + k_load x_load - kappa (1 + f), linear in the coefficients.
+    divided_left, divided_right = A_left.copy(), A_right.copy()
+    divided_left[:, 2:] *= (1.0 + f_left)[:, None]
+    divided_right[:, 2:] *= (1.0 + f_right)[:, None]
+    report("3 physical terms", divided_left, divided_right, f_left, f_right, (c_left, c_right),
+           names)
+    report("3 physical terms, slip linear (c (1 - kappa), odocal before 2026-11-30)", A_left,
+           A_right, f_left, f_right, (c_left, c_right), names)
     x, y = truth[:, 1], truth[:, 2]
     course, along_step = path_steps(truth)
     reckoned_x = x[0] + np.concatenate([[0.0], np.cumsum(along_step * np.cos(course))])

@@ -46,6 +46,12 @@ inline constexpr double kMaxTyreEffect = 0.03;
 // Nor is a side slip of more than this at the log's RMS lateral acceleration: a rear axle past
 // 6 degrees of slip angle is sliding (a car's rear tyres reach ~0.03 rad at 5 m/s^2).
 inline constexpr double kMaxSideSlipRad = 0.1;
+// Nor a slip coefficient beyond a tyre's, judged as itself and not by its effect: k_drive_slip
+// and k_brake_slip are the axle's share of the force over the slip stiffness per unit load, 10
+// to 30 for road tyres (tyre_car_prior.hpp takes 20). Their effect at the RMS state is the
+// tyre's slip, percents on a circuit driven to the grip: a tyre of 14 on Hockenheim slips 3.4 %
+// RMS while driving.
+inline constexpr double kMaxSlipCoefficient = 0.1;
 
 // Fits one model (the plain one, or a tyre model's family of terms); unless `finish` (when
 // given) declines the solved fit, adapts its GNSS noise and fills the summary. Returns whether it

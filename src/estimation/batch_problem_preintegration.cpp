@@ -134,16 +134,25 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
                                                 std::max(kMinSpeedMps, 5.0 * doppler_sigma_mps_));
   if (!interval) return std::nullopt;
   batch::SpeedResidual r;
+  const TyreModel model = tyre_model();
+  const TyreModel::Vector at_k = model.coefficients();
+  // The factor to first order about the coefficients the residual is built at (it is rebuilt
+  // with them): exact there, and in every coefficient but the slip's divisor.
+  const auto add_tyre = [&](std::size_t k, RearWheel wheel, double half_rev) {
+    const TyreFactor f = tyre_factor_with_gradient(model, states_[k], wheel, body_);
+    const int w = wheel == RearWheel::kLeft ? 0 : 1;
+    r.half_revolutions[static_cast<std::size_t>(w)] +=
+        half_rev * (f.value - 1.0 - f.gradient.dot(at_k));
+    r.half_tyre_revolutions.row(w) += half_rev * f.gradient.transpose();
+  };
   for (std::size_t k = keyframes_[i] + 1; k <= keyframes_[i + 1]; ++k) {
     const WheelIncrement n = log_.wheels.increment(k);
     if (n.rev_rl < 0.0 || n.rev_rr < 0.0) return std::nullopt;
     r.half_revolutions[0] += 0.5 * n.rev_rl;
     r.half_revolutions[1] += 0.5 * n.rev_rr;
     if (!tyre_fitted()) continue;
-    r.half_tyre_revolutions.row(0) +=
-        0.5 * n.rev_rl * tyre_regressors(states_[k], RearWheel::kLeft, body_).transpose();
-    r.half_tyre_revolutions.row(1) +=
-        0.5 * n.rev_rr * tyre_regressors(states_[k], RearWheel::kRight, body_).transpose();
+    add_tyre(k, RearWheel::kLeft, 0.5 * n.rev_rl);
+    add_tyre(k, RearWheel::kRight, 0.5 * n.rev_rr);
     const double half_square = 0.5 * square(side_slip_regressor(states_[k]));
     r.half_side_slip_revolutions[0] += 0.5 * n.rev_rl * half_square;
     r.half_side_slip_revolutions[1] += 0.5 * n.rev_rr * half_square;

@@ -34,7 +34,8 @@ ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions&
                                         BatchSummary& summary, TyreTerms terms);
 
 // The largest coefficient's effect at the log's RMS driving state, relative to kMaxTyreEffect's
-// 3 % of circumference; the side slip's (rad) counts against kMaxSideSlipRad instead.
+// 3 % of circumference; the side slip's (rad) counts against kMaxSideSlipRad instead, the slip
+// coefficients themselves against kMaxSlipCoefficient.
 double max_tyre_effect(const BatchProblem& batch);
 
 // Whether adapt_gnss_noise measures how much the adaptation widened the circumferences' sigma

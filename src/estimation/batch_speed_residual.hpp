@@ -41,16 +41,17 @@ std::optional<DopplerInterval> doppler_interval(const GnssStream& gnss, double b
                                                 double end_s, double max_gap_s,
                                                 double min_speed_mps);
 
-// The wheels' distance over the interval, exact in the circumferences and the tyre coefficients:
-// sum over the wheels of c_w / 2 (n_w + x_w . k + q_w,end - q_w,begin), n_w the logged
-// revolutions, x_w their sum weighted by each increment's tyre regressors, q_w the keyframes' count
-// errors. The wheels roll at the side slip angle beta = k_side_slip f_y from the course, so the
-// ground is longer by 1 / cos(beta): z_w, the revolutions weighted by f_y^2 / 2, times k^2 (to
-// second order). The Doppler speed is the antenna's: with a lever arm l and yaw rate w, the
-// reference point's speed is w l_y + sqrt(|v|^2 - (w l_x)^2) (its side slip neglected here: the
-// lever's across-track speed is small beside the speed). A fix stamped t reports the speed at t -
-// latency, so the interval's true distance is the integral plus latency x (speed at end - speed at
-// begin).
+// The wheels' distance over the interval, exact in the circumferences and, about the coefficients
+// it is built at, to first order in the tyre's (exact but in the slip's divisor): sum over the
+// wheels of c_w / 2 (n_w + x_w . k + q_w,end - q_w,begin), n_w the logged revolutions (with the
+// factor's part not linear in k), x_w their sum weighted by each increment's factor gradient, q_w
+// the keyframes' count errors. The wheels roll at the side slip angle beta = k_side_slip f_y from
+// the course, so the ground is longer by 1 / cos(beta): z_w, the revolutions weighted by f_y^2 / 2,
+// times k^2 (to second order). The Doppler speed is the antenna's: with a lever arm l and yaw rate
+// w, the reference point's speed is w l_y + sqrt(|v|^2 - (w l_x)^2) (its side slip neglected here:
+// the lever's across-track speed is small beside the speed). A fix stamped t reports the speed at t
+// - latency, so the interval's true distance is the integral plus latency x (speed at end - speed
+// at begin).
 struct SpeedResidual {
   std::array<double, 2> half_revolutions{};
   Eigen::Matrix<double, 2, TyreModel::kCoefficients> half_tyre_revolutions =

@@ -165,11 +165,10 @@ void measure_driving_states_again(const WheelStream& wheels, const ImuStream* im
                                   double half_window_s) {
   if (states.size() != wheels.size())
     throw std::invalid_argument("driving_states: one driving state per wheel sample");
-  const TyreModel::Vector k = model.coefficients();
   fill_states(
       wheels, imu, params, half_window_s,
       [&](std::size_t sample, RearWheel wheel) {
-        return 1.0 + k.dot(tyre_regressors(states[sample], wheel, body));
+        return tyre_factor(model, states[sample], wheel, body);
       },
       states);
 }

@@ -29,14 +29,14 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
   for (std::size_t s = 1; s < count; ++s) {
     const WheelIncrement raw = wheels.increment(first_sample + s);
     WheelIncrement n = raw;
-    TyreModel::Vector regressors_rl, regressors_rr;
+    TyreFactor factor_rl{}, factor_rr{};
     double side_slip = 0.0, side_slip_per_coefficient = 0.0;
     if (tyre != nullptr) {
       const DrivingState& state = tyre->states[first_sample + s];
-      regressors_rl = tyre_regressors(state, RearWheel::kLeft, tyre->body);
-      regressors_rr = tyre_regressors(state, RearWheel::kRight, tyre->body);
-      n.rev_rl *= 1.0 + k.dot(regressors_rl);
-      n.rev_rr *= 1.0 + k.dot(regressors_rr);
+      factor_rl = tyre_factor_with_gradient(tyre->model, state, RearWheel::kLeft, tyre->body);
+      factor_rr = tyre_factor_with_gradient(tyre->model, state, RearWheel::kRight, tyre->body);
+      n.rev_rl *= factor_rl.value;
+      n.rev_rr *= factor_rr.value;
       side_slip_per_coefficient = side_slip_regressor(state);
       side_slip = k(kSideSlipCoefficient) * side_slip_per_coefficient;
     }
@@ -49,8 +49,8 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
     segment.J_delta_params[s] = F * segment.J_delta_params[s - 1] + J_params;
     if (tyre != nullptr) {
       Eigen::Matrix<double, 2, TyreModel::kCoefficients> J_increment_tyre;
-      J_increment_tyre.row(0) = raw.rev_rl * regressors_rl.transpose();
-      J_increment_tyre.row(1) = raw.rev_rr * regressors_rr.transpose();
+      J_increment_tyre.row(0) = raw.rev_rl * factor_rl.gradient.transpose();
+      J_increment_tyre.row(1) = raw.rev_rr * factor_rr.gradient.transpose();
       segment.J_delta_tyre[s] = F * segment.J_delta_tyre[s - 1] + G * J_increment_tyre;
       segment.J_delta_tyre[s].col(kSideSlipCoefficient) += J_side_slip * side_slip_per_coefficient;
       // The count errors are errors of the raw counts: they carry the factors too.

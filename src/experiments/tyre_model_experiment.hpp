@@ -24,8 +24,10 @@ namespace odocal::experiments {
 // model stands; 19: a freed track only where it dead-reckons the log better than the stated one;
 // 20: GNSS noise adaptation on top of a stated correlated error, and a reverted adaptation's
 // Gauss-Markov states at zero; 21: the accelerometer's heading walk, and the grip-sharing drives
-// again with an automotive-grade accelerometer.
-inline constexpr int kTyreModelExperimentVersion = 21;
+// again with an automotive-grade accelerometer; 22: the physical terms' slip divides the
+// circumference (c / (1 + kappa), not c (1 - kappa)); 23: a physical slip coefficient judged as
+// itself (at most 0.1), not by its effect at the log's RMS state.
+inline constexpr int kTyreModelExperimentVersion = 23;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_quiet_accelerometer: {rear: {auto},

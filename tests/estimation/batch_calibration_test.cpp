@@ -155,6 +155,11 @@ TEST(BatchCalibrationNoise, AWronglyConfiguredGnssNoiseIsEstimatedAndTheSigmaCov
   const BatchSummary adapted = calibrate_batch(log, {}, claimed);
   BatchOptions fixed;
   fixed.adapt_gnss_noise = false;
+  // The regression terms, which auto chooses here: they take up some of the drift. (Under auto
+  // their sigma also carries their gap to the physical terms' fit, 3.7 mm since the physical
+  // slip divides the circumference, 2026-11-30, which covers this error for a reason that is not
+  // the noise; the plain model's misfit widens its sigma past it as well.)
+  fixed.tyre_model = TyreModelChoice::kExtended;
   const BatchSummary configured = calibrate_batch(log, fixed, claimed);
   SCOPED_TRACE(adapted.full_report());
   ASSERT_TRUE(adapted.gnss_noise.adapted);
@@ -175,7 +180,7 @@ TEST(BatchCalibrationNoise, AWronglyConfiguredGnssNoiseIsEstimatedAndTheSigmaCov
   // Without the adaptation the sigma is far too small for the same error (the reason it exists).
   const double error_fixed =
       configured.estimate.circumference_rl_m - drive.true_params.circumference_rl_m;
-  EXPECT_GT(std::abs(error_fixed), 3.0 * configured.sigma_rl_m());
+  EXPECT_GT(std::abs(error_fixed), 3.0 * configured.sigma_rl_m()) << configured.full_report();
 }
 
 TEST(BatchCalibrationNoise, ADriftTheFirstFitHidesInItsTrajectoryIsModelledAtItsSize) {

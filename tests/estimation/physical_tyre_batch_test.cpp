@@ -345,7 +345,8 @@ TEST(PhysicalTyreBatch, AFreeRollingAxlesDriveSlipIsHeldAtZeroNotFitted) {
   // Held at zero from the start, with the model's slop for its spread, c_RL is 0.4 mm off at
   // sigma 1.2 mm (0.6 mm before the state was each sample's own, 2026-11-30: the centre of
   // gravity's height and the roll share, which split the turn's load between the wheels, now move
-  // the fit that the heading follows by more).
+  // the fit that the heading follows by more). Since the slip divides the circumference
+  // (2026-11-30, evening) its sigma is 1.6 mm, the error still below 1 mm.
   sim::Scenario scenario = load_scenario("circuit");
   scenario.dynamics.drivetrain = sim::Drivetrain::kFront;
   scenario.seeds.noise = 2;
@@ -371,7 +372,7 @@ TEST(PhysicalTyreBatch, AFreeRollingAxlesDriveSlipIsHeldAtZeroNotFitted) {
   for (std::size_t wheel = 0; wheel < 2; ++wheel) {
     EXPECT_LT(std::abs(estimate[wheel] - truth[wheel]), 1e-3) << physical.full_report();
     EXPECT_LT(std::abs(estimate[wheel] - truth[wheel]), 3.0 * sigma[wheel]);
-    EXPECT_LT(sigma[wheel], 1.5e-3) << physical.full_report();
+    EXPECT_LT(sigma[wheel], 2e-3) << physical.full_report();
   }
 }
 

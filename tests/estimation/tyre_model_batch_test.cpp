@@ -193,11 +193,13 @@ TEST(TyreModelBatch, AutoDoesNotKeepAConfidentPlainFitThatTheTyreModelContradict
   EXPECT_EQ(strict.termination, Termination::kNotIdentifiable) << strict.full_report();
 }
 
-TEST(TyreModelBatch, APlainFitWhosePhysicalJudgeIsNoTyreIsJudgedByTheRegressionTerms) {
+TEST(TyreModelBatch, APlainFitJudgedByAWrongBodysPhysicalTermsCarriesTheirGap) {
   // The realistic circuit of a rear-driven car lower and heavier than vehicle.yaml's, with softer,
   // more load-sensitive tyres: the plain fit lands ~60 mm off at a sigma of 1.5 mm. The physical
-  // terms, with the wrong body, win the criterion but are no tyre (coefficients of percents); the
-  // regression terms, which need no body, win it too and judge.
+  // terms, with the wrong body, win the criterion and judge: their gap to the plain fit is in its
+  // sigma, which covers the error, and the fit is refused. (Until the slip divided the
+  // circumference, 2026-11-30, their slip at the log's RMS state was judged no tyre, and the
+  // regression terms judged.)
   sim::Scenario scenario = testing::with_low_heavy_body(load_scenario("circuit"));
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   const Log log = simulated_log(drive);
@@ -209,15 +211,15 @@ TEST(TyreModelBatch, APlainFitWhosePhysicalJudgeIsNoTyreIsJudgedByTheRegressionT
   EXPECT_GT(std::abs(bare.estimate.circumference_rl_m - truth_m), 3.0 * bare.sigma_rl_m());
   const BatchSummary judged = calibrate_batch(log, options);
   const TyreModelSelection& selection = judged.tyre_selection;
-  ASSERT_EQ(selection.candidates.size(), 2u) << judged.full_report();
-  EXPECT_FALSE(selection.candidates[0].tyre);
+  ASSERT_GE(selection.candidates.size(), 1u) << judged.full_report();
+  EXPECT_EQ(selection.candidates[0].model, "physical");
+  EXPECT_TRUE(selection.candidates[0].tyre);
   EXPECT_LT(selection.candidates[0].bic, selection.plain_bic);
-  EXPECT_TRUE(selection.candidates[1].needed);
   EXPECT_EQ(judged.estimate.circumference_rl_m, bare.estimate.circumference_rl_m);
   EXPECT_LT(std::abs(judged.estimate.circumference_rl_m - truth_m), 3.0 * judged.sigma_rl_m())
       << judged.full_report();
   EXPECT_EQ(judged.termination, Termination::kNotIdentifiable);
-  EXPECT_NE(judged.model_adequacy.verdict.find("tyre_model: extended fits it better"),
+  EXPECT_NE(judged.model_adequacy.verdict.find("tyre_model: physical fits it better"),
             std::string::npos)
       << judged.model_adequacy.verdict;
 }
@@ -305,17 +307,19 @@ TEST(TyreModelBatch, AutoDoubtsTheTrackWhereOnlyATyreModelShowsIt) {
 
 TEST(TyreModelBatch, AutoHoldsARightTrackThatFreedDeadReckonsTheLogWorse) {
   // 3 laps of Hockenheim, front-driven, a driver who shares the grip with the turn, the track as
-  // vehicle.yaml states it: the plain fit's heading residual follows the curvature, so the track
-  // is in doubt, and the physical terms' criterion is lower with it free (by 27). The freed track
-  // (1.590 m, 3.4 sigma off) took up part of the model's misfit: the log dead-reckons 39 m with
-  // it and 28 m with the stated one, whose fit therefore stands.
+  // vehicle.yaml states it, seed 2: the plain fit's heading residual follows the curvature, so
+  // the track is in doubt, and the physical terms' criterion is lower with it free (by 0.8). The
+  // freed track took up part of the model's misfit: the log dead-reckons 17.9 m with it and
+  // 16.6 m with the stated one, whose fit therefore stands. (Seed 1 until the physical terms'
+  // slip divided the circumference, 2026-11-30: there the freed track now dead-reckons the log
+  // better, 9.5 m against 9.7 m, and stands, as it should.)
   std::optional<sim::Scenario> hockenheim = hockenheim_scenario();
   if (!hockenheim) GTEST_SKIP() << "shared data absent: " << kHockenheimTrack;
   sim::Scenario& scenario = *hockenheim;
   scenario.dynamics.drivetrain = sim::Drivetrain::kFront;
   scenario.driver.friction_ellipse = true;
   scenario.driver.max_power_wpkg = 80.0;
-  scenario.seeds.noise = scenario.seeds.trajectory = 1;
+  scenario.seeds.noise = scenario.seeds.trajectory = 2;
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   const Log log = simulated_log(drive);
   BatchOptions options;
@@ -573,14 +577,14 @@ TEST(TyreModelBatch, AnAdaptedNoiseThatRanAwayLeavesTheFirstEstimateAsItWas) {
   EXPECT_DOUBLE_EQ(adapted.estimate.circumference_rr_m, first.estimate.circumference_rr_m);
 }
 
-TEST(TyreModelBatch, AutosRegressionFallbackCarriesItsGapToThePhysicalFitInItsSigma) {
-  // 3 laps of Hockenheim, rear-driven, the grip-sharing driver, tyres softer than any the body's
-  // car has (slip stiffness 14 per unit load; the car's 20): the physical terms fit best, but
-  // their coefficients are no car's, so auto falls back to the regression terms, whose
-  // circumference at rest is an extrapolation along the slip's shape that they fitted and
-  // carries its gap to the physical fit in its sigma (4.5 mm of it). Until 2026-11-30 this was
-  // the circuit's driver with a Doppler column, where the physical terms are a tyre since the
-  // slip curve bends and the state is each sample's own.
+TEST(TyreModelBatch, AutoFitsTyresSofterThanTheCarsValueWithThePhysicalTerms) {
+  // 3 laps of Hockenheim, rear-driven, the grip-sharing driver, tyres softer than the car's value
+  // (slip stiffness 14 per unit load; tyre_car_prior.hpp's 20). Until the slip divided the
+  // circumference (2026-11-30, evening) the physical fit's drive slip came out at a car's 3.4 %
+  // of slip at the log's RMS state, judged no tyre, and auto fell back to the regression terms
+  // (c_RL -8.6 mm at sigma 7.9 mm, dead reckoning 543 m). A slip coefficient is judged as what it
+  // is, the axle's share over the slip stiffness (at most 0.1: 10 per unit load); the physical
+  // terms stand, the drive slip at the truth's 1 / 14.
   std::optional<sim::Scenario> hockenheim = hockenheim_scenario();
   if (!hockenheim) GTEST_SKIP() << "shared data absent: " << kHockenheimTrack;
   sim::Scenario& scenario = *hockenheim;
@@ -593,20 +597,19 @@ TEST(TyreModelBatch, AutosRegressionFallbackCarriesItsGapToThePhysicalFitInItsSi
   const Log log = simulated_log(drive);
   BatchOptions options;
   options.tyre_model = TyreModelChoice::kAuto;
+  options.max_sigma_circumference_m = 0.01;
   const BatchSummary result = calibrate_batch(log, options);
-  ASSERT_EQ(result.tyre_selection.chosen, "extended") << result.full_report();
-  ASSERT_EQ(result.tyre_selection.candidates.at(0).model, "physical");
-  EXPECT_FALSE(result.tyre_selection.candidates.at(0).tyre);
-  EXPECT_LT(result.tyre_selection.candidates.at(0).bic, result.tyre_selection.candidates.at(1).bic);
-  EXPECT_DOUBLE_EQ(result.estimate.track_width_m, log.vehicle.nominal_params().track_width_m);
-  EXPECT_GT(result.model_spread_m[0], 0.002) << result.full_report();
-  EXPECT_NE(result.full_report().find("gap to the physical terms' fit"), std::string::npos);
-  EXPECT_FALSE(result.usable()) << result.full_report();  // not identified: a sigma of mm
+  ASSERT_EQ(result.tyre_selection.chosen, "physical") << result.full_report();
+  EXPECT_TRUE(result.tyre_selection.candidates.at(0).tyre);
+  EXPECT_NEAR(result.tyre_model.k_drive_slip, 1.0 / 14.0, 0.01) << result.full_report();
+  EXPECT_TRUE(result.usable()) << result.full_report();
   for (const auto& [estimate, truth] :
        {std::pair{result.estimate.circumference_rl_m, drive.true_params.circumference_rl_m},
         std::pair{result.estimate.circumference_rr_m, drive.true_params.circumference_rr_m}}) {
     EXPECT_LT(std::abs(estimate - truth), 3.0 * result.sigma_rl_m()) << result.full_report();
+    EXPECT_LT(std::abs(estimate - truth), 0.002) << result.full_report();
   }
+  EXPECT_LT(result.after.mean_position_m, 50.0) << result.full_report();
 }
 
 TEST(TyreModelBatch, AFitThatItsResidualsRejectCarriesTheirScatterInItsSigma) {

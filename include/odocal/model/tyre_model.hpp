@@ -2,7 +2,8 @@
 // The condition-dependent rolling circumference of a rear wheel (docs/tyre-model.md has the
 // derivations): what one revolution carries the wheel over the ground depends on the driving
 // state through a few coefficients,
-//   c_i,eff = c_i (1 + sum_j k_j x_j,i(state)),
+//   c_i,eff = c_i (1 + sum_j k_j x_j,i(state)) / (1 + kappa_i),
+// kappa_i = -(k_drive_slip x_driving,i + k_brake_slip x_braking,i) the physical terms' slip,
 // applied as a factor on the wheel's revolution increment, so that eqs. 1-2 hold unchanged with
 // c_i, the circumference at rest (what the plain model of eqs. 1-2 calls c_i). Two families of
 // regressors x_j,i, for rear wheel i (s_RL = +1, s_RR = -1):
@@ -127,6 +128,7 @@ inline constexpr std::array<TyreCoefficient, TyreModel::kCoefficients> kTyreCoef
 inline constexpr int kSideSlipCoefficient = 10;
 // The drive slip's index: the one that a stated front drivetrain fixes (the rear wheels roll free).
 inline constexpr int kDriveSlipCoefficient = 8;
+inline constexpr int kBrakeSlipCoefficient = 9;
 // The steady straight speed at which a tyre model's circumference is reported by default
 // (gentle driving's): the batch's reference_speed_mps and the simulator's truth of it.
 inline constexpr double kDefaultReferenceSpeedMps = 5.0;
@@ -238,10 +240,36 @@ inline double side_slip_rad(const TyreModel& model, const DrivingState& state) {
   return model.k_side_slip_s2pm * side_slip_regressor(state);
 }
 
-// c_i,eff / c_i.
+// c_i,eff / c_i, and its gradient in the coefficients (the batch linearises about them).
+struct TyreFactor {
+  double value;
+  TyreModel::Vector gradient;
+};
+inline TyreFactor tyre_factor_with_gradient(const TyreModel& model, const DrivingState& state,
+                                            RearWheel wheel, const VehicleBody& body) {
+  const TyreModel::Vector x = tyre_regressors(state, wheel, body);
+  const TyreModel::Vector k = model.coefficients();
+  TyreModel::Vector slip = TyreModel::Vector::Zero();
+  slip(kDriveSlipCoefficient) = x(kDriveSlipCoefficient);
+  slip(kBrakeSlipCoefficient) = x(kBrakeSlipCoefficient);
+  const TyreModel::Vector rest = x - slip;
+  // The physical terms' slip divides: a wheel at slip kappa turns 1 + kappa times for its ground
+  // (SAE slip, which the magic formula takes), so its circumference is c / (1 + kappa), not
+  // c (1 - kappa). The kappa^2 that the linear form leaves out is 5e-4 (1 mm of circumference)
+  // in a 2 m/s^2 drive of a rear-driven car. Past half a wheel's speed it spins or locks, where no
+  // curve holds (and a solver's trial coefficients cannot divide by zero).
+  constexpr double kLargestSlip = 0.5;
+  const double kappa = -k.dot(slip);
+  const double held = std::clamp(kappa, -kLargestSlip, kLargestSlip);
+  const double numerator = 1.0 + k.dot(rest);
+  TyreModel::Vector gradient = rest / (1.0 + held);
+  if (held == kappa) gradient += numerator / ((1.0 + held) * (1.0 + held)) * slip;
+  return {numerator / (1.0 + held), gradient};
+}
+
 inline double tyre_factor(const TyreModel& model, const DrivingState& state, RearWheel wheel,
                           const VehicleBody& body) {
-  return 1.0 + model.coefficients().dot(tyre_regressors(state, wheel, body));
+  return tyre_factor_with_gradient(model, state, wheel, body).value;
 }
 
 }  // namespace odocal
