@@ -3,10 +3,11 @@
 // derivations): what one revolution carries the wheel over the ground depends on the driving
 // state through a few coefficients,
 //   c_i,eff = c_i (1 + sum_j k_j x_j,i(state)) / (1 + kappa_i),
-// kappa_i = -(k_drive_slip x_driving,i + k_brake_slip x_braking,i) the physical terms' slip,
-// applied as a factor on the wheel's revolution increment, so that eqs. 1-2 hold unchanged with
-// c_i, the circumference at rest (what the plain model of eqs. 1-2 calls c_i). Two families of
-// regressors x_j,i, for rear wheel i (s_RL = +1, s_RR = -1):
+// the sum over every term but the physical slip's, kappa_i = -(k_drive_slip x_driving,i +
+// k_brake_slip x_braking,i) (tyre_factor_with_gradient), applied as a factor on the wheel's
+// revolution increment, so that eqs. 1-2 hold unchanged with c_i, the circumference at rest (what
+// the plain model of eqs. 1-2 calls c_i). Two families of regressors x_j,i, for rear wheel i
+// (s_RL = +1, s_RR = -1):
 // - the regression terms (tyre_model: extended), from the speed v, the lateral acceleration a_y
 //   (left positive), the longitudinal acceleration a_x (a_x+ = max(a_x, 0), a_x- = min(a_x, 0))
 //   and the yaw rate w:
