@@ -69,10 +69,9 @@ ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOption
 }
 
 double max_tyre_effect(const BatchProblem& batch) {
-  TyreModel::Vector effect =
-      batch.tyre_model().coefficients().cwiseProduct(batch.regressor_rms()).cwiseAbs();
-  effect(kSideSlipCoefficient) *= batch::kMaxTyreEffect / batch::kMaxSideSlipRad;
   const TyreModel::Vector k = batch.tyre_model().coefficients();
+  TyreModel::Vector effect = k.cwiseProduct(batch.regressor_rms()).cwiseAbs();
+  effect(kSideSlipCoefficient) *= batch::kMaxTyreEffect / batch::kMaxSideSlipRad;
   for (const int j : {kDriveSlipCoefficient, kBrakeSlipCoefficient})
     effect(j) = std::abs(k(j)) * batch::kMaxTyreEffect / batch::kMaxSlipCoefficient;
   return effect.maxCoeff();
