@@ -99,9 +99,9 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
   suggest_tyre_model(adequacy);
   const TyreJudgement tyre =
       judge_against_tyre_models(run, options, common, unfitted, scratch.gnss_noise, plain_bic);
-  if (tyre.circumference) {
-    judgement.gap_m = {std::abs(start.circumference_rl_m - (*tyre.circumference)[0]),
-                       std::abs(start.circumference_rr_m - (*tyre.circumference)[1])};
+  if (const TyreCandidate* better = tyre.better_fit()) {
+    judgement.gap_m = {std::abs(start.circumference_rl_m - better->circumference[0]),
+                       std::abs(start.circumference_rr_m - better->circumference[1])};
     say_a_tyre_model_fits_better(adequacy, tyre, judgement.gap_m, "this estimate's");
   }
   // Said, so that the residuals are not taken for the other method's.

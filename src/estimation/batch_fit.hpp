@@ -4,6 +4,7 @@
 // tyre_model_selection.cpp chooses.
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -64,14 +65,45 @@ bool fit_model(const CalibrationRun& run, const BatchOptions& options,
                const std::optional<std::array<double, 2>>& rival_circumference = std::nullopt,
                const std::optional<GnssNoiseModel>& noise = std::nullopt);
 
+// The tyre models that auto tries and that judge a plain fit, in order: the physical terms
+// (three coefficients of load and slip), then the regression terms (seven).
+inline constexpr std::array<TyreTerms, 2> kTyreCandidates{TyreTerms::kPhysical,
+                                                          TyreTerms::kRegression};
+
+// A model's information criterion, solved under `noise` from the start (none: the configured
+// one; the fit itself is discarded); its solves are added to `solves`.
+double criterion_under(const CalibrationRun& run, const BatchOptions& options,
+                       const CalibrationOptions& common, const BatchSummary& unfitted,
+                       std::optional<TyreTerms> terms, const std::optional<GnssNoiseModel>& noise,
+                       int& solves);
+
+// Coefficients that change the circumference by percents at the log's typical driving state are
+// not a tyre: they are the model explaining something else (a skid-steer robot, a wrong input),
+// and so is a circumference that leaves the plausible band.
+bool is_tyre(const FitFacts& facts, const OdometryParams& nominal, double max_change);
+
+// A criterion lower by this much is decisive (a Bayes factor above e^5 ~ 150: Kass and
+// Raftery's "very strong" evidence), not a tie of fits that held every coefficient at zero.
+inline constexpr double kDecisiveBic = 10.0;
+
+// Where no tyre model stands: the candidate that fits the log decisively better than the plain
+// model's `plain_bic` without being a tyre, the lowest criterion first (none: no such one). The
+// plain model does not explain such a log, and its circumferences are the ones the drive rolled
+// on: a car whose tyres slip far more than a road tyre's (a slip stiffness of 8 per unit load, on
+// the realistic circuit with a lower, heavier body than vehicle.yaml's: the plain fit 68 mm off at
+// a sigma of 6.5 mm; the physical terms, slip coefficient 0.14, +25 mm at 16 mm).
+std::optional<std::size_t> decisive_no_tyre(const std::vector<TyreCandidate>& candidates,
+                                            double plain_bic);
+
 // tyre_model auto (tyre_model_selection.cpp). Returns whether it has scored the result
 // (run.finish) itself.
 bool fit_auto(CalibrationRun& run, const BatchOptions& options, const CalibrationOptions& common,
               BatchSummary& summary);
 
 // tyre_model none chosen by hand: the plain fit, judged by the tyre models as auto judges it
-// (judge_against_tyre_models below). Where one is a tyre and fits the log better under the same
-// GNSS noise, the plain circumferences are the ones this drive rolled on, not the ones at rest:
+// (judge_against_tyre_models below, tyre_model_judge.cpp). Where one is a tyre and fits the log
+// better under the same GNSS noise (or, where none is, one fits it decisively better), the plain
+// circumferences are the ones this drive rolled on, not the ones at rest:
 // the plain fit is solved again with its gap to that model's circumferences in its sigma, and
 // its model verdict says that it does not explain the log. The caller scores the result
 // (run.finish).
@@ -81,12 +113,13 @@ void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
 // The tyre models fitted as the plain model's judges, as auto fits its candidates: the physical
 // terms, then the regression terms only where the physical ones fit the log better but are no
 // tyre. Their criteria against the plain fit's `plain_bic` (all under the noise the plain fit
-// adapted to, where it adapted: `plain_noise`); where one is a tyre that fits the log better, its
-// circumferences at rest.
+// adapted to, where it adapted: `plain_noise`); where one is a tyre that fits the log better, or
+// none is and one fits it decisively better (decisive_no_tyre), that one.
 struct TyreJudgement {
-  std::vector<TyreCandidate> candidates;               // in the order fitted
-  double plain_bic{};                                  // as compared
-  std::optional<std::array<double, 2>> circumference;  // the last candidate's, where it won
+  std::vector<TyreCandidate> candidates;  // in the order fitted
+  double plain_bic{};                     // as compared
+  std::optional<std::size_t> better;      // the candidate whose circumferences judge the plain
+  const TyreCandidate* better_fit() const { return better ? &candidates[*better] : nullptr; }
   int solves() const;
 };
 TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOptions& options,
@@ -94,7 +127,8 @@ TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOp
                                         const BatchSummary& unfitted,
                                         const GnssNoiseReport& plain_noise, double plain_bic);
 
-// The verdict, where a tyre model fits the log better: `gap_m` from `whose` circumferences.
+// The verdict, where a tyre model fits the log better (or a model that is no tyre fits it
+// decisively better): `gap_m` from `whose` circumferences.
 void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& judgement,
                                   const std::array<double, 2>& gap_m, const char* whose);
 

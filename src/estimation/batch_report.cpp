@@ -106,7 +106,7 @@ std::string BatchSummary::full_report() const {
     text += fmt::format(
         "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm, their gap to {}\n", "spread",
         1e3 * model_spread_m[0], 1e3 * model_spread_m[1],
-        tyre_selection.judges_plain
+        !tyre_selection.plain_gap_to.empty()
             ? "a tyre model's fit of this log (the tyre model line names it): the plain "
               "circumferences are the ones this drive rolled on, slip and load in them, not the "
               "ones at rest"

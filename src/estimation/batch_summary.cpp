@@ -137,13 +137,16 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
 }
 
 // A plain circumference whose sigma carries its gap to a tyre model's fit (tyre_model none chosen
-// by hand, judged: tyre_model_selection.cpp).
-std::string plain_gap_verdict(double sigma_m, double gap_m) {
+// by hand, judged: tyre_model_judge.cpp; or a model that is no tyre fits the log decisively
+// better: tyre_model_selection.cpp). Under none, auto is the advice; under auto the model line
+// says what is wrong.
+std::string plain_gap_verdict(double sigma_m, double gap_m, TyreModelChoice configured) {
   return fmt::format(
       "the plain model's circumference is the one this drive rolled on, slip and load in it: a "
       "tyre model, which fits this log better, puts the circumference at rest {:.3g} mm away (of "
-      "its 1-sigma, {:.2g} mm from the log's own noise); use tyre_model: auto",
-      1e3 * gap_m, 1e3 * std::sqrt(std::max(0.0, sigma_m * sigma_m - gap_m * gap_m)));
+      "its 1-sigma, {:.2g} mm from the log's own noise); {}",
+      1e3 * gap_m, 1e3 * std::sqrt(std::max(0.0, sigma_m * sigma_m - gap_m * gap_m)),
+      configured == TyreModelChoice::kNone ? "use tyre_model: auto" : "see the model line");
 }
 
 // A circumference that only the misfit's widening leaves unidentified.
@@ -265,7 +268,7 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
         parameter.verdict = extrapolation_verdict(summary, i, parameter.sigma, spread[i],
                                                   batch.speed_intervals() > 0);
       } else if (i < 2 && spread[i] > 0.0) {
-        parameter.verdict = plain_gap_verdict(parameter.sigma, spread[i]);
+        parameter.verdict = plain_gap_verdict(parameter.sigma, spread[i], b.tyre_model);
       }
       const double misfit = summary.misfit_sigma_scale;
       if (i < 2 && misfit > 1.0) {

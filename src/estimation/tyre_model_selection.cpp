@@ -12,8 +12,9 @@
 // candidate is finished (noise adaptation, covariance) only when it beats the best fit so far.
 // The criteria are compared under one GNSS noise model: the configured one, or the one the plain
 // fit's residuals showed where it adapted it (each model then solved once more, for its criterion).
-// The same candidates judge a plain fit that was not chosen among them (tyre_model none by hand,
-// and the other methods' judge): where one wins, the plain circumferences carry the gap to it.
+// Where none stands and one that is no tyre fits the log decisively better, the plain
+// circumferences carry their gap to it (decisive_no_tyre). The same candidates judge a plain fit
+// that was not chosen among them: tyre_model_judge.cpp.
 
 #include <fmt/format.h>
 
@@ -26,44 +27,12 @@
 namespace odocal::batch {
 namespace {
 
-// The tyre models auto tries, in order: the physical terms (three coefficients of load and slip),
-// then, unless they replaced the plain fit, the regression terms (seven).
-constexpr TyreTerms kCandidates[] = {TyreTerms::kPhysical, TyreTerms::kRegression};
-
 // A fit whose answer stands on its own: converged, or converged without identifying the
 // circumferences to the required sigma (which the summary says). Not: no convergence, a solver
 // failure, an implausible answer.
 bool sound(const BatchSummary& summary) {
   return summary.termination == Termination::kConverged ||
          summary.termination == Termination::kNotIdentifiable;
-}
-
-// A model's information criterion, solved under `noise` from the start (none: the configured
-// one; the fit itself is discarded); its solves are added to `solves`.
-double criterion_under(const CalibrationRun& run, const BatchOptions& options,
-                       const CalibrationOptions& common, const BatchSummary& unfitted,
-                       std::optional<TyreTerms> terms, const std::optional<GnssNoiseModel>& noise,
-                       int& solves) {
-  double bic = std::numeric_limits<double>::infinity();
-  BatchSummary scratch = unfitted;
-  fit_model(
-      run, options, common, terms, scratch,
-      [&](const FitFacts& facts) {
-        bic = facts.bic;
-        return false;
-      },
-      std::nullopt, noise);
-  solves += scratch.solves;
-  return bic;
-}
-
-// Coefficients that change the circumference by percents at the log's typical driving state are
-// not a tyre: they are the model explaining something else (a skid-steer robot, a wrong input),
-// and so is a circumference that leaves the plausible band.
-bool is_tyre(const FitFacts& facts, const OdometryParams& nominal, double max_change) {
-  return facts.max_tyre_effect <= kMaxTyreEffect &&
-         std::abs(facts.circumference[0] / nominal.circumference_rl_m - 1.0) <= max_change &&
-         std::abs(facts.circumference[1] / nominal.circumference_rr_m - 1.0) <= max_change;
 }
 
 // The dependence that a track width off by a fraction leaves in the plain fit's residuals.
@@ -98,6 +67,29 @@ std::optional<double> stated_track_score(CalibrationRun& run, const BatchSummary
 }
 
 }  // namespace
+
+double criterion_under(const CalibrationRun& run, const BatchOptions& options,
+                       const CalibrationOptions& common, const BatchSummary& unfitted,
+                       std::optional<TyreTerms> terms, const std::optional<GnssNoiseModel>& noise,
+                       int& solves) {
+  double bic = std::numeric_limits<double>::infinity();
+  BatchSummary scratch = unfitted;
+  fit_model(
+      run, options, common, terms, scratch,
+      [&](const FitFacts& facts) {
+        bic = facts.bic;
+        return false;
+      },
+      std::nullopt, noise);
+  solves += scratch.solves;
+  return bic;
+}
+
+bool is_tyre(const FitFacts& facts, const OdometryParams& nominal, double max_change) {
+  return facts.max_tyre_effect <= kMaxTyreEffect &&
+         std::abs(facts.circumference[0] / nominal.circumference_rl_m - 1.0) <= max_change &&
+         std::abs(facts.circumference[1] / nominal.circumference_rr_m - 1.0) <= max_change;
+}
 
 std::optional<GnssNoiseModel> adapted_noise(const GnssNoiseReport& report) {
   if (!report.adapted || report.reverted || !(report.configured_sigma_m > 0.0)) return std::nullopt;
@@ -169,7 +161,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
   // with the Doppler speed: the regression terms -11.7 mm at sigma 1.6 mm, the physical ones,
   // no tyre there, +22.9 mm).
   std::optional<std::array<double, 2>> physical_circumference;
-  for (const TyreTerms terms : kCandidates) {
+  for (const TyreTerms terms : kTyreCandidates) {
     if (selection.chosen != "none") break;
     TyreCandidate candidate;
     BatchSummary fitted;
@@ -219,6 +211,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
         candidate.bic = shared_bic.value_or(facts.bic);
         if (!candidate.track_free && facts.usable) held_criterion = candidate.bic;
         if (!facts.usable) return false;
+        candidate.circumference = facts.circumference;
         if (terms == TyreTerms::kPhysical) physical_circumference = facts.circumference;
         candidate.tyre = is_tyre(facts, summary.nominal, max_change);
         const bool wins =
@@ -331,190 +324,29 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
       selection.plain_track_free = true;
     }
   }
+  if (selection.chosen == "none") {
+    // Compared with the better of the plain fits: the geometry explains what the track freed does.
+    const double plain_bic = std::isfinite(selection.free_track_bic)
+                                 ? std::min(selection.plain_bic, selection.free_track_bic)
+                                 : selection.plain_bic;
+    if (const std::optional<std::size_t> better =
+            decisive_no_tyre(selection.candidates, plain_bic)) {
+      const TyreCandidate& rival = selection.candidates[*better];
+      BatchSummary judged = unfitted;
+      fit_model(run, selection.plain_track_free ? free_track : options, common, std::nullopt,
+                judged, {}, rival.circumference);
+      all_solves += judged.solves;
+      if (finished) run.finish(judged);
+      const TyreJudgement judgement{selection.candidates, plain_bic, better};
+      say_a_tyre_model_fits_better(judged.model_adequacy, judgement, judged.model_spread_m,
+                                   "the plain ones");
+      summary = std::move(judged);
+      selection.plain_gap_to = rival.model;
+    }
+  }
   selection.other_solves = all_solves - summary.solves;
   summary.tyre_selection = selection;
   return finished;
-}
-
-TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOptions& options,
-                                        const CalibrationOptions& common,
-                                        const BatchSummary& unfitted,
-                                        const GnssNoiseReport& plain_noise, double plain_bic) {
-  TyreJudgement judgement{{}, plain_bic, std::nullopt};
-  // Compared as auto compares them: under the noise the plain fit's residuals showed, where they
-  // showed that the configured one is wrong.
-  const std::optional<GnssNoiseModel> shared_noise = adapted_noise(plain_noise);
-  // Each model with the track width free: a track that vehicle.yaml gets wrong turns the wheels'
-  // heading with the curvature, which the load terms can mimic (an ideal lap on a track 10 %
-  // wider than stated: the physical terms with the track held won the criterion by 5000 and put
-  // the circumferences at rest 43 mm from the true ones; with it free, 1.5 mm, and no better
-  // than the plain model). The tyre terms judge only what the geometry does not explain. The
-  // driving states are measured only where a tyre model may be fitted.
-  BatchOptions judging = options;
-  judging.estimate_track_width = true;
-  judging.tyre_model = TyreModelChoice::kAuto;
-  int comparison_solves = 0;
-  if (shared_noise || !options.estimate_track_width) {
-    judgement.plain_bic = criterion_under(run, judging, common, unfitted, std::nullopt,
-                                          shared_noise, comparison_solves);
-  }
-  for (const TyreTerms terms : kCandidates) {
-    TyreCandidate candidate{tyre_model_option(terms)};
-    candidate.solves = comparison_solves;
-    comparison_solves = 0;
-    const std::optional<double> shared_bic =
-        shared_noise ? std::optional(criterion_under(run, judging, common, unfitted, terms,
-                                                     shared_noise, candidate.solves))
-                     : std::nullopt;
-    BatchSummary fitted = unfitted;
-    fit_model(run, judging, common, terms, fitted, [&](const FitFacts& facts) {
-      candidate.bic = shared_bic.value_or(facts.bic);
-      candidate.tyre = facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
-      candidate.needed =
-          candidate.tyre && facts.free_tyre_coefficients > 0 && candidate.bic < judgement.plain_bic;
-      if (candidate.needed) judgement.circumference = facts.circumference;
-      return false;
-    });
-    candidate.solves += fitted.solves;
-    judgement.candidates.push_back(candidate);
-    // The regression terms speak only where the physical ones fit the log better but are no
-    // tyre (a body that vehicle.yaml gets wrong): they confirm that the plain model does not
-    // explain it and say where the circumferences at rest lie.
-    if (judgement.circumference || !(candidate.bic < judgement.plain_bic) || candidate.tyre) break;
-  }
-  return judgement;
-}
-
-int TyreJudgement::solves() const {
-  int total = 0;
-  for (const TyreCandidate& candidate : candidates) total += candidate.solves;
-  return total;
-}
-
-void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& judgement,
-                                  const std::array<double, 2>& gap_m, const char* whose) {
-  if (!adequacy.judged || !judgement.circumference) return;
-  const TyreCandidate& better = judgement.candidates.back();
-  const std::string text = fmt::format(
-      "tyre_model: {} fits it better (BIC {:.1f} against {:.1f}) and puts the circumferences at "
-      "rest {:.3g} / {:.3g} mm from {}, which their sigma carries; use the batch's tyre_model: "
-      "auto",
-      better.model, better.bic, judgement.plain_bic, 1e3 * gap_m[0], 1e3 * gap_m[1], whose);
-  adequacy.verdict = adequacy.explains ? "the two-wheel model does not explain this log: " + text
-                                       : adequacy.verdict + "; " + text;
-  adequacy.explains = false;
-}
-
-void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
-                      const CalibrationOptions& common, BatchSummary& summary) {
-  const BatchSummary unfitted = summary;
-  FitFacts plain;
-  fit_model(run, options, common, std::nullopt, summary, [&](const FitFacts& facts) {
-    plain = facts;
-    return true;
-  });
-  if (!plain.usable) return;
-  const TyreJudgement judgement =
-      judge_against_tyre_models(run, options, common, unfitted, summary.gnss_noise, plain.bic);
-  int other_solves = judgement.solves();
-  if (judgement.circumference) {
-    // Solved again, so that the gap enters every sigma and verdict as summarise forms them.
-    other_solves += summary.solves;
-    summary = unfitted;
-    fit_model(run, options, common, std::nullopt, summary, {}, judgement.circumference);
-    say_a_tyre_model_fits_better(summary.model_adequacy, judgement, summary.model_spread_m,
-                                 "the plain ones");
-  }
-  TyreModelSelection selection;
-  selection.compared = true;
-  selection.judges_plain = true;
-  selection.plain_bic = judgement.plain_bic;
-  selection.candidates = judgement.candidates;
-  selection.other_solves = other_solves;
-  summary.tyre_selection = selection;
-}
-
-std::string tyre_selection_report(const BatchSummary& summary) {
-  const TyreModelSelection& selection = summary.tyre_selection;
-  if (!selection.compared) return "";
-  if (selection.judges_plain) {
-    std::string criteria = fmt::format("plain {:.1f}", selection.plain_bic);
-    for (const TyreCandidate& c : selection.candidates)
-      criteria += fmt::format(", {} {:.1f}", c.model, c.bic);
-    const TyreCandidate& last = selection.candidates.back();
-    const std::string why =
-        last.needed
-            ? fmt::format("the {} terms fit the log better: their gap is in the sigma", last.model)
-        : !last.tyre ? fmt::format("the {} terms' fit was not a tyre", last.model)
-                     : fmt::format("the {} terms do not fit the log better", last.model);
-    return fmt::format("{:<13}plain, as configured ({}): BIC, the track width free in each: {}\n",
-                       "tyre model", why, criteria);
-  }
-  std::string why =
-      selection.chosen == "none" ? "the log does not need more" : "the log supports it";
-  for (const TyreCandidate& c : selection.candidates) {
-    if (c.model == selection.chosen) break;
-    if (!c.tyre) {
-      why = fmt::format(
-          "the {} fit was not a tyre: coefficients of percents, or a circumference "
-          "out of its band",
-          c.model);
-    } else if (!c.beyond_track) {
-      why = fmt::format("the {} fit explains no more than the track width freed (BIC {:.1f}){}",
-                        c.model, selection.free_track_bic,
-                        selection.plain_track_free
-                            ? ""
-                            : ": check vehicle.yaml's track_width_m, or set estimate_track_width");
-    } else if (!c.needed) {
-      why = fmt::format(
-          "the {} fit's circumferences at rest were not identified and agree with "
-          "the plain fit's",
-          c.model);
-    } else if (!c.dead_reckons) {
-      why = fmt::format(
-          "with the {} fit the log dead-reckons worse than with the nominal "
-          "parameters, with the plain fit it does not",
-          c.model);
-    } else {
-      continue;
-    }
-    break;
-  }
-  std::string criteria = fmt::format("plain {:.1f}", selection.plain_bic);
-  if (std::isfinite(selection.free_track_bic))
-    criteria += fmt::format(", plain with the track free {:.1f}", selection.free_track_bic);
-  std::string chosen = selection.plain_track_free ? "plain, the track width free" : "plain";
-  for (const TyreCandidate& c : selection.candidates) {
-    criteria += fmt::format(", {} {:.1f}", c.model, c.bic);
-    if (std::isfinite(c.free_track_bic)) {
-      criteria += fmt::format(" (the track {}; {} {:.1f}", c.track_free ? "free" : "held",
-                              c.track_free ? "held" : "free",
-                              c.track_free ? c.held_track_bic : c.free_track_bic);
-      if (std::isfinite(c.held_track_score_m)) {
-        criteria += fmt::format("; dead-reckoning the log {:.1f} m held, {:.1f} m free",
-                                c.held_track_score_m, c.free_track_score_m);
-      }
-      criteria += ")";
-    }
-    if (c.model == selection.chosen)
-      chosen = c.model + (c.track_free ? ", the track width free" : "");
-  }
-  // A freed track far from vehicle.yaml's, beyond its sigma, says that one of them is wrong.
-  // Not a small shift: a freed track takes up some of a tyre model's misfit too (3 laps of
-  // Hockenheim, the grip-sharing driver, front-driven: 9 mm, 3.1 sigma, on a track stated right).
-  constexpr double kTrackShiftWorthNaming = 0.02;
-  const EstimatedParameter* track =
-      summary.parameters.size() > 2 ? &summary.parameters[2] : nullptr;
-  const double stated = summary.nominal.track_width_m;
-  if (track && track->estimated && track->identified &&
-      std::abs(track->value - stated) > 3.0 * track->sigma &&
-      std::abs(track->value / stated - 1.0) > kTrackShiftWorthNaming) {
-    why += fmt::format(
-        "; the log puts the track at {:.4f} m (1-sigma {:.4f}), vehicle.yaml at {:.4f}: check "
-        "track_width_m",
-        track->value, track->sigma, stated);
-  }
-  return fmt::format("{:<13}{} ({}): BIC {}\n", "tyre model", chosen, why, criteria);
 }
 
 }  // namespace odocal::batch

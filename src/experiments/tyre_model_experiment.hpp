@@ -26,8 +26,9 @@ namespace odocal::experiments {
 // Gauss-Markov states at zero; 21: the accelerometer's heading walk, and the grip-sharing drives
 // again with an automotive-grade accelerometer; 22: the physical terms' slip divides the
 // circumference (c / (1 + kappa), not c (1 - kappa)); 23: a physical slip coefficient judged as
-// itself (at most 0.1), not by its effect at the log's RMS state.
-inline constexpr int kTyreModelExperimentVersion = 23;
+// itself (at most 0.1), not by its effect at the log's RMS state; 24: a plain fit that a model
+// which is no tyre explains decisively better carries its gap to it.
+inline constexpr int kTyreModelExperimentVersion = 24;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_quiet_accelerometer: {rear: {auto},

@@ -210,7 +210,9 @@ void add_details(json& out, const BatchSummary& s) {
                             {"held_track_score_m", number_or_null(c.held_track_score_m)},
                             {"free_track_score_m", number_or_null(c.free_track_score_m)},
                             {"needed", c.needed},
-                            {"dead_reckons", c.dead_reckons}});
+                            {"dead_reckons", c.dead_reckons},
+                            {"circumference_rl_m", number_or_null(c.circumference[0])},
+                            {"circumference_rr_m", number_or_null(c.circumference[1])}});
     }
     out["tyre_selection"] = {{"plain_bic", number_or_null(s.tyre_selection.plain_bic)},
                              {"free_track_bic", number_or_null(s.tyre_selection.free_track_bic)},
@@ -218,7 +220,8 @@ void add_details(json& out, const BatchSummary& s) {
                              {"candidates", candidates},
                              {"other_solves", s.tyre_selection.other_solves},
                              {"chosen", s.tyre_selection.chosen},
-                             {"judges_plain", s.tyre_selection.judges_plain}};
+                             {"judges_plain", s.tyre_selection.judges_plain},
+                             {"plain_gap_to", s.tyre_selection.plain_gap_to}};
   }
   if (s.gentle_limits) {
     out["gentle_segments"] = {{"odometry_intervals_used", s.odometry_intervals_used},

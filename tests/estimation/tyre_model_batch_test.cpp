@@ -16,6 +16,7 @@
 #include "../support/drifting_gnss.hpp"
 #include "../support/test_scenarios.hpp"
 #include "../support/unjudged_options.hpp"
+#include "estimation/batch_fit.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/drift_validation.hpp"
 #include "odocal/estimation/driving_state.hpp"
@@ -222,6 +223,45 @@ TEST(TyreModelBatch, APlainFitJudgedByAWrongBodysPhysicalTermsCarriesTheirGap) {
   EXPECT_NE(judged.model_adequacy.verdict.find("tyre_model: physical fits it better"),
             std::string::npos)
       << judged.model_adequacy.verdict;
+}
+
+TEST(TyreModelBatch, APlainFitThatANoTyreModelExplainsDecisivelyBetterCarriesItsGap) {
+  // The lower, heavier car on tyres far softer than a road tyre's (a slip stiffness of 8 per unit
+  // load; road tyres 10-30), one lap of the realistic circuit: the plain fit lands ~65 mm off at
+  // a sigma of ~8 mm. The physical terms fit the log decisively better but are no tyre (their
+  // slip coefficient, ~0.14, beyond kMaxSlipCoefficient), and so are the regression terms: the
+  // plain fit stood, unjudged, confident and wrong. It now carries its gap to the physical fit,
+  // under auto and under none alike, and is refused with a sigma that covers its error.
+  sim::Scenario scenario = testing::with_low_heavy_body(load_scenario("circuit"));
+  scenario.dynamics.slip_stiffness_per_load = 8.0;
+  scenario.route.laps = 1;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log log = simulated_log(drive);
+  const double truth_m = drive.true_params.circumference_rl_m;
+  BatchOptions options;
+  options.max_sigma_circumference_m = 0.01;
+  options.tyre_model = TyreModelChoice::kNone;
+  const BatchSummary bare = calibrate_batch(log, options, testing::unjudged_options());
+  EXPECT_GT(std::abs(bare.estimate.circumference_rl_m - truth_m), 3.0 * bare.sigma_rl_m());
+  for (const TyreModelChoice choice : {TyreModelChoice::kAuto, TyreModelChoice::kNone}) {
+    options.tyre_model = choice;
+    const BatchSummary judged = calibrate_batch(log, options);
+    const TyreModelSelection& selection = judged.tyre_selection;
+    EXPECT_EQ(selection.chosen, "none") << judged.full_report();
+    EXPECT_EQ(selection.plain_gap_to, "physical") << judged.full_report();
+    ASSERT_GE(selection.candidates.size(), 1u);
+    const TyreCandidate& physical = selection.candidates[0];
+    EXPECT_FALSE(physical.tyre);
+    EXPECT_LT(physical.bic, selection.plain_bic - batch::kDecisiveBic);
+    // Under none the same plain fit (auto's stands with the track freed, 26 mm from it).
+    if (choice == TyreModelChoice::kNone)
+      EXPECT_EQ(judged.estimate.circumference_rl_m, bare.estimate.circumference_rl_m);
+    EXPECT_LT(std::abs(judged.estimate.circumference_rl_m - truth_m), 3.0 * judged.sigma_rl_m())
+        << judged.full_report();
+    EXPECT_EQ(judged.termination, Termination::kNotIdentifiable);
+    EXPECT_NE(judged.model_adequacy.verdict.find("but is no tyre"), std::string::npos)
+        << judged.model_adequacy.verdict;
+  }
 }
 
 TEST(TyreModelBatch, AutoDoesNotTakeATrackThatVehicleYamlGetsWrongForTyres) {

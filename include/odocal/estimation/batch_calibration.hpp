@@ -80,6 +80,9 @@ struct TyreCandidate {
   // false: refused: it won the BIC, but its whole-log dead reckoning is worse than the nominal
   // parameters' (implausible) where the best fit before it was not.
   bool dead_reckons = true;
+  // Its circumferences at rest (NaN where its fit was not usable).
+  std::array<double, 2> circumference{std::numeric_limits<double>::quiet_NaN(),
+                                      std::numeric_limits<double>::quiet_NaN()};
 };
 
 // tyre_model auto: the information criteria of every model fitted and which one stands. Under
@@ -99,6 +102,12 @@ struct TyreModelSelection {
   bool plain_track_free = false;
   std::vector<TyreCandidate> candidates;  // in the order fitted
   std::string chosen = "none";
+  // Where the plain model stands judged: the candidate whose circumferences at rest the plain
+  // ones carry their gap to in their sigma (empty: none). Under tyre_model none, a tyre that fits
+  // the log better; under either, where no candidate does, one that fits it decisively better
+  // without being a tyre (the plain model does not explain the log, and no model here says
+  // surely where the circumferences at rest lie).
+  std::string plain_gap_to;
   int other_solves{};  // the solves of the fits not chosen (BatchSummary::solves: the chosen's)
 };
 

@@ -1,0 +1,140 @@
+// The tyre models as the judges of a plain fit that was not chosen among them (tyre_model none
+// by hand, and the other methods' judge, judge_model_adequacy): fitted as auto fits its
+// candidates, the track width free in each. Where one fits the log better and is a tyre, or,
+// where none is, one fits it decisively better, the plain circumferences are the ones the drive
+// rolled on, and they carry their gap to that model's circumferences at rest in their sigma.
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "batch_fit.hpp"
+
+namespace odocal::batch {
+
+std::optional<std::size_t> decisive_no_tyre(const std::vector<TyreCandidate>& candidates,
+                                            double plain_bic) {
+  std::optional<std::size_t> best;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const TyreCandidate& c = candidates[i];
+    const bool fitted = std::isfinite(c.circumference[0]) && std::isfinite(c.circumference[1]);
+    if (c.tyre || !fitted || !(c.bic < plain_bic - kDecisiveBic)) continue;
+    if (!best || c.bic < candidates[*best].bic) best = i;
+  }
+  return best;
+}
+
+TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOptions& options,
+                                        const CalibrationOptions& common,
+                                        const BatchSummary& unfitted,
+                                        const GnssNoiseReport& plain_noise, double plain_bic) {
+  TyreJudgement judgement{{}, plain_bic, std::nullopt};
+  // Compared as auto compares them: under the noise the plain fit's residuals showed, where they
+  // showed that the configured one is wrong.
+  const std::optional<GnssNoiseModel> shared_noise = adapted_noise(plain_noise);
+  // Each model with the track width free: a track that vehicle.yaml gets wrong turns the wheels'
+  // heading with the curvature, which the load terms can mimic (an ideal lap on a track 10 %
+  // wider than stated: the physical terms with the track held won the criterion by 5000 and put
+  // the circumferences at rest 43 mm from the true ones; with it free, 1.5 mm, and no better
+  // than the plain model). The tyre terms judge only what the geometry does not explain. The
+  // driving states are measured only where a tyre model may be fitted.
+  BatchOptions judging = options;
+  judging.estimate_track_width = true;
+  judging.tyre_model = TyreModelChoice::kAuto;
+  int comparison_solves = 0;
+  if (shared_noise || !options.estimate_track_width) {
+    judgement.plain_bic = criterion_under(run, judging, common, unfitted, std::nullopt,
+                                          shared_noise, comparison_solves);
+  }
+  for (const TyreTerms terms : kTyreCandidates) {
+    TyreCandidate candidate{tyre_model_option(terms)};
+    candidate.solves = comparison_solves;
+    comparison_solves = 0;
+    const std::optional<double> shared_bic =
+        shared_noise ? std::optional(criterion_under(run, judging, common, unfitted, terms,
+                                                     shared_noise, candidate.solves))
+                     : std::nullopt;
+    BatchSummary fitted = unfitted;
+    fit_model(run, judging, common, terms, fitted, [&](const FitFacts& facts) {
+      candidate.bic = shared_bic.value_or(facts.bic);
+      candidate.tyre = facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
+      candidate.needed =
+          candidate.tyre && facts.free_tyre_coefficients > 0 && candidate.bic < judgement.plain_bic;
+      if (facts.usable) candidate.circumference = facts.circumference;
+      return false;
+    });
+    candidate.solves += fitted.solves;
+    judgement.candidates.push_back(candidate);
+    if (candidate.needed) judgement.better = judgement.candidates.size() - 1;
+    // The regression terms speak only where the physical ones fit the log better but are no
+    // tyre (a body that vehicle.yaml gets wrong): they confirm that the plain model does not
+    // explain it and say where the circumferences at rest lie.
+    if (judgement.better || !(candidate.bic < judgement.plain_bic) || candidate.tyre) break;
+  }
+  if (!judgement.better)
+    judgement.better = decisive_no_tyre(judgement.candidates, judgement.plain_bic);
+  return judgement;
+}
+
+int TyreJudgement::solves() const {
+  int total = 0;
+  for (const TyreCandidate& candidate : candidates) total += candidate.solves;
+  return total;
+}
+
+void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& judgement,
+                                  const std::array<double, 2>& gap_m, const char* whose) {
+  const TyreCandidate* better = judgement.better_fit();
+  if (!adequacy.judged || !better) return;
+  const std::string text =
+      better->tyre
+          ? fmt::format(
+                "tyre_model: {} fits it better (BIC {:.1f} against {:.1f}) and puts the "
+                "circumferences at rest {:.3g} / {:.3g} mm from {}, which their sigma carries; "
+                "use the batch's tyre_model: auto",
+                better->model, better->bic, judgement.plain_bic, 1e3 * gap_m[0], 1e3 * gap_m[1],
+                whose)
+          : fmt::format(
+                "tyre_model: {} fits it decisively better (BIC {:.1f} against {:.1f}) but is no "
+                "tyre (coefficients beyond a road tyre's, or circumferences out of their band) "
+                "and puts the circumferences at rest {:.3g} / {:.3g} mm from {}, which their "
+                "sigma carries: no model here says surely where they lie; check vehicle.yaml's "
+                "body and tyres, and the log's inputs",
+                better->model, better->bic, judgement.plain_bic, 1e3 * gap_m[0], 1e3 * gap_m[1],
+                whose);
+  adequacy.verdict = adequacy.explains ? "the two-wheel model does not explain this log: " + text
+                                       : adequacy.verdict + "; " + text;
+  adequacy.explains = false;
+}
+
+void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
+                      const CalibrationOptions& common, BatchSummary& summary) {
+  const BatchSummary unfitted = summary;
+  FitFacts plain;
+  fit_model(run, options, common, std::nullopt, summary, [&](const FitFacts& facts) {
+    plain = facts;
+    return true;
+  });
+  if (!plain.usable) return;
+  const TyreJudgement judgement =
+      judge_against_tyre_models(run, options, common, unfitted, summary.gnss_noise, plain.bic);
+  int other_solves = judgement.solves();
+  TyreModelSelection selection;
+  if (const TyreCandidate* better = judgement.better_fit()) {
+    // Solved again, so that the gap enters every sigma and verdict as summarise forms them.
+    other_solves += summary.solves;
+    summary = unfitted;
+    fit_model(run, options, common, std::nullopt, summary, {}, better->circumference);
+    say_a_tyre_model_fits_better(summary.model_adequacy, judgement, summary.model_spread_m,
+                                 "the plain ones");
+    selection.plain_gap_to = better->model;
+  }
+  selection.compared = true;
+  selection.judges_plain = true;
+  selection.plain_bic = judgement.plain_bic;
+  selection.candidates = judgement.candidates;
+  selection.other_solves = other_solves;
+  summary.tyre_selection = selection;
+}
+
+}  // namespace odocal::batch
