@@ -145,6 +145,7 @@ void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& 
 struct ModelJudgement {
   ModelAdequacy adequacy;
   std::array<double, 2> gap_m{};  // zero where no tyre model fits the log better
+  bool gap_to_a_tyre = true;      // false: to a model that is no tyre (decisive_no_tyre)
 };
 ModelJudgement judge_model_adequacy(const CalibrationRun& run, const OdometryParams& start,
                                     const CalibrationOptions& common);

@@ -75,7 +75,7 @@ double nominal_distance_squared(const CalibrationSummary& s) {
 // precision, and is not a result to export, however wide its sigma is made.
 void refuse_a_gap_beyond_the_estimates_own_sigma(const std::array<double, 2>& gap_m,
                                                  const std::array<double, 2>& own_sigma_m,
-                                                 CalibrationSummary& summary) {
+                                                 bool gap_to_a_tyre, CalibrationSummary& summary) {
   constexpr double kSigmas = 3.0;
   if (!(gap_m[0] > kSigmas * own_sigma_m[0] || gap_m[1] > kSigmas * own_sigma_m[1])) return;
   summary.termination = Termination::kNotIdentifiable;
@@ -83,8 +83,12 @@ void refuse_a_gap_beyond_the_estimates_own_sigma(const std::array<double, 2>& ga
       "the two-wheel model does not explain this log: a tyre model that fits it better puts the "
       "circumferences at rest {:.3g} / {:.3g} mm from this estimate, {:.1f} / {:.1f} times its own "
       "1-sigma (this estimate is the circumference the drive rolled on, slip and load in it); "
-      "calibrate with --method batch, whose tyre_model: auto fits the circumference at rest",
-      1e3 * gap_m[0], 1e3 * gap_m[1], gap_m[0] / own_sigma_m[0], gap_m[1] / own_sigma_m[1]);
+      "{}",
+      1e3 * gap_m[0], 1e3 * gap_m[1], gap_m[0] / own_sigma_m[0], gap_m[1] / own_sigma_m[1],
+      gap_to_a_tyre ? "calibrate with --method batch, whose tyre_model: auto fits the "
+                      "circumference at rest"
+                    : "that model is no tyre (see the model line): check vehicle.yaml's body and "
+                      "tyres, and the log's inputs");
 }
 
 // Whether dead reckoning can take the fit (not a diverged one's).
@@ -228,10 +232,12 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
   if (summary.method != CalibrationMethod::kBatch && summary.usable() &&
       options_.judge_model_adequacy) {
     std::array<double, 2> gap_m{};
+    bool gap_to_a_tyre = true;
     try {
       const batch::ModelJudgement judged = batch::judge_model_adequacy(*this, e, options_);
       summary.model_adequacy = judged.adequacy;
       gap_m = judged.gap_m;
+      gap_to_a_tyre = judged.gap_to_a_tyre;
     } catch (const InsufficientDataError& error) {
       summary.model_adequacy.verdict = fmt::format("not judged: {}", error.what());
     }
@@ -246,7 +252,7 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
     const std::array<double, 2> own_sigma_m{summary.sigma_rl_m(), summary.sigma_rr_m()};
     summary.covariance(0, 0) += gap_m[0] * gap_m[0];
     summary.covariance(1, 1) += gap_m[1] * gap_m[1];
-    refuse_a_gap_beyond_the_estimates_own_sigma(gap_m, own_sigma_m, summary);
+    refuse_a_gap_beyond_the_estimates_own_sigma(gap_m, own_sigma_m, gap_to_a_tyre, summary);
   }
 }
 

@@ -231,7 +231,8 @@ TEST(TyreModelBatch, APlainFitThatANoTyreModelExplainsDecisivelyBetterCarriesIts
   // a sigma of ~8 mm. The physical terms fit the log decisively better but are no tyre (their
   // slip coefficient, ~0.14, beyond kMaxSlipCoefficient), and so are the regression terms: the
   // plain fit stood, unjudged, confident and wrong. It now carries its gap to the physical fit,
-  // under auto and under none alike, and is refused with a sigma that covers its error.
+  // under auto and under none alike (and the iterative method's estimate likewise), and is
+  // refused with a sigma that covers its error.
   sim::Scenario scenario = testing::with_low_heavy_body(load_scenario("circuit"));
   scenario.dynamics.slip_stiffness_per_load = 8.0;
   scenario.route.laps = 1;
@@ -262,6 +263,14 @@ TEST(TyreModelBatch, APlainFitThatANoTyreModelExplainsDecisivelyBetterCarriesIts
     EXPECT_NE(judged.model_adequacy.verdict.find("but is no tyre"), std::string::npos)
         << judged.model_adequacy.verdict;
   }
+  // The iterative method's judge carries the same gap: refused, its sigma covering its error, and
+  // its message not sending the user to the batch's auto, which refuses it too.
+  const IterativeSummary iterative = calibrate_iterative(log);
+  EXPECT_EQ(iterative.termination, Termination::kNotIdentifiable) << iterative.full_report();
+  EXPECT_LT(std::abs(iterative.estimate.circumference_rl_m - truth_m), 3.0 * iterative.sigma_rl_m())
+      << iterative.full_report();
+  EXPECT_NE(iterative.message.find("that model is no tyre"), std::string::npos)
+      << iterative.message;
 }
 
 TEST(TyreModelBatch, AutoDoesNotTakeATrackThatVehicleYamlGetsWrongForTyres) {
