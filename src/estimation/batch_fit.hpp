@@ -87,7 +87,8 @@ bool is_tyre(const FitFacts& facts, const OdometryParams& nominal, double max_ch
 inline constexpr double kDecisiveBic = 10.0;
 
 // Where no tyre model stands: the candidate that fits the log decisively better than the plain
-// model's `plain_bic` without being a tyre, the lowest criterion first (none: no such one). The
+// model's `plain_bic` without being a tyre, the lowest criterion first (none: no such one, or a
+// candidate that is a tyre fits the log better, which judges the plain fit or confirms it). The
 // plain model does not explain such a log, and its circumferences are the ones the drive rolled
 // on: a car whose tyres slip far more than a road tyre's (a slip stiffness of 8 per unit load, on
 // the realistic circuit with a lower, heavier body than vehicle.yaml's: the plain fit 68 mm off at

@@ -91,11 +91,15 @@ void refuse_a_gap_beyond_the_estimates_own_sigma(const std::array<double, 2>& ga
                       "tyres, and the log's inputs");
 }
 
-// Whether dead reckoning can take the fit (not a diverged one's).
-bool finite_fit(const CalibrationSummary& summary) {
-  const OdometryParams& e = summary.estimate;
+// Whether the circumferences and track are numbers (not a diverged fit's).
+bool finite_geometry(const OdometryParams& e) {
   return std::isfinite(e.circumference_rl_m) && std::isfinite(e.circumference_rr_m) &&
-         std::isfinite(e.track_width_m) && summary.tyre_model.coefficients().allFinite();
+         std::isfinite(e.track_width_m);
+}
+
+// Whether dead reckoning can take the fit: its tyre coefficients too.
+bool finite_fit(const CalibrationSummary& summary) {
+  return finite_geometry(summary.estimate) && summary.tyre_model.coefficients().allFinite();
 }
 
 }  // namespace
@@ -218,12 +222,9 @@ void CalibrationRun::dead_reckon_with_walk(CalibrationSummary& summary) {
 
 void CalibrationRun::finish(CalibrationSummary& summary) {
   const OdometryParams& e = summary.estimate;
-  const bool finite_estimate = std::isfinite(e.circumference_rl_m) &&
-                               std::isfinite(e.circumference_rr_m) &&
-                               std::isfinite(e.track_width_m);
   dead_reckon_with_walk(summary);
   // The hills' projection is uncertain by the noise of the fitted grades: a common scale.
-  if (summary.preparation.grade_scale_variance > 0.0 && finite_estimate) {
+  if (summary.preparation.grade_scale_variance > 0.0 && finite_geometry(e)) {
     const Eigen::Vector2d c(e.circumference_rl_m, e.circumference_rr_m);
     summary.covariance += summary.preparation.grade_scale_variance * c * c.transpose();
   }

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "batch_fit.hpp"
@@ -14,6 +15,11 @@ namespace odocal::batch {
 
 std::optional<std::size_t> decisive_no_tyre(const std::vector<TyreCandidate>& candidates,
                                             double plain_bic) {
+  // A tyre that fits the log better judges instead (or confirms the plain fit, under auto).
+  const bool a_tyre_fits_better =
+      std::any_of(candidates.begin(), candidates.end(),
+                  [&](const TyreCandidate& c) { return c.tyre && c.bic < plain_bic; });
+  if (a_tyre_fits_better) return std::nullopt;
   std::optional<std::size_t> best;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const TyreCandidate& c = candidates[i];

@@ -1,5 +1,6 @@
 // Which candidate judges a plain fit where no tyre model stands: one that is no tyre, fits the
-// log decisively better than the plain model (by kDecisiveBic), and has circumferences to compare.
+// log decisively better than the plain model (by kDecisiveBic), and has circumferences to compare;
+// none where a tyre fits it better.
 
 #include <gtest/gtest.h>
 
@@ -32,11 +33,18 @@ TEST(DecisiveNoTyre, NeedsAWinByMoreThanTheDecisiveMargin) {
 
 TEST(DecisiveNoTyre, TakesTheLowestCriterionAmongThoseThatAreNoTyre) {
   constexpr double plain = 1000.0;
-  const std::vector<TyreCandidate> candidates{candidate("physical", 900.0, true),
-                                              candidate("extended", 950.0, false),
+  const std::vector<TyreCandidate> candidates{candidate("physical", 950.0, false),
+                                              candidate("extended", 900.0, false),
                                               candidate("other", 960.0, false)};
   EXPECT_EQ(decisive_no_tyre(candidates, plain), 1u);
-  EXPECT_EQ(decisive_no_tyre({candidates[2], candidates[1]}, plain), 1u);
+  EXPECT_EQ(decisive_no_tyre({candidates[2], candidates[0]}, plain), 1u);
+}
+
+TEST(DecisiveNoTyre, LeavesItToATyreThatFitsTheLogBetter) {
+  constexpr double plain = 1000.0;
+  const TyreCandidate no_tyre = candidate("physical", 900.0, false);
+  EXPECT_FALSE(decisive_no_tyre({no_tyre, candidate("extended", 999.0, true)}, plain));
+  EXPECT_EQ(decisive_no_tyre({no_tyre, candidate("extended", 1001.0, true)}, plain), 0u);
 }
 
 TEST(DecisiveNoTyre, SkipsAFitWithoutCircumferences) {
