@@ -14,6 +14,31 @@ def table(rows, header):
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
+def tyre_selection_text(selection):
+    """The tyre models compared: which stands, every criterion, each candidate's circumferences
+    at rest and whether it is a tyre, and whose gap the plain circumferences carry."""
+    if selection.get("judges_plain"):
+        chosen = "plain, as configured, judged by the tyre models"
+    elif selection.get("chosen", "none") == "none":
+        chosen = "plain" + (", the track width free" if selection.get("plain_track_free") else "")
+    else:
+        chosen = selection["chosen"]
+    parts = []
+    if selection.get("plain_bic") is not None:
+        parts.append(f"plain BIC {selection['plain_bic']:.1f}")
+    for c in selection.get("candidates", []):
+        rest = ""
+        if c.get("circumference_rl_m") is not None and c.get("circumference_rr_m") is not None:
+            rest = f", at rest {c['circumference_rl_m']:.4f} / {c['circumference_rr_m']:.4f} m"
+        bic = f"BIC {c['bic']:.1f}" if c.get("bic") is not None else "not solved"
+        parts.append(f"{c['model']} {bic}{'' if c.get('tyre', True) else ', no tyre'}{rest}")
+    text = f"{chosen} ({'; '.join(parts)})"
+    if selection.get("plain_gap_to"):
+        text += (f"; the plain circumferences carry their gap to the {selection['plain_gap_to']} "
+                 f"fit in their sigma")
+    return text
+
+
 def summary_rows(result):
     def mm(value):
         return f"{1000 * value:.3f} mm" if isinstance(value, (int, float)) else "–"
@@ -32,6 +57,8 @@ def summary_rows(result):
     rows.append(("identifiability", result.get("identifiability", "")))
     if result.get("model_adequacy", {}).get("verdict"):
         rows.append(("model adequacy", result["model_adequacy"]["verdict"]))
+    if result.get("tyre_selection"):
+        rows.append(("tyre model", tyre_selection_text(result["tyre_selection"])))
     if result.get("misfit_sigma_scale", 1.0) > 1.0:
         rows.append(("sigma widened", f"x{result['misfit_sigma_scale']:.3g}: the odometry residuals "
                      f"are that many times as wide as their noise model (chi2/dof "

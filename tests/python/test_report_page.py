@@ -25,3 +25,27 @@ def test_the_accelerometer_walk_is_shown_where_a_tyre_model_has_one():
     assert "by 2.07 deg" in rows["accelerometer noise"]
     result["accelerometer_walk"]["heading_deg"] = 0.0  # the plain model
     assert "accelerometer noise" not in dict(summary_rows(result))
+
+
+def test_the_tyre_models_compared_are_shown_with_whose_gap_the_plain_fit_carries():
+    selection = {"plain_bic": 35476.7, "free_track_bic": 35457.4, "plain_track_free": True,
+                 "chosen": "none", "judges_plain": False, "plain_gap_to": "physical",
+                 "candidates": [{"model": "physical", "bic": 34668.3, "tyre": False,
+                                 "circumference_rl_m": 1.98909, "circumference_rr_m": 1.98907},
+                                {"model": "extended", "bic": 35448.5, "tyre": False,
+                                 "circumference_rl_m": None, "circumference_rr_m": None}]}
+    result = {"method": "batch", "usable": False, "termination": "not_identifiable",
+              "circumference_rl_m": 1.896, "circumference_rr_m": 1.896,
+              "tyre_selection": selection}
+    text = dict(summary_rows(result))["tyre model"]
+    assert text.startswith("plain, the track width free (plain BIC 35476.7;")
+    assert "physical BIC 34668.3, no tyre, at rest 1.9891 / 1.9891 m" in text
+    assert "extended BIC 35448.5, no tyre)" in text
+    assert text.endswith("carry their gap to the physical fit in their sigma")
+    selection.update(chosen="physical", plain_gap_to="", plain_track_free=False)
+    selection["candidates"][0]["tyre"] = True
+    text = dict(summary_rows(result))["tyre model"]
+    assert text.startswith("physical (plain BIC 35476.7; physical BIC 34668.3, at rest")
+    assert "gap" not in text
+    del result["tyre_selection"]
+    assert "tyre model" not in dict(summary_rows(result))
