@@ -133,6 +133,14 @@ TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOp
 void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& judgement,
                                   const std::array<double, 2>& gap_m, const char* whose);
 
+// The plain model solved again from `unfitted` with its gap to the judgement's better fit (which
+// it must have) in its sigma, so that the gap enters every sigma and verdict as summarise forms
+// them, and the verdict saying so: fit_auto's decisive-no-tyre step and fit_plain_judged. The
+// caller scores the result (run.finish) and counts its solves.
+BatchSummary fit_plain_carrying_gap(const CalibrationRun& run, const BatchOptions& options,
+                                    const CalibrationOptions& common, const BatchSummary& unfitted,
+                                    const TyreJudgement& judgement);
+
 // Whether the two-wheel model explains the log, for a method that has no pose graph of its own
 // (iterative, fixed-P, augmented): the plain batch fit, started at `start`, judged on its
 // odometry residuals (model_adequacy.hpp), as the batch method judges its own. The verdict is

@@ -113,6 +113,16 @@ void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& 
   adequacy.explains = false;
 }
 
+BatchSummary fit_plain_carrying_gap(const CalibrationRun& run, const BatchOptions& options,
+                                    const CalibrationOptions& common, const BatchSummary& unfitted,
+                                    const TyreJudgement& judgement) {
+  BatchSummary summary = unfitted;
+  fit_model(run, options, common, std::nullopt, summary, {}, judgement.better_fit()->circumference);
+  say_a_tyre_model_fits_better(summary.model_adequacy, judgement, summary.model_spread_m,
+                               "the plain ones");
+  return summary;
+}
+
 void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, BatchSummary& summary) {
   const BatchSummary unfitted = summary;
@@ -127,12 +137,8 @@ void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
   int other_solves = judgement.solves();
   TyreModelSelection selection;
   if (const TyreCandidate* better = judgement.better_fit()) {
-    // Solved again, so that the gap enters every sigma and verdict as summarise forms them.
     other_solves += summary.solves;
-    summary = unfitted;
-    fit_model(run, options, common, std::nullopt, summary, {}, better->circumference);
-    say_a_tyre_model_fits_better(summary.model_adequacy, judgement, summary.model_spread_m,
-                                 "the plain ones");
+    summary = fit_plain_carrying_gap(run, options, common, unfitted, judgement);
     selection.plain_gap_to = better->model;
   }
   selection.compared = true;

@@ -331,17 +331,13 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
                                  : selection.plain_bic;
     if (const std::optional<std::size_t> better =
             decisive_no_tyre(selection.candidates, plain_bic)) {
-      const TyreCandidate& rival = selection.candidates[*better];
-      BatchSummary judged = unfitted;
-      fit_model(run, selection.plain_track_free ? free_track : options, common, std::nullopt,
-                judged, {}, rival.circumference);
+      const TyreJudgement judgement{selection.candidates, plain_bic, better};
+      BatchSummary judged = fit_plain_carrying_gap(
+          run, selection.plain_track_free ? free_track : options, common, unfitted, judgement);
       all_solves += judged.solves;
       if (finished) run.finish(judged);
-      const TyreJudgement judgement{selection.candidates, plain_bic, better};
-      say_a_tyre_model_fits_better(judged.model_adequacy, judgement, judged.model_spread_m,
-                                   "the plain ones");
       summary = std::move(judged);
-      selection.plain_gap_to = rival.model;
+      selection.plain_gap_to = judgement.better_fit()->model;
     }
   }
   selection.other_solves = all_solves - summary.solves;
