@@ -16,7 +16,8 @@ def table(rows, header):
 
 def tyre_selection_text(selection):
     """The tyre models compared: which stands, every criterion, each candidate's circumferences
-    at rest and whether it is a tyre, and whose gap the plain circumferences carry."""
+    at rest and whether it is a tyre, and whose gap the plain (or the chosen) circumferences
+    carry."""
     if selection.get("judges_plain"):
         chosen = "plain, as configured, judged by the tyre models"
     elif selection.get("chosen", "none") == "none":
@@ -36,6 +37,11 @@ def tyre_selection_text(selection):
     if selection.get("plain_gap_to"):
         text += (f"; the plain circumferences carry their gap to the {selection['plain_gap_to']} "
                  f"fit in their sigma")
+    if selection.get("chosen_gap_to"):
+        sigmas = selection.get("chosen_gap_sigmas")
+        away = f" ({sigmas:.1f} of their combined sigma away)" if sigmas is not None else ""
+        text += (f"; the {selection['chosen']} circumferences carry their gap to the "
+                 f"{selection['chosen_gap_to']} fit{away} in their sigma")
     return text
 
 

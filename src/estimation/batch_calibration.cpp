@@ -129,7 +129,16 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
         options.tyre_model == TyreModelChoice::kExtended   ? std::optional(TyreTerms::kRegression)
         : options.tyre_model == TyreModelChoice::kPhysical ? std::optional(TyreTerms::kPhysical)
                                                            : std::nullopt;
+    const BatchSummary unfitted = summary;
     batch::fit_model(run, options, common, terms, summary);
+    // Chosen by hand, the physical terms are witnessed as under auto.
+    const bool stands = summary.termination == Termination::kConverged ||
+                        summary.termination == Termination::kNotIdentifiable;
+    if (terms == TyreTerms::kPhysical && common.judge_model_adequacy && stands) {
+      int witness_solves = 0;
+      batch::witness_physical_fit(run, options, common, unfitted, summary, witness_solves);
+      summary.tyre_selection.other_solves += witness_solves;
+    }
   }
   if (!finished) run.finish(summary);
   batch::check_parts_consistency(log, options, common, summary);

@@ -101,6 +101,24 @@ std::optional<std::size_t> decisive_no_tyre(const std::vector<TyreCandidate>& ca
 bool fit_auto(CalibrationRun& run, const BatchOptions& options, const CalibrationOptions& common,
               BatchSummary& summary);
 
+// Where the physical terms stand (under auto, or chosen by hand and judge_model_adequacy on),
+// the regression terms fitted beside them as their
+// witness (tyre_model_witness.cpp): the physical terms rest on vehicle.yaml's body, and a body
+// number stated beyond the uncertainty that their sigma carries for it moves their circumferences
+// at rest without a trace in that sigma (the built-in circuit, rear-driven, the centre of
+// gravity stated 0.9 m high on a car of 0.55 m: +19.3 mm at a sigma of 3.4 mm; the rear roll
+// share 0.9 on one of 0.45: +18.0 mm at 3.5 mm; a rear-driven car stated front-driven: -51.5 mm
+// at 5.8 mm). The regression terms need no body. Where the two models' circumferences at rest
+// disagree beyond kWitnessSigmas of their combined sigma (each its own), the physical fit is
+// solved again with its gap to the regression terms' in its sigma, and the verdict says so.
+// Not 2: on right bodies the two disagree by up to 2.3 combined sigma (the fleet's drives of
+// tests/python/test_fleet_health.py). `fitting`: the options the physical fit stood with.
+// Returns whether it replaced the fit (the caller scores it: run.finish); adds its solves.
+inline constexpr double kWitnessSigmas = 3.0;
+bool witness_physical_fit(const CalibrationRun& run, const BatchOptions& fitting,
+                          const CalibrationOptions& common, const BatchSummary& unfitted,
+                          BatchSummary& summary, int& solves);
+
 // tyre_model none chosen by hand: the plain fit, judged by the tyre models as auto judges it
 // (judge_against_tyre_models below, tyre_model_judge.cpp). Where one is a tyre and fits the log
 // better under the same GNSS noise (or, where none is, one fits it decisively better), the plain

@@ -110,6 +110,10 @@ std::string BatchSummary::full_report() const {
             ? "a tyre model's fit of this log (the tyre model line names it): the plain "
               "circumferences are the ones this drive rolled on, slip and load in them, not the "
               "ones at rest"
+        : tyre_selection.chosen_gap_to == tyre_model_option(TyreTerms::kRegression)
+            ? "the regression terms' fit of this log, which needs no body: the physical terms' "
+              "circumferences at rest, which rest on vehicle.yaml's body, disagree with it beyond "
+              "their combined sigma"
             : "the physical terms' fit of this log: the regression terms extrapolate to rest no "
               "surer than the two models agree");
   }

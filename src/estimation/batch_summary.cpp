@@ -100,10 +100,14 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
             "from the tyre coefficients held",
             [](const std::string& key) { return "drive more of what shows " + key; });
   if (spread_m > 0.0) {
+    // The physical terms carry their gap to the regression terms only where a body number is
+    // likely wrong (witness_physical_fit).
+    const bool to_regression =
+        summary.tyre_selection.chosen_gap_to == tyre_model_option(TyreTerms::kRegression);
     shares.push_back({spread_m,
-                      fmt::format("{:.2g} mm from the gap to where the physical terms' fit puts it",
-                                  1e3 * spread_m),
-                      "drive more gently"});
+                      fmt::format("{:.2g} mm from the gap to where the {} terms' fit puts it",
+                                  1e3 * spread_m, to_regression ? "regression" : "physical"),
+                      to_regression ? "check vehicle.yaml's body" : "drive more gently"});
   }
   double named_variance = 0.0;
   for (const Share& share : shares) named_variance += share.size_m * share.size_m;

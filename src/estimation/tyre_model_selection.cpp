@@ -303,6 +303,17 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
     selection.candidates.push_back(candidate);
     if (confirms_plain) break;
   }
+  if (selection.chosen == tyre_model_option(TyreTerms::kPhysical)) {
+    summary.tyre_selection = selection;
+    if (witness_physical_fit(run, selection.candidates.back().track_free ? free_track : options,
+                             common, unfitted, summary, all_solves)) {
+      run.finish(summary);
+    }
+    selection = summary.tyre_selection;
+  } else if (selection.chosen == tyre_model_option(TyreTerms::kRegression) &&
+             physical_circumference) {
+    selection.chosen_gap_to = tyre_model_option(TyreTerms::kPhysical);
+  }
   // Where no tyre model stands and the track freed fits the log better, the plain model stands
   // with it free: the circumferences held the track's misfit otherwise, and dead reckoning turns
   // with the track (3 ideal laps on a track 10 % wider than stated: held -0.51 mm at a sigma of

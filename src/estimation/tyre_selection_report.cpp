@@ -74,6 +74,13 @@ std::string tyre_selection_report(const BatchSummary& summary) {
         "circumferences carry their gap to it in their sigma",
         selection.plain_gap_to);
   }
+  if (selection.chosen_gap_to == tyre_model_option(TyreTerms::kRegression)) {
+    why += fmt::format(
+        "; the {} terms, which need no body, put the circumferences at rest {:.1f} of their "
+        "combined sigma away: the physical ones carry that gap in their sigma; check "
+        "vehicle.yaml's body",
+        selection.chosen_gap_to, selection.chosen_gap_sigmas);
+  }
   std::string criteria = fmt::format("plain {:.1f}", selection.plain_bic);
   if (std::isfinite(selection.free_track_bic))
     criteria += fmt::format(", plain with the track free {:.1f}", selection.free_track_bic);

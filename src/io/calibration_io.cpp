@@ -214,14 +214,17 @@ void add_details(json& out, const BatchSummary& s) {
                             {"circumference_rl_m", number_or_null(c.circumference[0])},
                             {"circumference_rr_m", number_or_null(c.circumference[1])}});
     }
-    out["tyre_selection"] = {{"plain_bic", number_or_null(s.tyre_selection.plain_bic)},
-                             {"free_track_bic", number_or_null(s.tyre_selection.free_track_bic)},
-                             {"plain_track_free", s.tyre_selection.plain_track_free},
-                             {"candidates", candidates},
-                             {"other_solves", s.tyre_selection.other_solves},
-                             {"chosen", s.tyre_selection.chosen},
-                             {"judges_plain", s.tyre_selection.judges_plain},
-                             {"plain_gap_to", s.tyre_selection.plain_gap_to}};
+    out["tyre_selection"] = {
+        {"plain_bic", number_or_null(s.tyre_selection.plain_bic)},
+        {"free_track_bic", number_or_null(s.tyre_selection.free_track_bic)},
+        {"plain_track_free", s.tyre_selection.plain_track_free},
+        {"candidates", candidates},
+        {"other_solves", s.tyre_selection.other_solves},
+        {"chosen", s.tyre_selection.chosen},
+        {"judges_plain", s.tyre_selection.judges_plain},
+        {"plain_gap_to", s.tyre_selection.plain_gap_to},
+        {"chosen_gap_to", s.tyre_selection.chosen_gap_to},
+        {"chosen_gap_sigmas", number_or_null(s.tyre_selection.chosen_gap_sigmas)}};
   }
   if (s.gentle_limits) {
     out["gentle_segments"] = {{"odometry_intervals_used", s.odometry_intervals_used},

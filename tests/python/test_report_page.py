@@ -47,5 +47,10 @@ def test_the_tyre_models_compared_are_shown_with_whose_gap_the_plain_fit_carries
     text = dict(summary_rows(result))["tyre model"]
     assert text.startswith("physical (plain BIC 35476.7; physical BIC 34668.3, at rest")
     assert "gap" not in text
+    # The physical terms carrying their gap to the regression terms, their witness.
+    selection.update(chosen_gap_to="extended", chosen_gap_sigmas=5.96)
+    text = dict(summary_rows(result))["tyre model"]
+    assert text.endswith("the physical circumferences carry their gap to the extended fit "
+                         "(6.0 of their combined sigma away) in their sigma")
     del result["tyre_selection"]
     assert "tyre model" not in dict(summary_rows(result))

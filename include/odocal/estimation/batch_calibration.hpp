@@ -108,6 +108,14 @@ struct TyreModelSelection {
   // without being a tyre (the plain model does not explain the log, and no model here says
   // surely where the circumferences at rest lie).
   std::string plain_gap_to;
+  // Where a tyre model stands: the one whose circumferences at rest its own carry their gap to in
+  // their sigma (empty: none). The regression terms carry their gap to the physical ones where
+  // those were fitted; the physical terms theirs to the regression terms, which need no body,
+  // where the two disagree beyond kWitnessSigmas of their combined sigma (a body that
+  // vehicle.yaml gets wrong: batch_fit.hpp, witness_physical_fit), how far being
+  // chosen_gap_sigmas.
+  std::string chosen_gap_to;
+  double chosen_gap_sigmas = std::numeric_limits<double>::quiet_NaN();
   int other_solves{};  // the solves of the fits not chosen (BatchSummary::solves: the chosen's)
 };
 

@@ -1,0 +1,56 @@
+// The physical terms' circumferences at rest witnessed by the regression terms, which need no
+// body (batch_fit.hpp, witness_physical_fit; docs/tyre-model.md, "A body that vehicle.yaml gets
+// wrong").
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "batch_fit.hpp"
+
+namespace odocal::batch {
+
+bool witness_physical_fit(const CalibrationRun& run, const BatchOptions& fitting,
+                          const CalibrationOptions& common, const BatchSummary& unfitted,
+                          BatchSummary& summary, int& solves) {
+  BatchSummary witness = unfitted;
+  const bool tyre =
+      fit_model(run, fitting, common, TyreTerms::kRegression, witness, [&](const FitFacts& facts) {
+        return facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
+      });
+  solves += witness.solves;
+  // A witness that is no tyre, or whose circumferences the log leaves open, says nothing.
+  if (!tyre || witness.parameters.size() < 2 || summary.parameters.size() < 2) return false;
+  std::array<double, 2> at_rest{}, gap_m{};
+  double sigmas = 0.0;
+  for (std::size_t wheel = 0; wheel < 2; ++wheel) {
+    const EstimatedParameter& own = summary.parameters[wheel];
+    const EstimatedParameter& other = witness.parameters[wheel];
+    at_rest[wheel] = other.value;
+    gap_m[wheel] = other.value - own.value;
+    const double combined = std::hypot(own.sigma, other.sigma);
+    if (!std::isfinite(gap_m[wheel]) || !(combined > 0.0)) return false;
+    sigmas = std::max(sigmas, std::abs(gap_m[wheel]) / combined);
+  }
+  if (!(sigmas > kWitnessSigmas)) return false;
+  BatchSummary judged = unfitted;
+  // Set first: the circumferences' verdicts name whose gap they carry.
+  judged.tyre_selection = summary.tyre_selection;
+  judged.tyre_selection.chosen_gap_to = tyre_model_option(TyreTerms::kRegression);
+  judged.tyre_selection.chosen_gap_sigmas = sigmas;
+  fit_model(run, fitting, common, TyreTerms::kPhysical, judged, {}, at_rest);
+  solves += judged.solves;
+  std::string& verdict = judged.model_adequacy.verdict;
+  verdict += fmt::format(
+      "{}tyre_model: {} (its terms need no body) puts the circumferences at rest {:.3g} / "
+      "{:.3g} mm from the physical terms' ({:.1f} of their combined sigma), which their sigma "
+      "carries: check vehicle.yaml's body (the physical terms rest on it)",
+      verdict.empty() ? "" : "; but ", tyre_model_option(TyreTerms::kRegression),
+      1e3 * std::abs(gap_m[0]), 1e3 * std::abs(gap_m[1]), sigmas);
+  summary = std::move(judged);
+  return true;
+}
+
+}  // namespace odocal::batch
