@@ -110,7 +110,7 @@ std::string BatchSummary::full_report() const {
             ? "a tyre model's fit of this log (the tyre model line names it): the plain "
               "circumferences are the ones this drive rolled on, slip and load in them, not the "
               "ones at rest"
-        : tyre_selection.chosen_gap_to == tyre_model_option(TyreTerms::kRegression)
+        : tyre_selection.body_in_doubt()
             ? "the regression terms' fit of this log, which needs no body: the physical terms' "
               "circumferences at rest, which rest on vehicle.yaml's body, disagree with it beyond "
               "their combined sigma"

@@ -102,8 +102,7 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
   if (spread_m > 0.0) {
     // The physical terms carry their gap to the regression terms only where a body number is
     // likely wrong (witness_physical_fit).
-    const bool to_regression =
-        summary.tyre_selection.chosen_gap_to == tyre_model_option(TyreTerms::kRegression);
+    const bool to_regression = summary.tyre_selection.body_in_doubt();
     shares.push_back({spread_m,
                       fmt::format("{:.2g} mm from the gap to where the {} terms' fit puts it",
                                   1e3 * spread_m, to_regression ? "regression" : "physical"),

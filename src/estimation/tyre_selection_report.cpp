@@ -74,7 +74,7 @@ std::string tyre_selection_report(const BatchSummary& summary) {
         "circumferences carry their gap to it in their sigma",
         selection.plain_gap_to);
   }
-  if (selection.chosen_gap_to == tyre_model_option(TyreTerms::kRegression)) {
+  if (selection.body_in_doubt()) {
     why += fmt::format(
         "; the {} terms, which need no body, put the circumferences at rest {:.1f} of their "
         "combined sigma away: the physical ones carry that gap in their sigma; check "

@@ -15,6 +15,7 @@
 #include "odocal/estimation/calibration_summary.hpp"
 #include "odocal/estimation/model_adequacy.hpp"
 #include "odocal/estimation/odometry_scales.hpp"
+#include "odocal/model/tyre_model.hpp"
 
 namespace odocal {
 
@@ -116,6 +117,8 @@ struct TyreModelSelection {
   // chosen_gap_sigmas.
   std::string chosen_gap_to;
   double chosen_gap_sigmas = std::numeric_limits<double>::quiet_NaN();
+  // The physical terms stand carrying their gap to the regression terms: the body is in doubt.
+  bool body_in_doubt() const { return chosen_gap_to == tyre_model_option(TyreTerms::kRegression); }
   int other_solves{};  // the solves of the fits not chosen (BatchSummary::solves: the chosen's)
 };
 
