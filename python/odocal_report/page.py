@@ -32,7 +32,9 @@ def tyre_selection_text(selection):
         if c.get("circumference_rl_m") is not None and c.get("circumference_rr_m") is not None:
             rest = f", at rest {c['circumference_rl_m']:.4f} / {c['circumference_rr_m']:.4f} m"
         bic = f"BIC {c['bic']:.1f}" if c.get("bic") is not None else "not solved"
-        parts.append(f"{c['model']} {bic}{'' if c.get('tyre', True) else ', no tyre'}{rest}")
+        standing = ("" if c.get("tyre", True) else ", no tyre") + (
+            ", every coefficient held" if c.get("every_coefficient_held") else "")
+        parts.append(f"{c['model']} {bic}{standing}{rest}")
     text = f"{chosen} ({'; '.join(parts)})"
     if selection.get("plain_gap_to"):
         text += (f"; the plain circumferences carry their gap to the {selection['plain_gap_to']} "

@@ -102,7 +102,7 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
   if (const TyreCandidate* better = tyre.better_fit()) {
     judgement.gap_m = {std::abs(start.circumference_rl_m - better->circumference[0]),
                        std::abs(start.circumference_rr_m - better->circumference[1])};
-    judgement.gap_to_a_tyre = better->tyre;
+    judgement.gap_cannot_stand = why_it_cannot_stand(*better);
     say_a_tyre_model_fits_better(adequacy, tyre, judgement.gap_m, "this estimate's");
   }
   // Said, so that the residuals are not taken for the other method's.

@@ -87,14 +87,22 @@ bool is_tyre(const FitFacts& facts, const OdometryParams& nominal, double max_ch
 inline constexpr double kDecisiveBic = 10.0;
 
 // Where no tyre model stands: the candidate that fits the log decisively better than the plain
-// model's `plain_bic` without being a tyre, the lowest criterion first (none: no such one, or a
-// candidate that is a tyre fits the log better, which judges the plain fit or confirms it). The
+// model's `plain_bic` but cannot stand, the lowest criterion first (none: no such one, or a
+// candidate that can stand fits the log better, which judges the plain fit or confirms it). The
 // plain model does not explain such a log, and its circumferences are the ones the drive rolled
-// on: a car whose tyres slip far more than a road tyre's (a slip stiffness of 8 per unit load, on
-// the realistic circuit with a lower, heavier body than vehicle.yaml's: the plain fit 68 mm off at
-// a sigma of 6.5 mm; the physical terms, slip coefficient 0.14, +25 mm at 16 mm).
-std::optional<std::size_t> decisive_no_tyre(const std::vector<TyreCandidate>& candidates,
-                                            double plain_bic);
+// on. Two kinds cannot stand: no tyre (a car whose tyres slip far more than a road tyre's, a slip
+// stiffness of 8 per unit load, on the realistic circuit with a lower, heavier body than
+// vehicle.yaml's: the plain fit 68 mm off at a sigma of 6.5 mm; the physical terms, slip
+// coefficient 0.14, +25 mm at 16 mm), and a tyre whose every coefficient is held (comma2k19's
+// minute with vehicle.yaml's rear roll share 0.1: the physical terms, every coefficient held at a
+// car's value, fit it better by 42 and put the circumferences at rest 1.0 mm from the plain
+// fit's, whose sigma was 0.14 mm).
+std::optional<std::size_t> decisive_fit_that_cannot_stand(
+    const std::vector<TyreCandidate>& candidates, double plain_bic);
+
+// Why a candidate cannot stand, and what to check, as the verdicts say it after "it" (empty where
+// it can stand).
+std::string why_it_cannot_stand(const TyreCandidate& candidate);
 
 // tyre_model auto (tyre_model_selection.cpp). Returns whether it has scored the result
 // (run.finish) itself.
@@ -133,7 +141,7 @@ void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
 // terms, then the regression terms only where the physical ones fit the log better but are no
 // tyre. Their criteria against the plain fit's `plain_bic` (all under the noise the plain fit
 // adapted to, where it adapted: `plain_noise`); where one is a tyre that fits the log better, or
-// none is and one fits it decisively better (decisive_no_tyre), that one.
+// none is and one fits it decisively better (decisive_fit_that_cannot_stand), that one.
 struct TyreJudgement {
   std::vector<TyreCandidate> candidates;  // in the order fitted
   double plain_bic{};                     // as compared
@@ -172,7 +180,8 @@ BatchSummary fit_plain_carrying_gap(const CalibrationRun& run, const BatchOption
 struct ModelJudgement {
   ModelAdequacy adequacy;
   std::array<double, 2> gap_m{};  // zero where no tyre model fits the log better
-  bool gap_to_a_tyre = true;      // false: to a model that is no tyre (decisive_no_tyre)
+  // Where the gap is to a model that cannot stand (decisive_fit_that_cannot_stand): why not.
+  std::string gap_cannot_stand;
 };
 ModelJudgement judge_model_adequacy(const CalibrationRun& run, const OdometryParams& start,
                                     const CalibrationOptions& common);

@@ -75,7 +75,8 @@ double nominal_distance_squared(const CalibrationSummary& s) {
 // precision, and is not a result to export, however wide its sigma is made.
 void refuse_a_gap_beyond_the_estimates_own_sigma(const std::array<double, 2>& gap_m,
                                                  const std::array<double, 2>& own_sigma_m,
-                                                 bool gap_to_a_tyre, CalibrationSummary& summary) {
+                                                 const std::string& gap_cannot_stand,
+                                                 CalibrationSummary& summary) {
   constexpr double kSigmas = 3.0;
   if (!(gap_m[0] > kSigmas * own_sigma_m[0] || gap_m[1] > kSigmas * own_sigma_m[1])) return;
   summary.termination = Termination::kNotIdentifiable;
@@ -85,10 +86,9 @@ void refuse_a_gap_beyond_the_estimates_own_sigma(const std::array<double, 2>& ga
       "1-sigma (this estimate is the circumference the drive rolled on, slip and load in it); "
       "{}",
       1e3 * gap_m[0], 1e3 * gap_m[1], gap_m[0] / own_sigma_m[0], gap_m[1] / own_sigma_m[1],
-      gap_to_a_tyre ? "calibrate with --method batch, whose tyre_model: auto fits the "
-                      "circumference at rest"
-                    : "that model is no tyre (see the model line): check vehicle.yaml's body and "
-                      "tyres, and the log's inputs");
+      gap_cannot_stand.empty()
+          ? "calibrate with --method batch, whose tyre_model: auto fits the circumference at rest"
+          : "but that model " + gap_cannot_stand);
 }
 
 // Whether the circumferences and track are numbers (not a diverged fit's).
@@ -233,12 +233,12 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
   if (summary.method != CalibrationMethod::kBatch && summary.usable() &&
       options_.judge_model_adequacy) {
     std::array<double, 2> gap_m{};
-    bool gap_to_a_tyre = true;
+    std::string gap_cannot_stand;
     try {
       const batch::ModelJudgement judged = batch::judge_model_adequacy(*this, e, options_);
       summary.model_adequacy = judged.adequacy;
       gap_m = judged.gap_m;
-      gap_to_a_tyre = judged.gap_to_a_tyre;
+      gap_cannot_stand = judged.gap_cannot_stand;
     } catch (const InsufficientDataError& error) {
       summary.model_adequacy.verdict = fmt::format("not judged: {}", error.what());
     }
@@ -253,7 +253,7 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
     const std::array<double, 2> own_sigma_m{summary.sigma_rl_m(), summary.sigma_rr_m()};
     summary.covariance(0, 0) += gap_m[0] * gap_m[0];
     summary.covariance(1, 1) += gap_m[1] * gap_m[1];
-    refuse_a_gap_beyond_the_estimates_own_sigma(gap_m, own_sigma_m, gap_to_a_tyre, summary);
+    refuse_a_gap_beyond_the_estimates_own_sigma(gap_m, own_sigma_m, gap_cannot_stand, summary);
   }
 }
 

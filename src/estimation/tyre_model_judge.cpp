@@ -13,21 +13,35 @@
 
 namespace odocal::batch {
 
-std::optional<std::size_t> decisive_no_tyre(const std::vector<TyreCandidate>& candidates,
-                                            double plain_bic) {
+std::optional<std::size_t> decisive_fit_that_cannot_stand(
+    const std::vector<TyreCandidate>& candidates, double plain_bic) {
   // A tyre that fits the log better judges instead (or confirms the plain fit, under auto).
   const bool a_tyre_fits_better =
       std::any_of(candidates.begin(), candidates.end(),
-                  [&](const TyreCandidate& c) { return c.tyre && c.bic < plain_bic; });
+                  [&](const TyreCandidate& c) { return c.can_stand() && c.bic < plain_bic; });
   if (a_tyre_fits_better) return std::nullopt;
   std::optional<std::size_t> best;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const TyreCandidate& c = candidates[i];
     const bool fitted = std::isfinite(c.circumference[0]) && std::isfinite(c.circumference[1]);
-    if (c.tyre || !fitted || !(c.bic < plain_bic - kDecisiveBic)) continue;
+    if (c.can_stand() || !fitted || !(c.bic < plain_bic - kDecisiveBic)) continue;
     if (!best || c.bic < candidates[*best].bic) best = i;
   }
   return best;
+}
+
+std::string why_it_cannot_stand(const TyreCandidate& candidate) {
+  if (!candidate.tyre) {
+    return "is no tyre (coefficients beyond a road tyre's, or circumferences out of their band): "
+           "no model here says surely where they lie; check vehicle.yaml's body and tyres, and "
+           "the log's inputs";
+  }
+  if (candidate.every_coefficient_held) {
+    return "identified none of its coefficients (each held at a car's value or at zero, which "
+           "vehicle.yaml's body sets): drive more of what shows them (braking, accelerating and "
+           "turning at speed), and check the body";
+  }
+  return "";
 }
 
 TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOptions& options,
@@ -64,21 +78,22 @@ TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOp
     fit_model(run, judging, common, terms, fitted, [&](const FitFacts& facts) {
       candidate.bic = shared_bic.value_or(facts.bic);
       candidate.tyre = facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
-      candidate.needed =
-          candidate.tyre && facts.free_tyre_coefficients > 0 && candidate.bic < judgement.plain_bic;
+      candidate.every_coefficient_held = facts.usable && facts.free_tyre_coefficients == 0;
+      candidate.needed = candidate.can_stand() && candidate.bic < judgement.plain_bic;
       if (facts.usable) candidate.circumference = facts.circumference;
       return false;
     });
     candidate.solves += fitted.solves;
     judgement.candidates.push_back(candidate);
     if (candidate.needed) judgement.better = judgement.candidates.size() - 1;
-    // The regression terms speak only where the physical ones fit the log better but are no
-    // tyre (a body that vehicle.yaml gets wrong): they confirm that the plain model does not
-    // explain it and say where the circumferences at rest lie.
-    if (judgement.better || !(candidate.bic < judgement.plain_bic) || candidate.tyre) break;
+    // The regression terms speak only where the physical ones fit the log better but cannot
+    // stand (no tyre: a body that vehicle.yaml gets wrong; or every coefficient held): they
+    // confirm that the plain model does not explain it and say where the circumferences at rest
+    // lie.
+    if (judgement.better || !(candidate.bic < judgement.plain_bic) || candidate.can_stand()) break;
   }
   if (!judgement.better)
-    judgement.better = decisive_no_tyre(judgement.candidates, judgement.plain_bic);
+    judgement.better = decisive_fit_that_cannot_stand(judgement.candidates, judgement.plain_bic);
   return judgement;
 }
 
@@ -93,7 +108,7 @@ void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& 
   const TyreCandidate* better = judgement.better_fit();
   if (!adequacy.judged || !better) return;
   const std::string text =
-      better->tyre
+      better->can_stand()
           ? fmt::format(
                 "tyre_model: {} fits it better (BIC {:.1f} against {:.1f}) and puts the "
                 "circumferences at rest {:.3g} / {:.3g} mm from {}, which their sigma carries; "
@@ -101,13 +116,11 @@ void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& 
                 better->model, better->bic, judgement.plain_bic, 1e3 * gap_m[0], 1e3 * gap_m[1],
                 whose)
           : fmt::format(
-                "tyre_model: {} fits it decisively better (BIC {:.1f} against {:.1f}) but is no "
-                "tyre (coefficients beyond a road tyre's, or circumferences out of their band) "
-                "and puts the circumferences at rest {:.3g} / {:.3g} mm from {}, which their "
-                "sigma carries: no model here says surely where they lie; check vehicle.yaml's "
-                "body and tyres, and the log's inputs",
+                "tyre_model: {} fits it decisively better (BIC {:.1f} against {:.1f}) and puts "
+                "the circumferences at rest {:.3g} / {:.3g} mm from {}, which their sigma "
+                "carries, but it {}",
                 better->model, better->bic, judgement.plain_bic, 1e3 * gap_m[0], 1e3 * gap_m[1],
-                whose);
+                whose, why_it_cannot_stand(*better));
   adequacy.verdict = adequacy.explains ? "the two-wheel model does not explain this log: " + text
                                        : adequacy.verdict + "; " + text;
   adequacy.explains = false;

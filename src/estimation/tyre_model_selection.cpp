@@ -12,8 +12,9 @@
 // candidate is finished (noise adaptation, covariance) only when it beats the best fit so far.
 // The criteria are compared under one GNSS noise model: the configured one, or the one the plain
 // fit's residuals showed where it adapted it (each model then solved once more, for its criterion).
-// Where none stands and one that is no tyre fits the log decisively better, the plain
-// circumferences carry their gap to it (decisive_no_tyre). The same candidates judge a plain fit
+// Where none stands and one that cannot stand (no tyre, or every coefficient held) fits the log
+// decisively better, the plain circumferences carry their gap to it
+// (decisive_fit_that_cannot_stand). The same candidates judge a plain fit
 // that was not chosen among them: tyre_model_judge.cpp.
 
 #include <fmt/format.h>
@@ -214,8 +215,8 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
         candidate.circumference = facts.circumference;
         if (terms == TyreTerms::kPhysical) physical_circumference = facts.circumference;
         candidate.tyre = is_tyre(facts, summary.nominal, max_change);
-        const bool wins =
-            candidate.tyre && facts.free_tyre_coefficients > 0 && candidate.bic < best_bic;
+        candidate.every_coefficient_held = facts.free_tyre_coefficients == 0;
+        const bool wins = candidate.can_stand() && candidate.bic < best_bic;
         // Not fitted (NaN): nothing to refuse on.
         candidate.beyond_track = !wins || !(selection.free_track_bic <= candidate.bic);
         const bool better = wins && candidate.beyond_track;
@@ -341,7 +342,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
                                  ? std::min(selection.plain_bic, selection.free_track_bic)
                                  : selection.plain_bic;
     if (const std::optional<std::size_t> better =
-            decisive_no_tyre(selection.candidates, plain_bic)) {
+            decisive_fit_that_cannot_stand(selection.candidates, plain_bic)) {
       const TyreJudgement judgement{selection.candidates, plain_bic, better};
       BatchSummary judged = fit_plain_carrying_gap(
           run, selection.plain_track_free ? free_track : options, common, unfitted, judgement);

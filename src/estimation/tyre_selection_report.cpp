@@ -11,11 +11,14 @@
 namespace odocal::batch {
 namespace {
 
-// Whether the model whose gap the plain circumferences carry is a tyre.
-bool gap_to_a_tyre(const TyreModelSelection& selection) {
-  return std::any_of(
-      selection.candidates.begin(), selection.candidates.end(),
-      [&](const TyreCandidate& c) { return c.model == selection.plain_gap_to && c.tyre; });
+// Why the model whose gap the plain circumferences carry cannot stand ("no tyre", "every
+// coefficient held"; empty where it can: a tyre that fits the log better).
+std::string why_the_gap_cannot_stand(const TyreModelSelection& selection) {
+  const auto gap =
+      std::find_if(selection.candidates.begin(), selection.candidates.end(),
+                   [&](const TyreCandidate& c) { return c.model == selection.plain_gap_to; });
+  if (gap == selection.candidates.end() || gap->can_stand()) return "";
+  return gap->tyre ? "every coefficient held" : "no tyre";
 }
 
 }  // namespace
@@ -32,20 +35,31 @@ std::string tyre_selection_report(const BatchSummary& summary) {
         !selection.plain_gap_to.empty()
             ? fmt::format("the {} terms fit the log {}: their gap is in the sigma",
                           selection.plain_gap_to,
-                          gap_to_a_tyre(selection) ? "better" : "decisively better but are no tyre")
+                          why_the_gap_cannot_stand(selection).empty()
+                              ? std::string("better")
+                              : "decisively better (" + why_the_gap_cannot_stand(selection) + ")")
         : !last.tyre ? fmt::format("the {} terms' fit was not a tyre", last.model)
-                     : fmt::format("the {} terms do not fit the log better", last.model);
+        : last.every_coefficient_held
+            ? fmt::format("the {} terms' fit identified none of their coefficients", last.model)
+            : fmt::format("the {} terms do not fit the log better", last.model);
     return fmt::format("{:<13}plain, as configured ({}): BIC, the track width free in each: {}\n",
                        "tyre model", why, criteria);
   }
   std::string why =
       selection.chosen == "none" ? "the log does not need more" : "the log supports it";
+  std::string named;  // the candidate that `why` names
   for (const TyreCandidate& c : selection.candidates) {
     if (c.model == selection.chosen) break;
+    named = c.model;
     if (!c.tyre) {
       why = fmt::format(
           "the {} fit was not a tyre: coefficients of percents, or a circumference "
           "out of its band",
+          c.model);
+    } else if (c.every_coefficient_held) {
+      why = fmt::format(
+          "the {} fit identified none of its coefficients (each held at a car's value or at "
+          "zero)",
           c.model);
     } else if (!c.beyond_track) {
       why = fmt::format("the {} fit explains no more than the track width freed (BIC {:.1f}){}",
@@ -64,15 +78,20 @@ std::string tyre_selection_report(const BatchSummary& summary) {
           "parameters, with the plain fit it does not",
           c.model);
     } else {
+      named.clear();
       continue;
     }
     break;
   }
   if (!selection.plain_gap_to.empty()) {
+    const std::string which = selection.plain_gap_to == named
+                                  ? std::string("it")
+                                  : fmt::format("the {} fit, {},", selection.plain_gap_to,
+                                                why_the_gap_cannot_stand(selection));
     why += fmt::format(
-        "; the {} fit, no tyre, fits the log decisively better all the same: the plain "
-        "circumferences carry their gap to it in their sigma",
-        selection.plain_gap_to);
+        "; {} fits the log decisively better all the same: the plain circumferences carry their "
+        "gap to it in their sigma",
+        which);
   }
   if (selection.body_in_doubt()) {
     why += fmt::format(

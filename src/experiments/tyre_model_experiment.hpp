@@ -27,8 +27,9 @@ namespace odocal::experiments {
 // again with an automotive-grade accelerometer; 22: the physical terms' slip divides the
 // circumference (c / (1 + kappa), not c (1 - kappa)); 23: a physical slip coefficient judged as
 // itself (at most 0.1), not by its effect at the log's RMS state; 24: a plain fit that a model
-// which is no tyre explains decisively better carries its gap to it.
-inline constexpr int kTyreModelExperimentVersion = 25;
+// which is no tyre explains decisively better carries its gap to it; 25: the physical terms
+// witnessed by the regression terms; 26: and to a tyre fit that holds every coefficient.
+inline constexpr int kTyreModelExperimentVersion = 26;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_quiet_accelerometer: {rear: {auto},

@@ -203,6 +203,7 @@ void add_details(json& out, const BatchSummary& s) {
                             {"bic", number_or_null(c.bic)},
                             {"solves", c.solves},
                             {"tyre", c.tyre},
+                            {"every_coefficient_held", c.every_coefficient_held},
                             {"beyond_track", c.beyond_track},
                             {"track_free", c.track_free},
                             {"held_track_bic", number_or_null(c.held_track_bic)},

@@ -349,7 +349,7 @@ TEST(TyreModelBatch, APlainFitThatANoTyreModelExplainsDecisivelyBetterCarriesIts
     EXPECT_LT(std::abs(judged.estimate.circumference_rl_m - truth_m), 3.0 * judged.sigma_rl_m())
         << judged.full_report();
     EXPECT_EQ(judged.termination, Termination::kNotIdentifiable);
-    EXPECT_NE(judged.model_adequacy.verdict.find("but is no tyre"), std::string::npos)
+    EXPECT_NE(judged.model_adequacy.verdict.find("but it is no tyre"), std::string::npos)
         << judged.model_adequacy.verdict;
   }
   // The iterative method's judge carries the same gap: refused, its sigma covering its error, and
@@ -358,7 +358,7 @@ TEST(TyreModelBatch, APlainFitThatANoTyreModelExplainsDecisivelyBetterCarriesIts
   EXPECT_EQ(iterative.termination, Termination::kNotIdentifiable) << iterative.full_report();
   EXPECT_LT(std::abs(iterative.estimate.circumference_rl_m - truth_m), 3.0 * iterative.sigma_rl_m())
       << iterative.full_report();
-  EXPECT_NE(iterative.message.find("that model is no tyre"), std::string::npos)
+  EXPECT_NE(iterative.message.find("but that model is no tyre"), std::string::npos)
       << iterative.message;
 }
 

@@ -84,6 +84,12 @@ struct TyreCandidate {
   // Its circumferences at rest (NaN where its fit was not usable).
   std::array<double, 2> circumference{std::numeric_limits<double>::quiet_NaN(),
                                       std::numeric_limits<double>::quiet_NaN()};
+  // true: the log identified none of its coefficients (every one held, at a car's value or at
+  // zero). Such a fit cannot stand, since nothing of it is the log's; where it fits the log
+  // decisively better all the same, the plain circumferences carry their gap to it.
+  bool every_coefficient_held = false;
+  // Whether it may stand, or judge a plain fit, by fitting the log better.
+  bool can_stand() const { return tyre && !every_coefficient_held; }
 };
 
 // tyre_model auto: the information criteria of every model fitted and which one stands. Under
