@@ -16,6 +16,7 @@
 #include "batch_solve_steps.hpp"
 #include "calibration_run.hpp"
 #include "doppler_scale.hpp"
+#include "latency_detection.hpp"
 #include "odocal/error.hpp"
 
 namespace odocal {
@@ -110,9 +111,10 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
   return judgement;
 }
 
-BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
-                             const CalibrationOptions& common) {
-  require_valid("batch", options.validate());
+namespace {
+
+BatchSummary calibrate_as_configured(const Log& log, const BatchOptions& options,
+                                     const CalibrationOptions& common) {
   BatchSummary summary;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
   // The Doppler fit reads the column (the reference has judged it already where it reads it too).
@@ -143,6 +145,26 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   if (!finished) run.finish(summary);
   batch::check_parts_consistency(log, options, common, summary);
   return summary;
+}
+
+}  // namespace
+
+BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
+                             const CalibrationOptions& common) {
+  require_valid("batch", options.validate());
+  BatchSummary summary = calibrate_as_configured(log, options, common);
+  // The plain model's residuals follow a_x where the wheels slip, the lag's signature too: only a
+  // fit whose tyre terms take the slip tells the two apart (the realistic urban drive, rear-driven,
+  // the plain model: the latency took the slip).
+  if (!options.detect_latency || options.estimate_latency || !common.judge_model_adequacy ||
+      summary.tyre_model.plain())
+    return summary;
+  const std::optional<ResidualDependence> signature = batch::lag_signature(summary.model_adequacy);
+  if (!signature) return summary;
+  BatchOptions lagged = options;
+  lagged.estimate_latency = true;
+  return batch::take_latency_where_significant(
+      std::move(summary), calibrate_as_configured(log, lagged, common), *signature);
 }
 
 }  // namespace odocal

@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 34> kFields{{
+  static const std::array<OptionField<O>, 35> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -50,6 +50,11 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"estimate_lever_arm", "", 0, 0, "also estimate the GNSS antenna's lever arm",
        &O::estimate_lever_arm},
       {"estimate_latency", "", 0, 0, "also estimate the GNSS latency", &O::estimate_latency},
+      {"detect_latency", "", 0, 0,
+       "where the latency is not estimated and the residuals follow the longitudinal "
+       "acceleration, calibrate again with it estimated and take that fit where it is "
+       "significant",
+       &O::detect_latency},
       {"gentle_max_speed_mps", "m/s", 0.0, 1e3,
        "fit the odometry only where the speed stays below this (0: no limit)",
        &O::gentle_max_speed_mps},

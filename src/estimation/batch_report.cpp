@@ -8,6 +8,7 @@
 #include "batch_body_uncertainty.hpp"
 #include "batch_fit.hpp"
 #include "calibration_report.hpp"
+#include "latency_detection.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 
 namespace odocal {
@@ -61,6 +62,7 @@ std::string BatchSummary::full_report() const {
             static_cast<double>(std::max<std::size_t>(odometry_intervals, 1)));
   }
   text += batch::tyre_selection_report(*this);
+  if (latency_detection) text += batch::latency_detection_report(*latency_detection, estimate);
   if (reference_circumference) {
     const ReferenceCircumference& r = *reference_circumference;
     text += fmt::format(

@@ -28,8 +28,9 @@ namespace odocal::experiments {
 // circumference (c / (1 + kappa), not c (1 - kappa)); 23: a physical slip coefficient judged as
 // itself (at most 0.1), not by its effect at the log's RMS state; 24: a plain fit that a model
 // which is no tyre explains decisively better carries its gap to it; 25: the physical terms
-// witnessed by the regression terms; 26: and to a tyre fit that holds every coefficient.
-inline constexpr int kTyreModelExperimentVersion = 26;
+// witnessed by the regression terms; 26: and to a tyre fit that holds every coefficient; 27: a
+// latency that a tyre fit's residuals show, estimated.
+inline constexpr int kTyreModelExperimentVersion = 27;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_quiet_accelerometer: {rear: {auto},

@@ -180,6 +180,16 @@ void add_details(json& out, const BatchSummary& s) {
         {"sigma_scale", {c.sigma_scale[0], c.sigma_scale[1]}},
         {"verdict", c.verdict}};
   }
+  if (s.latency_detection) {
+    const BatchSummary::LatencyDetection& d = *s.latency_detection;
+    out["latency_detection"] = {
+        {"residual", d.signature.residual},
+        {"correlation", d.signature.correlation},
+        {"latency_s", number_or_null(d.latency_s)},
+        {"sigma_s", number_or_null(d.sigma_s)},
+        {"taken", d.taken},
+        {"circumference_without_m", {d.circumference_without_m[0], d.circumference_without_m[1]}}};
+  }
   if (s.body_sigma_m[0] > 0.0 || s.body_sigma_m[1] > 0.0) {
     out["body_sigma_m"] = {s.body_sigma_m[0], s.body_sigma_m[1]};
     nlohmann::json parts = nlohmann::json::object();

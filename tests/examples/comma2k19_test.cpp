@@ -108,6 +108,37 @@ TEST(Comma2k19, TheReceiversDopplerSpeedHasTheScaleOfTheWheelsAndThePositions) {
   }
 }
 
+TEST(Comma2k19, TheWheelSpeedsLagIsFoundWhereAPhysicalFitReadsItAsSlip) {
+  // The CAN wheel speeds run ~0.1 s behind the receiver. Not estimated (the default), the
+  // physical terms of a car that vehicle.yaml states front-driven (its rear wheels roll free, so
+  // the lag can only be brake slip and load) land ~6 mm below the reference pose's scale at a
+  // sigma of ~1.2 mm, their Doppler residual following a_x. detect_latency fits the log again
+  // with the latency and takes it.
+  if (!std::filesystem::exists(kData / "wheel_speeds.csv"))
+    GTEST_SKIP() << "shared data absent: " << kData;
+  const testing::TempLogDir out;
+  import_csv(kMap, kData, out.path());
+  Log log = read_log(out.path());
+  const double rolled_m = reference_scale(log) * log.vehicle.nominal_params().circumference_rl_m;
+  log.truth.reset();
+  log.vehicle.body.drivetrain = Drivetrain::kFront;
+  BatchOptions options;
+  options.max_sigma_circumference_m = 0.01;
+  options.detect_latency = false;
+  const BatchSummary blind = calibrate_batch(log, options);
+  ASSERT_EQ(blind.tyre_selection.chosen, "physical") << blind.full_report();
+  EXPECT_GT(std::abs(blind.estimate.circumference_rl_m - rolled_m), 3.0 * blind.sigma_rl_m())
+      << blind.full_report();
+
+  options.detect_latency = true;
+  const BatchSummary found = calibrate_batch(log, options);
+  ASSERT_TRUE(found.latency_detection.has_value()) << found.full_report();
+  EXPECT_TRUE(found.latency_detection->taken);
+  EXPECT_NEAR(found.latency_detection->latency_s, 0.1, 0.03);
+  EXPECT_LT(std::abs(found.estimate.circumference_rl_m - rolled_m), 3.0 * found.sigma_rl_m())
+      << found.full_report();
+}
+
 TEST(Comma2k19, APlainFitCarriesItsGapToAPhysicalFitThatHoldsEveryCoefficient) {
   // With the latency estimated and vehicle.yaml's rear roll share at 0.1, the log identifies
   // none of the physical terms' coefficients: each is held at a car's value, and so held they fit

@@ -214,6 +214,15 @@ struct BatchSummary : CalibrationSummary {
   // The split-sample check (BatchOptions::consistency_parts); none where it is off or the whole
   // log's result was not usable.
   std::optional<PartsConsistency> consistency;
+  // BatchOptions::detect_latency: where the fit without the latency left its residual following
+  // the longitudinal acceleration, the latency estimated, and whether that fit stands.
+  struct LatencyDetection {
+    ResidualDependence signature;  // what the fit without the latency left
+    double latency_s{}, sigma_s{};
+    bool taken{};  // the latency beyond kLatencySigmas of its sigma: this summary is that fit
+    std::array<double, 2> circumference_without_m{};  // the fit without the latency's
+  };
+  std::optional<LatencyDetection> latency_detection;
 
   std::string full_report() const;
 };

@@ -82,6 +82,14 @@ struct BatchOptions {
   bool estimate_heading_bias = false;
   bool estimate_lever_arm = false;
   bool estimate_latency = false;
+  // Where the latency is not estimated and a tyre model's fit leaves its along-track or Doppler
+  // residual following the longitudinal acceleration (a lag tau between the GNSS and the wheels
+  // leaves -tau a_x there, and the tyre terms have taken the slip), the log is calibrated again
+  // with the latency estimated, and that fit stands where the latency it finds lies beyond
+  // kLatencySigmas of its sigma (docs/batch-calibration.md, "A latency the log shows"). Only
+  // with judge_model_adequacy: it judges the fit.
+  bool detect_latency = true;
+  static constexpr double kLatencySigmas = 5.0;
   // Gentle segments: only keyframe intervals whose every wheel sample stays below these limits
   // feed the odometry residuals (0: no limit); for logs whose tyre coefficients cannot be
   // identified (docs/tyre-model.md). GNSS and the gyro still place the poses everywhere.

@@ -1,0 +1,74 @@
+#include "latency_detection.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace odocal::batch {
+
+std::optional<ResidualDependence> lag_signature(const ModelAdequacy& adequacy) {
+  std::optional<ResidualDependence> strongest;
+  for (const ResidualDependence& d : adequacy.dependences) {
+    const bool lag_shows_here = d.residual == "along-track" || d.residual == "Doppler speed";
+    if (!lag_shows_here || d.quantity != "longitudinal acceleration" || !d.counts()) continue;
+    if (!strongest || std::abs(d.correlation) > std::abs(strongest->correlation)) strongest = d;
+  }
+  return strongest;
+}
+
+BatchSummary take_latency_where_significant(BatchSummary without, BatchSummary with,
+                                            const ResidualDependence& signature) {
+  BatchSummary::LatencyDetection detection{signature};
+  detection.latency_s = detection.sigma_s = std::numeric_limits<double>::quiet_NaN();
+  detection.circumference_without_m = {without.estimate.circumference_rl_m,
+                                       without.estimate.circumference_rr_m};
+  const auto latency = std::find_if(
+      with.parameters.begin(), with.parameters.end(),
+      [](const EstimatedParameter& p) { return p.name == "latency_s" && p.estimated; });
+  const bool sound = with.termination == Termination::kConverged ||
+                     with.termination == Termination::kNotIdentifiable;
+  if (latency != with.parameters.end() && sound && std::isfinite(latency->value) &&
+      std::isfinite(latency->sigma) && latency->sigma > 0.0) {
+    detection.latency_s = latency->value;
+    detection.sigma_s = latency->sigma;
+    detection.taken = std::abs(latency->value) > BatchOptions::kLatencySigmas * latency->sigma;
+  }
+  BatchSummary& kept = detection.taken ? with : without;
+  const BatchSummary& other = detection.taken ? without : with;
+  kept.tyre_selection.other_solves += other.solves + other.tyre_selection.other_solves;
+  kept.latency_detection = detection;
+  return std::move(kept);
+}
+
+std::string latency_detection_report(const BatchSummary::LatencyDetection& detection,
+                                     const OdometryParams& estimate) {
+  const ResidualDependence& s = detection.signature;
+  const std::string seen = fmt::format(
+      "the fit without it left the {} residual following the longitudinal acceleration (rho = "
+      "{:.2f}), as a lag between the GNSS and the wheels does",
+      s.residual, s.correlation);
+  if (!std::isfinite(detection.latency_s)) {
+    return fmt::format("{:<13}{}; with the latency estimated the fit did not stand: kept without\n",
+                       "latency", seen);
+  }
+  const double sigmas = std::abs(detection.latency_s) / detection.sigma_s;
+  if (!detection.taken) {
+    return fmt::format(
+        "{:<13}{}; estimated, {:.1f} ms (1-sigma {:.1f} ms) is within {:g} sigma of none: the "
+        "dependence is the model's, kept without the latency\n",
+        "latency", seen, 1e3 * detection.latency_s, 1e3 * detection.sigma_s,
+        BatchOptions::kLatencySigmas);
+  }
+  return fmt::format(
+      "{:<13}{}; estimated: the GNSS fixes {} the wheels by {:.1f} ms (1-sigma {:.1f} ms, {:.0f} "
+      "sigma), which moves the circumferences by {:+.3g} / {:+.3g} mm to these; align the log's "
+      "clocks, or set estimate_latency: true\n",
+      "latency", seen, detection.latency_s > 0.0 ? "lag" : "lead",
+      1e3 * std::abs(detection.latency_s), 1e3 * detection.sigma_s, sigmas,
+      1e3 * (estimate.circumference_rl_m - detection.circumference_without_m[0]),
+      1e3 * (estimate.circumference_rr_m - detection.circumference_without_m[1]));
+}
+
+}  // namespace odocal::batch
