@@ -47,6 +47,23 @@ def tyre_selection_text(selection):
     return text
 
 
+def latency_detection_text(detection, result):
+    """What detect_latency found (docs/batch-calibration.md, "A latency the log shows")."""
+    text = (f"the fit without it left the {detection['residual']} residual following the "
+            f"longitudinal acceleration (rho = {detection['correlation']:.2f})")
+    latency, sigma = detection.get("latency_s"), detection.get("sigma_s")
+    if latency is None or sigma is None:
+        return text + "; with the latency estimated the fit did not stand: kept without"
+    if not detection["taken"]:
+        return (text + f"; estimated, {1000 * latency:.1f} ms (1-sigma {1000 * sigma:.1f} ms), "
+                "not significant: kept without the latency")
+    without = detection["circumference_without_m"]
+    moved = [1000 * (result[f"circumference_{w}_m"] - without[i]) for i, w in enumerate(("rl", "rr"))]
+    return (text + f"; estimated: the GNSS fixes {'lag' if latency > 0 else 'lead'} the wheels by "
+            f"{1000 * abs(latency):.1f} ms (1-sigma {1000 * sigma:.1f} ms), which moves the "
+            f"circumferences by {moved[0]:+.3g} / {moved[1]:+.3g} mm to these")
+
+
 def summary_rows(result):
     def mm(value):
         return f"{1000 * value:.3f} mm" if isinstance(value, (int, float)) else "–"
@@ -67,6 +84,8 @@ def summary_rows(result):
         rows.append(("model adequacy", result["model_adequacy"]["verdict"]))
     if result.get("tyre_selection"):
         rows.append(("tyre model", tyre_selection_text(result["tyre_selection"])))
+    if result.get("latency_detection"):
+        rows.append(("latency", latency_detection_text(result["latency_detection"], result)))
     if result.get("misfit_sigma_scale", 1.0) > 1.0:
         rows.append(("sigma widened", f"x{result['misfit_sigma_scale']:.3g}: the odometry residuals "
                      f"are that many times as wide as their noise model (chi2/dof "

@@ -109,7 +109,8 @@ TEST(Comma2k19, TheReceiversDopplerSpeedHasTheScaleOfTheWheelsAndThePositions) {
 }
 
 TEST(Comma2k19, TheWheelSpeedsLagIsFoundWhereAPhysicalFitReadsItAsSlip) {
-  // The CAN wheel speeds run ~0.1 s behind the receiver. Not estimated (the default), the
+  // The receiver's fixes are stamped ~0.1 s after the wheel speeds of the same moment (their
+  // arrival on the phone's clock). Not estimated (the default), the
   // physical terms of a car that vehicle.yaml states front-driven (its rear wheels roll free, so
   // the lag can only be brake slip and load) land ~6 mm below the reference pose's scale at a
   // sigma of ~1.2 mm, their Doppler residual following a_x. detect_latency fits the log again

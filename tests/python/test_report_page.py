@@ -52,5 +52,29 @@ def test_the_tyre_models_compared_are_shown_with_whose_gap_the_plain_fit_carries
     text = dict(summary_rows(result))["tyre model"]
     assert text.endswith("the physical circumferences carry their gap to the extended fit "
                          "(6.0 of their combined sigma away) in their sigma")
+    # A tyre fit that held every coefficient, whose gap the plain fit carries.
+    selection.update(chosen="none", chosen_gap_to="", plain_gap_to="physical")
+    selection["candidates"][0]["every_coefficient_held"] = True
+    text = dict(summary_rows(result))["tyre model"]
+    assert "physical BIC 34668.3, every coefficient held, at rest" in text
+    assert text.endswith("carry their gap to the physical fit in their sigma")
     del result["tyre_selection"]
     assert "tyre model" not in dict(summary_rows(result))
+
+
+def test_a_latency_found_is_shown_with_what_it_moved():
+    result = {"method": "batch", "usable": True, "termination": "converged",
+              "circumference_rl_m": 2.29606, "circumference_rr_m": 2.29719,
+              "latency_detection": {"residual": "Doppler speed", "correlation": -0.891,
+                                    "latency_s": 0.1018, "sigma_s": 0.0043, "taken": True,
+                                    "circumference_without_m": [2.28917, 2.29038]}}
+    text = dict(summary_rows(result))["latency"]
+    assert text.startswith("the fit without it left the Doppler speed residual following")
+    assert "(rho = -0.89)" in text
+    assert "the GNSS fixes lag the wheels by 101.8 ms (1-sigma 4.3 ms)" in text
+    assert text.endswith("by +6.89 / +6.81 mm to these")
+    result["latency_detection"].update(taken=False, latency_s=-0.0012, sigma_s=0.001)
+    assert dict(summary_rows(result))["latency"].endswith(
+        "-1.2 ms (1-sigma 1.0 ms), not significant: kept without the latency")
+    del result["latency_detection"]
+    assert "latency" not in dict(summary_rows(result))
