@@ -31,13 +31,13 @@ std::string tyre_selection_report(const BatchSummary& summary) {
     for (const TyreCandidate& c : selection.candidates)
       criteria += fmt::format(", {} {:.1f}", c.model, c.bic);
     const TyreCandidate& last = selection.candidates.back();
+    const std::string cannot_stand = why_the_gap_cannot_stand(selection);
     const std::string why =
         !selection.plain_gap_to.empty()
             ? fmt::format("the {} terms fit the log {}: their gap is in the sigma",
                           selection.plain_gap_to,
-                          why_the_gap_cannot_stand(selection).empty()
-                              ? std::string("better")
-                              : "decisively better (" + why_the_gap_cannot_stand(selection) + ")")
+                          cannot_stand.empty() ? std::string("better")
+                                               : "decisively better (" + cannot_stand + ")")
         : !last.tyre ? fmt::format("the {} terms' fit was not a tyre", last.model)
         : last.every_coefficient_held
             ? fmt::format("the {} terms' fit identified none of their coefficients", last.model)
@@ -50,7 +50,6 @@ std::string tyre_selection_report(const BatchSummary& summary) {
   std::string named;  // the candidate that `why` names
   for (const TyreCandidate& c : selection.candidates) {
     if (c.model == selection.chosen) break;
-    named = c.model;
     if (!c.tyre) {
       why = fmt::format(
           "the {} fit was not a tyre: coefficients of percents, or a circumference "
@@ -78,9 +77,9 @@ std::string tyre_selection_report(const BatchSummary& summary) {
           "parameters, with the plain fit it does not",
           c.model);
     } else {
-      named.clear();
       continue;
     }
+    named = c.model;
     break;
   }
   if (!selection.plain_gap_to.empty()) {

@@ -26,6 +26,13 @@ const std::filesystem::path kData =
     std::filesystem::path(ODOCAL_SOURCE_DIR) / "../shared/data/real/comma2k19";
 const std::string kMap = std::string(ODOCAL_SOURCE_DIR) + "/examples/comma2k19/map.yaml";
 
+// The segment imported through the example's map, as read back (the shared data must exist).
+Log imported_log(const LogReadOptions& options = {}) {
+  const testing::TempLogDir out;
+  import_csv(kMap, kData, out.path());
+  return read_log(out.path(), options);
+}
+
 // Reference path length over the rear wheels' integrated distance, on their common span.
 double reference_scale(const Log& log) {
   const PoseStream& truth = *log.truth;
@@ -86,9 +93,7 @@ TEST(Comma2k19, ImportedAndCalibratedScaleMatchesTheReferencePose) {
 TEST(Comma2k19, TheReceiversDopplerSpeedHasTheScaleOfTheWheelsAndThePositions) {
   if (!std::filesystem::exists(kData / "wheel_speeds.csv"))
     GTEST_SKIP() << "shared data absent: " << kData;
-  const testing::TempLogDir out;
-  import_csv(kMap, kData, out.path());
-  Log log = read_log(out.path());
+  Log log = imported_log();
   ASSERT_EQ(log.gnss.speed_mps.size(), log.gnss.size());
   const OdometryParams nominal = log.vehicle.nominal_params();
   const auto wheels = doppler_over_wheels(log, nominal);
@@ -117,9 +122,7 @@ TEST(Comma2k19, TheWheelSpeedsLagIsFoundWhereAPhysicalFitReadsItAsSlip) {
   // with the latency and takes it.
   if (!std::filesystem::exists(kData / "wheel_speeds.csv"))
     GTEST_SKIP() << "shared data absent: " << kData;
-  const testing::TempLogDir out;
-  import_csv(kMap, kData, out.path());
-  Log log = read_log(out.path());
+  Log log = imported_log();
   const double rolled_m = reference_scale(log) * log.vehicle.nominal_params().circumference_rl_m;
   log.truth.reset();
   log.vehicle.body.drivetrain = Drivetrain::kFront;
@@ -148,11 +151,9 @@ TEST(Comma2k19, APlainFitCarriesItsGapToAPhysicalFitThatHoldsEveryCoefficient) {
   // sigma of 0.14 mm without its gap; it now carries it.
   if (!std::filesystem::exists(kData / "wheel_speeds.csv"))
     GTEST_SKIP() << "shared data absent: " << kData;
-  const testing::TempLogDir out;
-  import_csv(kMap, kData, out.path());
   LogReadOptions without_truth;
   without_truth.read_truth = false;
-  Log log = read_log(out.path(), without_truth);
+  Log log = imported_log(without_truth);
   log.vehicle.body.rear_roll_share = 0.1;
   BatchOptions options;
   options.tyre_model = TyreModelChoice::kAuto;
