@@ -138,9 +138,7 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
   const TyreModel::Vector at_k = model.coefficients();
   // The factor to first order about the coefficients the residual is built at (it is rebuilt
   // with them): exact there, and in every coefficient but the slip's divisor.
-  const auto add_tyre = [&](std::size_t k, RearWheel wheel, double half_rev) {
-    const TyreFactor f = tyre_factor_with_gradient(model, states_[k], wheel, body_);
-    const int w = wheel == RearWheel::kLeft ? 0 : 1;
+  const auto add_tyre = [&](const TyreFactor& f, int w, double half_rev) {
     r.half_revolutions[static_cast<std::size_t>(w)] +=
         half_rev * (f.value - 1.0 - f.gradient.dot(at_k));
     r.half_tyre_revolutions.row(w) += half_rev * f.gradient.transpose();
@@ -151,8 +149,9 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
     r.half_revolutions[0] += 0.5 * n.rev_rl;
     r.half_revolutions[1] += 0.5 * n.rev_rr;
     if (!tyre_fitted()) continue;
-    add_tyre(k, RearWheel::kLeft, 0.5 * n.rev_rl);
-    add_tyre(k, RearWheel::kRight, 0.5 * n.rev_rr);
+    const std::array<TyreFactor, 2>& factors = seg.tyre_factors[k - seg.first_sample];
+    add_tyre(factors[0], 0, 0.5 * n.rev_rl);
+    add_tyre(factors[1], 1, 0.5 * n.rev_rr);
     const double half_square = 0.5 * square(side_slip_regressor(states_[k]));
     r.half_side_slip_revolutions[0] += 0.5 * n.rev_rl * half_square;
     r.half_side_slip_revolutions[1] += 0.5 * n.rev_rr * half_square;

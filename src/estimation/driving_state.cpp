@@ -16,18 +16,22 @@ struct Cumulative {
   const std::vector<double>& t_s;
   std::vector<double> value;
 
-  double at(double t) const {
+  // `k` is where the last lookup of the same sequence of times ended: the states ask at times that
+  // rise with the sample, so it walks a step or two where a search over a 10-hour drive would take
+  // twenty. It ends at the first sample later than t, as std::upper_bound would.
+  double at(double t, std::size_t& k) const {
     if (t <= t_s.front()) return value.front();
     if (t >= t_s.back()) return value.back();
-    const auto upper = std::upper_bound(t_s.begin(), t_s.end(), t);
-    const std::size_t k = static_cast<std::size_t>(upper - t_s.begin());
+    k = std::clamp<std::size_t>(k, 1, t_s.size() - 1);
+    while (t_s[k] <= t) ++k;
+    while (t_s[k - 1] > t) --k;
     const double w = (t - t_s[k - 1]) / (t_s[k] - t_s[k - 1]);
     return (1.0 - w) * value[k - 1] + w * value[k];
   }
-  // Mean rate over [t - h, t + h] clipped to the span.
-  double rate(double t, double h) const {
+  // Mean rate over [t - h, t + h] clipped to the span; `from_k` and `to_k` as for at().
+  double rate(double t, double h, std::size_t& from_k, std::size_t& to_k) const {
     const double from = std::max(t - h, t_s.front()), to = std::min(t + h, t_s.back());
-    return to > from ? (at(to) - at(from)) / (to - from) : 0.0;
+    return to > from ? (at(to, to_k) - at(from, from_k)) / (to - from) : 0.0;
   }
 };
 
@@ -107,13 +111,18 @@ void fill_states(const WheelStream& wheels, const ImuStream* imu, const Odometry
   RunningMean gyro(source, source.wz_radps), forward(source, source.ax_mps2),
       left(source, source.ay_mps2);
   const double h = half_window_s;
+  // Where each sequence of lookup times (t - 2h .. t + 2h) has got to.
+  std::size_t at_minus_2h = 0, at_minus_h = 0, at_t = 0, at_plus_h = 0, at_plus_2h = 0;
+  std::size_t turn_from = 0, turn_to = 0;
   for (std::size_t k = 0; k < wheels.size(); ++k) {
     const double t = wheels.t_s[k];
     DrivingState& state = states[k];
-    const double speed = path.rate(t, h);
+    const double speed = path.rate(t, h, at_minus_h, at_plus_h);
     const bool imu_here = measured && t >= imu->t_s.front() && t <= imu->t_s.back();
-    const double yaw_rate = imu_here ? gyro.at(t, h) : wheel_turn.rate(t, h);
-    const double longitudinal = (path.rate(t + h, h) - path.rate(t - h, h)) / (2.0 * h);
+    const double yaw_rate = imu_here ? gyro.at(t, h) : wheel_turn.rate(t, h, turn_from, turn_to);
+    const double longitudinal =
+        (path.rate(t + h, h, at_t, at_plus_2h) - path.rate(t - h, h, at_minus_2h, at_t)) /
+        (2.0 * h);
     state.speed_mps = stored(speed);
     state.yaw_rate_radps = stored(yaw_rate);
     state.longitudinal_mps2 = stored(longitudinal);

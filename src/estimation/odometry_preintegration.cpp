@@ -17,7 +17,10 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
   segment.J_delta_params.resize(count, Eigen::Matrix3d::Zero());
   segment.J_delta_first_increment.resize(count, OdometryJacobianWheels::Zero());
   using TyreJacobian = Eigen::Matrix<double, 3, TyreModel::kCoefficients>;
-  if (tyre != nullptr) segment.J_delta_tyre.resize(count, TyreJacobian::Zero());
+  if (tyre != nullptr) {
+    segment.J_delta_tyre.resize(count, TyreJacobian::Zero());
+    segment.tyre_factors.resize(count);
+  }
   const TyreModel::Vector k = tyre != nullptr ? tyre->model.coefficients() : TyreModel::Vector();
   OdometryJacobianPose F;
   OdometryJacobianWheels G = OdometryJacobianWheels::Zero();
@@ -35,6 +38,7 @@ PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_s
       const DrivingState& state = tyre->states[first_sample + s];
       factor_rl = tyre_factor_with_gradient(tyre->model, state, RearWheel::kLeft, tyre->body);
       factor_rr = tyre_factor_with_gradient(tyre->model, state, RearWheel::kRight, tyre->body);
+      segment.tyre_factors[s] = {factor_rl, factor_rr};
       n.rev_rl *= factor_rl.value;
       n.rev_rr *= factor_rr.value;
       side_slip_per_coefficient = side_slip_regressor(state);

@@ -6,6 +6,7 @@
 // noise. Eqs. 1-2 of the paper, chained.
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "odocal/data/log.hpp"
@@ -40,6 +41,10 @@ struct PreintegratedSegment {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // of delta.back()
   // d delta / d tyre coefficients (tyre_model.hpp); empty without a tyre model.
   std::vector<Eigen::Matrix<double, 3, TyreModel::kCoefficients>> J_delta_tyre;
+  // The factors the increment into sample s was counted with, left then right ([0] unused):
+  // kept for the Doppler residual of the same interval, which would compute them again. Empty
+  // without a tyre model.
+  std::vector<std::array<TyreFactor, 2>> tyre_factors;
 };
 
 // The tyre model to integrate with: its coefficients, the driving state at every wheel sample of
