@@ -201,7 +201,13 @@ BatchProblem::MotionAt BatchProblem::motion_at(std::size_t i, const Preintegrate
   const double w = (t_s - t[k]) / dt;
   MotionAt at;
   at.motion.delta = (1.0 - w) * seg.delta[s] + w * seg.delta[s + 1];
-  at.motion.J_delta_params = (1.0 - w) * params_jacobian(seg, s) + w * params_jacobian(seg, s + 1);
+  // Block by block: a fix per wheel sample makes this a hot loop.
+  at.motion.J_delta_params.leftCols<3>() =
+      (1.0 - w) * seg.J_delta_params[s] + w * seg.J_delta_params[s + 1];
+  if (!seg.J_delta_tyre.empty()) {
+    at.motion.J_delta_params.rightCols<TyreModel::kCoefficients>() =
+        (1.0 - w) * seg.J_delta_tyre[s] + w * seg.J_delta_tyre[s + 1];
+  }
   at.motion.J_delta_first_increment =
       (1.0 - w) * seg.J_delta_first_increment[s] + w * seg.J_delta_first_increment[s + 1];
   at.motion.params_lin = params_lin_;
