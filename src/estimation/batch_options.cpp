@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 35> kFields{{
+  static const std::array<OptionField<O>, 36> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -80,6 +80,10 @@ OptionTable<BatchOptions> BatchOptions::fields() {
        &O::relinearise_relative_change},
       {"max_relinearisations", "1", 0.0, 100.0, "at most this many re-linearisations",
        &O::max_relinearisations},
+      {"threads", "1", 0.0, 1024.0,
+       "threads the wheels are pre-integrated and the fixes folded on (0: one per core); the "
+       "result is the same on any number",
+       &O::threads},
       {"max_sigma_circumference_m", "m", 0.0, 1.0,
        "a circumference with a larger 1-sigma counts as not identified",
        &O::max_sigma_circumference_m},

@@ -306,10 +306,16 @@ class BatchProblem {
 
   bool use_heading() const { return batch_.use_heading && log_.heading; }
 
+  // What the folds of one part of the intervals counted (preintegrate_all folds the parts on
+  // threads and adds their tallies up).
+  struct FoldTally {
+    std::size_t fixes = 0, headings = 0;
+    float max_weight_change = 0.0f;
+  };
   // The fixes of segment i, each weighted by the robust loss at the current unknowns, and its
   // heading samples folded into one residual.
   void fold_interval(std::size_t i, const PreintegratedSegment& seg, std::size_t& next_fix,
-                     std::size_t& next_heading);
+                     std::size_t& next_heading, FoldTally& tally);
 
   // Calls visit_fix(fix, segment, whitened residual) for every fix in the problem and
   // visit_heading(whitened residual) for every heading sample, at the current unknowns and as the

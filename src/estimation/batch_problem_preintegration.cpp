@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "batch_problem.hpp"
+#include "parallel_parts.hpp"
 
 namespace odocal::batch {
 namespace {
@@ -18,6 +19,12 @@ batch::ParamsJacobian params_jacobian(const PreintegratedSegment& segment, std::
   if (!segment.J_delta_tyre.empty())
     J.rightCols<TyreModel::kCoefficients>() = segment.J_delta_tyre[s];
   return J;
+}
+
+// The index of the first time at or after t_s.
+std::size_t first_at_or_after(const std::vector<double>& times, double t_s) {
+  return static_cast<std::size_t>(std::lower_bound(times.begin(), times.end(), t_s) -
+                                  times.begin());
 }
 
 // The mean of a per-sample column over the increments of samples (from, to].
@@ -90,23 +97,40 @@ void BatchProblem::preintegrate_all(double slip_floor, bool remeasure_states, Fo
                          noise_.quantisation_sigma_rev,
                          std::max(noise_.lateral_sigma_m_per_sqrt_m, slip_floor)};
   params_lin_ = Eigen::Map<const batch::ParamsVector>(params_.data());
+  const std::size_t intervals = keyframes_.size() > 1 ? keyframes_.size() - 1 : 0;
   odometry_.clear();
-  speed_.clear();
+  odometry_.resize(intervals);  // each written by its part below
+  speed_.assign(intervals, std::nullopt);
   if (refold) {
-    folds_.assign(keyframes_.size() - 1, {});
+    folds_.assign(intervals, {});
     max_weight_change_ = 0.0f;
     fold_columns_ = fold_columns();
   }
-  std::size_t next_fix = 0, next_heading = 0;
-  for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
-    const PreintegratedSegment segment = preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1],
-                                                      at, noise, tyre_fitted() ? &tyre : nullptr);
-    odometry_.push_back(odometry_interval(segment));
-    speed_.push_back(std::nullopt);
-    if (gap_segment(i)) continue;
-    if (use_speed() && rough_segment_[i] == 0) speed_.back() = speed_residual(i, segment, at);
-    if (!refold) continue;
-    fold_interval(i, segment, next_fix, next_heading);
+  // Every interval on its own: the parts write only their own intervals, fixes and tallies.
+  const int threads = usable_threads(batch_.threads);
+  std::vector<FoldTally> tallies(static_cast<std::size_t>(threads));
+  const auto integrate_part = [&](std::size_t part, std::size_t begin, std::size_t end) {
+    if (begin == end) return;
+    // Where the sequential pass would stand: at the first fix of interval `begin`.
+    const double start_s = log_.wheels.t_s[keyframes_[begin]];
+    std::size_t next_fix = first_at_or_after(log_.gnss.t_s, start_s);
+    std::size_t next_heading = use_heading() ? first_at_or_after(log_.heading->t_s, start_s) : 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const PreintegratedSegment segment =
+          preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise,
+                       tyre_fitted() ? &tyre : nullptr);
+      odometry_[i] = odometry_interval(segment);
+      if (gap_segment(i)) continue;
+      if (use_speed() && rough_segment_[i] == 0) speed_[i] = speed_residual(i, segment, at);
+      if (refold) fold_interval(i, segment, next_fix, next_heading, tallies[part]);
+    }
+  };
+  run_in_parts(intervals, threads, integrate_part);
+  if (!refold) return;
+  for (const FoldTally& tally : tallies) {
+    folded_fixes_ += tally.fixes;
+    folded_headings_ += tally.headings;
+    max_weight_change_ = std::max(max_weight_change_, tally.max_weight_change);
   }
 }
 
@@ -228,14 +252,16 @@ Eigen::Vector2d BatchProblem::whitened_fix(std::size_t j, std::size_t i, const M
 }
 
 void BatchProblem::fold_interval(std::size_t i, const PreintegratedSegment& seg,
-                                 std::size_t& next_fix, std::size_t& next_heading) {
+                                 std::size_t& next_fix, std::size_t& next_heading,
+                                 FoldTally& tally) {
   batch::RowFold<batch::kFoldedColumns> fold;
   const Eigen::Vector2d origin(poses_[i][0], poses_[i][1]);
   visit_fixes(i, seg, log_.gnss.t_s, next_fix, [&](std::size_t j, const MotionAt& at) {
     const float weight = static_cast<float>(robust(whitened_fix(j, i, at).squaredNorm())[1]);
-    max_weight_change_ = std::max(max_weight_change_, std::abs(weight - gnss_weights_[j]));
+    tally.max_weight_change =
+        std::max(tally.max_weight_change, std::abs(weight - gnss_weights_[j]));
     gnss_weights_[j] = weight;
-    ++folded_fixes_;
+    ++tally.fixes;
     batch::FoldedIntervalResidual::add_fix(
         fold, at.motion, at.velocity, Eigen::Vector2d(log_.gnss.x_m[j], log_.gnss.y_m[j]) - origin,
         white_gnss_sigma(j), weight);
@@ -245,7 +271,7 @@ void BatchProblem::fold_interval(std::size_t i, const PreintegratedSegment& seg,
     visit_fixes(i, seg, heading.t_s, next_heading, [&](std::size_t j, const MotionAt& at) {
       const double predicted = poses_[i][2] + at.motion.delta(2) + heading_bias_;
       const double measured = predicted + batch::wrapped(heading.heading_rad[j] - predicted);
-      ++folded_headings_;
+      ++tally.headings;
       batch::FoldedIntervalResidual::add_heading(fold, at.motion, measured,
                                                  sensors_.heading_sigma_rad);
     });
