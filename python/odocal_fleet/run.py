@@ -70,7 +70,8 @@ def run(args):
                                    dashboard_address=None)
             client = Client(cluster)
         try:
-            futures = {client.submit(tasks.calibrate_drive, d.path, args.method, options,
+            # One calibration per worker process and core: each on one thread.
+            futures = {client.submit(tasks.calibrate_drive, d.path, args.method, options, 1,
                                      key=f"odocal-{d.key}", pure=False): d for d in todo}
             for future in as_completed(futures):
                 drive = futures[future]

@@ -2,9 +2,14 @@
 not an exception, so that one broken drive never stops a run."""
 
 
-def calibrate_drive(path, method, options):
+def calibrate_drive(path, method, options, threads=None):
+    """`threads`: the batch's threads per calibration where the options do not say (Dask runs one
+    calibration per worker process, each on its core: 1); the result does not depend on it."""
     import odocal  # imported in the worker process
 
+    if threads is not None:
+        options = dict(options or {})
+        options["batch"] = {"threads": threads, **(options.get("batch") or {})}
     try:
         log = odocal.read_log(path)
         findings = odocal.doctor(path)

@@ -87,3 +87,19 @@ def test_the_command_runs_as_a_module(fleet, tmp_path):
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     assert "2 calibrated, 0 failed" in run.stdout
+
+
+def test_a_worker_calibrates_on_one_thread_unless_the_options_say_with_the_same_result(fleet):
+    from odocal_fleet import tasks
+    drive = str(fleet / "car-a" / "drive-1")
+    given = {"batch": {"tyre_model": "none"}}
+    one = tasks.calibrate_drive(drive, "batch", given, threads=1)["result"]
+    own = tasks.calibrate_drive(drive, "batch", given)["result"]
+    stated = tasks.calibrate_drive(drive, "batch", {"batch": {"threads": 3}}, threads=1)["result"]
+    assert one["configuration"]["batch"]["threads"] == 1
+    assert one["configuration"]["batch"]["tyre_model"] == "none"  # the rest of the options kept
+    assert own["configuration"]["batch"]["threads"] == 0
+    assert stated["configuration"]["batch"]["threads"] == 3
+    assert given == {"batch": {"tyre_model": "none"}}  # the caller's options left as they were
+    for key in ("circumference_rl_m", "circumference_rr_m", "covariance_m2"):
+        assert one[key] == own[key]
