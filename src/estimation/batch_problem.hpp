@@ -5,6 +5,7 @@
 
 #include <ceres/ceres.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -22,8 +23,19 @@
 #include "odocal/estimation/model_adequacy.hpp"
 #include "odocal/estimation/odometry_preintegration.hpp"
 #include "odocal/model/tyre_car_prior.hpp"
+#include "parallel_parts.hpp"
 
 namespace odocal::batch {
+
+// The index of the first of `times` (ascending) at or after t_s.
+inline std::size_t first_at_or_after(const std::vector<double>& times, double t_s) {
+  return static_cast<std::size_t>(std::lower_bound(times.begin(), times.end(), t_s) -
+                                  times.begin());
+}
+
+// Keyframe intervals per thread whose measurements for_each_measurement whitens before visiting
+// them: a few MB at 100 Hz GNSS and heading.
+inline constexpr std::size_t kMeasurementChunkPerThread = 512;
 
 using Block2 = std::array<double, 2>;
 using Block3 = std::array<double, 3>;
@@ -318,33 +330,68 @@ class BatchProblem {
                      std::size_t& next_heading, FoldTally& tally);
 
   // Calls visit_fix(fix, segment, whitened residual) for every fix in the problem and
-  // visit_heading(whitened residual) for every heading sample, at the current unknowns and as the
-  // folds linearise them, pre-integrating again segment by segment (memory stays per segment).
+  // visit_heading(whitened residual) for every heading sample, in time order, at the current
+  // unknowns and as the folds linearise them, pre-integrating again segment by segment. The
+  // segments of a chunk are whitened on threads (parallel_parts.hpp) and visited in order after
+  // them, so that memory stays per chunk and the visits are the same on any number of threads.
   template <typename VisitFix, typename VisitHeading>
   void for_each_measurement(VisitFix&& visit_fix, VisitHeading&& visit_heading) const {
     const OdometryParams at{params_lin_(0), params_lin_(1), params_lin_(2)};
     const TyreConditions tyre{states_,
                               TyreModel::from(params_lin_.tail<TyreModel::kCoefficients>()), body_};
     constexpr bool kHeadings = !std::is_same_v<std::decay_t<VisitHeading>, std::nullptr_t>;
-    std::size_t next_fix = 0, next_heading = 0;
-    for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
-      if (gap_segment(i)) continue;
-      const PreintegratedSegment seg = preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1],
-                                                    at, noise_, tyre_fitted() ? &tyre : nullptr);
-      visit_fixes(i, seg, log_.gnss.t_s, next_fix, [&](std::size_t j, const MotionAt& motion) {
-        visit_fix(j, i, whitened_fix(j, i, motion));
-      });
-      if constexpr (kHeadings) {
-        if (!use_heading()) continue;
+    const bool headings = kHeadings && use_heading();
+    struct Whitened {
+      std::size_t fix, segment;  // a heading sample: its segment only
+      Eigen::Vector2d value;     // a heading sample's in x
+      bool heading;
+    };
+    const std::size_t intervals = keyframes_.size() > 1 ? keyframes_.size() - 1 : 0;
+    const int threads = usable_threads(batch_.threads);
+    const std::size_t chunk = kMeasurementChunkPerThread * static_cast<std::size_t>(threads);
+    std::vector<std::vector<Whitened>> whitened(static_cast<std::size_t>(threads));
+    const auto whiten = [&](std::size_t part, std::size_t begin, std::size_t end) {
+      std::vector<Whitened>& out = whitened[part];
+      out.clear();
+      if (begin == end) return;
+      const double start_s = log_.wheels.t_s[keyframes_[begin]];
+      std::size_t next_fix = first_at_or_after(log_.gnss.t_s, start_s);
+      std::size_t next_heading = headings ? first_at_or_after(log_.heading->t_s, start_s) : 0;
+      for (std::size_t i = begin; i < end; ++i) {
+        if (gap_segment(i)) continue;
+        const PreintegratedSegment seg =
+            preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise_,
+                         tyre_fitted() ? &tyre : nullptr);
+        visit_fixes(i, seg, log_.gnss.t_s, next_fix, [&](std::size_t j, const MotionAt& motion) {
+          out.push_back({j, i, whitened_fix(j, i, motion), false});
+        });
+        if (!headings) continue;
         visit_fixes(i, seg, log_.heading->t_s, next_heading,
                     [&](std::size_t j, const MotionAt& motion) {
                       const batch::HeadingResidual residual{
                           motion.motion, log_.heading->heading_rad[j], sensors_.heading_sigma_rad};
-                      double whitened = 0.0;
+                      double value = 0.0;
                       residual(poses_[i].data(), params_.data(), &heading_bias_,
-                               count_error_[i].data(), &whitened);
-                      visit_heading(whitened);
+                               count_error_[i].data(), &value);
+                      out.push_back({j, i, Eigen::Vector2d(value, 0.0), true});
                     });
+      }
+    };
+    for (std::size_t from = 0; from < intervals; from += chunk) {
+      const std::size_t to = std::min(intervals, from + chunk);
+      const std::size_t parts = run_in_parts(
+          to - from, threads,
+          [&](std::size_t part, std::size_t b, std::size_t e) { whiten(part, from + b, from + e); });
+      for (std::size_t part = 0; part < parts; ++part) {
+        for (const Whitened& w : whitened[part]) {
+          if constexpr (kHeadings) {
+            if (w.heading) {
+              visit_heading(w.value.x());
+              continue;
+            }
+          }
+          visit_fix(w.fix, w.segment, w.value);
+        }
       }
     }
   }

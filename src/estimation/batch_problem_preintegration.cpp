@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "batch_problem.hpp"
-#include "parallel_parts.hpp"
 
 namespace odocal::batch {
 namespace {
@@ -19,12 +18,6 @@ batch::ParamsJacobian params_jacobian(const PreintegratedSegment& segment, std::
   if (!segment.J_delta_tyre.empty())
     J.rightCols<TyreModel::kCoefficients>() = segment.J_delta_tyre[s];
   return J;
-}
-
-// The index of the first time at or after t_s.
-std::size_t first_at_or_after(const std::vector<double>& times, double t_s) {
-  return static_cast<std::size_t>(std::lower_bound(times.begin(), times.end(), t_s) -
-                                  times.begin());
 }
 
 // The mean of a per-sample column over the increments of samples (from, to].
