@@ -359,9 +359,8 @@ class BatchProblem {
       std::size_t next_heading = headings ? first_at_or_after(log_.heading->t_s, start_s) : 0;
       for (std::size_t i = begin; i < end; ++i) {
         if (gap_segment(i)) continue;
-        const PreintegratedSegment seg =
-            preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise_,
-                         tyre_fitted() ? &tyre : nullptr);
+        const PreintegratedSegment seg = preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1],
+                                                      at, noise_, tyre_fitted() ? &tyre : nullptr);
         visit_fixes(i, seg, log_.gnss.t_s, next_fix, [&](std::size_t j, const MotionAt& motion) {
           out.push_back({j, i, whitened_fix(j, i, motion), false});
         });
@@ -379,9 +378,10 @@ class BatchProblem {
     };
     for (std::size_t from = 0; from < intervals; from += chunk) {
       const std::size_t to = std::min(intervals, from + chunk);
-      const std::size_t parts = run_in_parts(
-          to - from, threads,
-          [&](std::size_t part, std::size_t b, std::size_t e) { whiten(part, from + b, from + e); });
+      const std::size_t parts =
+          run_in_parts(to - from, threads, [&](std::size_t part, std::size_t b, std::size_t e) {
+            whiten(part, from + b, from + e);
+          });
       for (std::size_t part = 0; part < parts; ++part) {
         for (const Whitened& w : whitened[part]) {
           if constexpr (kHeadings) {

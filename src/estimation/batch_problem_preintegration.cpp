@@ -83,7 +83,7 @@ void BatchProblem::preintegrate_all(double slip_floor, bool remeasure_states, Fo
     // The driving state from the wheels as the current model counts them: a slipping wheel
     // overstates speed and acceleration by its slip.
     measure_driving_states_again(log_.wheels, log_.imu ? &*log_.imu : nullptr, at, tyre_model(),
-                                 body_, states_);
+                                 body_, states_, kDrivingStateHalfWindowS, batch_.threads);
   }
   const TyreConditions tyre{states_, tyre_model(), body_};
   const WheelNoise noise{std::max(noise_.slip_sigma_m_per_sqrt_m, slip_floor),

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "odocal/estimation/road_grade.hpp"
+#include "parallel_parts.hpp"
 
 namespace odocal {
 namespace {
@@ -87,60 +88,76 @@ class RunningMean {
 
 // Fills `states` (one per wheel sample) from the wheels' increments, each scaled by
 // `factor(k, wheel)`, which may read `states` as they were: every factor is taken before any
-// state is written (the batch measures the state again in place).
+// state is written (the batch measures the state again in place). Both passes run in parts on
+// `threads` (parallel_parts.hpp) with the same arithmetic in the same order as on one: the
+// running sums are added up on the caller, and each part's running means start from the
+// stream's beginning.
 template <class Factor>
 void fill_states(const WheelStream& wheels, const ImuStream* imu, const OdometryParams& params,
-                 double half_window_s, const Factor& factor, std::vector<DrivingState>& states) {
+                 double half_window_s, const Factor& factor, std::vector<DrivingState>& states,
+                 int threads) {
   states.resize(wheels.size());
   if (wheels.size() < 2) {
     std::fill(states.begin(), states.end(), DrivingState{});
     return;
   }
+  // Each sample's own step first (the factors are the costly part), then their running sums.
   Cumulative path{wheels.t_s, std::vector<double>(wheels.size(), 0.0)};
   Cumulative wheel_turn{wheels.t_s, std::vector<double>(wheels.size(), 0.0)};
+  batch::run_in_parts(wheels.size() - 1, threads, [&](std::size_t, std::size_t b, std::size_t e) {
+    for (std::size_t k = b + 1; k <= e; ++k) {
+      const WheelIncrement counted{wheels.rev_rl[k] * factor(k, RearWheel::kLeft),
+                                   wheels.rev_rr[k] * factor(k, RearWheel::kRight)};
+      const BodyIncrement step = body_increment(counted, params);
+      path.value[k] = step.distance_m;
+      wheel_turn.value[k] = step.yaw_rad;
+    }
+  });
   for (std::size_t k = 1; k < wheels.size(); ++k) {
-    const WheelIncrement counted{wheels.rev_rl[k] * factor(k, RearWheel::kLeft),
-                                 wheels.rev_rr[k] * factor(k, RearWheel::kRight)};
-    const BodyIncrement step = body_increment(counted, params);
-    path.value[k] = path.value[k - 1] + step.distance_m;
-    wheel_turn.value[k] = wheel_turn.value[k - 1] + step.yaw_rad;
+    path.value[k] = path.value[k - 1] + path.value[k];
+    wheel_turn.value[k] = wheel_turn.value[k - 1] + wheel_turn.value[k];
   }
   const bool measured = imu != nullptr && imu->size() >= 2;
   static const ImuStream kNoImu{{0.0, 1.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
   const ImuStream& source = measured ? *imu : kNoImu;
-  RunningMean gyro(source, source.wz_radps), forward(source, source.ax_mps2),
-      left(source, source.ay_mps2);
   const double h = half_window_s;
-  // Where each sequence of lookup times (t - 2h .. t + 2h) has got to.
-  std::size_t at_minus_2h = 0, at_minus_h = 0, at_t = 0, at_plus_h = 0, at_plus_2h = 0;
-  std::size_t turn_from = 0, turn_to = 0;
-  for (std::size_t k = 0; k < wheels.size(); ++k) {
-    const double t = wheels.t_s[k];
-    DrivingState& state = states[k];
-    const double speed = path.rate(t, h, at_minus_h, at_plus_h);
-    const bool imu_here = measured && t >= imu->t_s.front() && t <= imu->t_s.back();
-    const double yaw_rate = imu_here ? gyro.at(t, h) : wheel_turn.rate(t, h, turn_from, turn_to);
-    const double longitudinal =
-        (path.rate(t + h, h, at_t, at_plus_2h) - path.rate(t - h, h, at_minus_2h, at_t)) /
-        (2.0 * h);
-    state.speed_mps = stored(speed);
-    state.yaw_rate_radps = stored(yaw_rate);
-    state.longitudinal_mps2 = stored(longitudinal);
-    // The specific force the tyres push with: on a hill, with the slope's gravity that the
-    // projection took out of the accelerometer (a wheel climbing slips as one accelerating does).
-    // Where the grade is not known the projection left the increments alone: level, as without.
-    const bool graded = !wheels.grade.empty() && std::isfinite(wheels.grade[k]);
-    const double slope = graded ? slope_gravity_mps2(wheels.grade[k]) : 0.0;
-    // The accelerometer over this sample's own increment, not over +-h: the physical terms are
-    // products and quotients of force and load with a split at zero force, so a state averaged
-    // over half a second puts the braking into the turn that follows it, and dead reckoning sums
-    // what that does to the wheels' difference (docs/tyre-model.md, "The slip curve and the state
-    // of one sample").
-    const double from = wheels.t_s[k > 0 ? k - 1 : 0], to = wheels.t_s[k > 0 ? k : 1];
-    const double mid = 0.5 * (from + to), half = 0.5 * (to - from);
-    state.specific_force_x_mps2 = stored((imu_here ? forward.at(mid, half) : longitudinal) + slope);
-    state.specific_force_y_mps2 = stored(imu_here ? left.at(mid, half) : speed * yaw_rate);
-  }
+  const auto fill_part = [&](std::size_t, std::size_t begin, std::size_t end) {
+    RunningMean gyro(source, source.wz_radps), forward(source, source.ax_mps2),
+        left(source, source.ay_mps2);
+    // Where each sequence of lookup times (t - 2h .. t + 2h) has got to.
+    std::size_t at_minus_2h = begin, at_minus_h = begin, at_t = begin, at_plus_h = begin,
+                at_plus_2h = begin, turn_from = begin, turn_to = begin;
+    for (std::size_t k = begin; k < end; ++k) {
+      const double t = wheels.t_s[k];
+      DrivingState& state = states[k];
+      const double speed = path.rate(t, h, at_minus_h, at_plus_h);
+      const bool imu_here = measured && t >= imu->t_s.front() && t <= imu->t_s.back();
+      const double yaw_rate = imu_here ? gyro.at(t, h) : wheel_turn.rate(t, h, turn_from, turn_to);
+      const double longitudinal =
+          (path.rate(t + h, h, at_t, at_plus_2h) - path.rate(t - h, h, at_minus_2h, at_t)) /
+          (2.0 * h);
+      state.speed_mps = stored(speed);
+      state.yaw_rate_radps = stored(yaw_rate);
+      state.longitudinal_mps2 = stored(longitudinal);
+      // The specific force the tyres push with: on a hill, with the slope's gravity that the
+      // projection took out of the accelerometer (a wheel climbing slips as one accelerating
+      // does). Where the grade is not known the projection left the increments alone: level, as
+      // without.
+      const bool graded = !wheels.grade.empty() && std::isfinite(wheels.grade[k]);
+      const double slope = graded ? slope_gravity_mps2(wheels.grade[k]) : 0.0;
+      // The accelerometer over this sample's own increment, not over +-h: the physical terms
+      // are products and quotients of force and load with a split at zero force, so a state
+      // averaged over half a second puts the braking into the turn that follows it, and dead
+      // reckoning sums what that does to the wheels' difference (docs/tyre-model.md, "The slip
+      // curve and the state of one sample").
+      const double from = wheels.t_s[k > 0 ? k - 1 : 0], to = wheels.t_s[k > 0 ? k : 1];
+      const double mid = 0.5 * (from + to), half = 0.5 * (to - from);
+      state.specific_force_x_mps2 =
+          stored((imu_here ? forward.at(mid, half) : longitudinal) + slope);
+      state.specific_force_y_mps2 = stored(imu_here ? left.at(mid, half) : speed * yaw_rate);
+    }
+  };
+  batch::run_in_parts(wheels.size(), threads, fill_part);
 }
 
 }  // namespace
@@ -154,7 +171,7 @@ std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStr
                                          const OdometryParams& params, double half_window_s) {
   std::vector<DrivingState> states;
   fill_states(
-      wheels, imu, params, half_window_s, [](std::size_t, RearWheel) { return 1.0; }, states);
+      wheels, imu, params, half_window_s, [](std::size_t, RearWheel) { return 1.0; }, states, 1);
   return states;
 }
 
@@ -171,7 +188,7 @@ std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStr
 void measure_driving_states_again(const WheelStream& wheels, const ImuStream* imu,
                                   const OdometryParams& params, const TyreModel& model,
                                   const VehicleBody& body, std::vector<DrivingState>& states,
-                                  double half_window_s) {
+                                  double half_window_s, int threads) {
   if (states.size() != wheels.size())
     throw std::invalid_argument("driving_states: one driving state per wheel sample");
   fill_states(
@@ -179,7 +196,7 @@ void measure_driving_states_again(const WheelStream& wheels, const ImuStream* im
       [&](std::size_t sample, RearWheel wheel) {
         return tyre_factor(model, states[sample], wheel, body);
       },
-      states);
+      states, batch::usable_threads(threads));
 }
 
 WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<DrivingState>& states,

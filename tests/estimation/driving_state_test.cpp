@@ -177,5 +177,48 @@ TEST(DrivingState, StatesOfTheCountedWheelsNeedNoCopyOfTheStream) {
       std::invalid_argument);
 }
 
+TEST(DrivingState, MeasuredAgainOnThreadsTheStatesAreTheSameToTheBit) {
+  // The batch measures the states again on its threads: running sums and running means split
+  // into parts must add up in the order one thread adds them. An accelerometer and gyro that
+  // vary, starting late and ending early (the wheels' own turn and a_x stand in outside them).
+  Log log = log_of(
+      30.0, [](double t) { return 8.0 + 3.0 * std::sin(0.4 * t); },
+      [](double t) { return 0.2 * std::cos(0.3 * t); });
+  log.imu = ImuStream{};
+  for (std::size_t k = 150; k + 150 < log.wheels.size(); k += 2) {
+    const double t = log.wheels.t_s[k] + 0.003;
+    log.imu->t_s.push_back(t);
+    log.imu->ax_mps2.push_back(1.2 * std::sin(0.4 * t) + 0.01 * std::sin(37.0 * t));
+    log.imu->ay_mps2.push_back(1.6 * std::cos(0.3 * t));
+    log.imu->wz_radps.push_back(0.2 * std::cos(0.3 * t) + 1e-3 * std::sin(11.0 * t));
+  }
+  TyreModel model;
+  model.k_load_s2pm = 2e-3;
+  model.k_drive_slip = 0.05;
+  model.k_brake_slip = 0.02;
+  const OdometryParams params = log.vehicle.nominal_params();
+  const VehicleBody body = log.vehicle.body_geometry();
+  const std::vector<DrivingState> first = driving_states(log, params);
+  const auto again = [&](int threads) {
+    std::vector<DrivingState> states = first;
+    measure_driving_states_again(log.wheels, &*log.imu, params, model, body, states,
+                                 kDrivingStateHalfWindowS, threads);
+    return states;
+  };
+  const std::vector<DrivingState> one = again(1);
+  for (const int threads : {2, 3, 7}) {
+    const std::vector<DrivingState> several = again(threads);
+    ASSERT_EQ(several.size(), one.size());
+    for (std::size_t k = 0; k < one.size(); ++k) {
+      ASSERT_EQ(several[k].speed_mps, one[k].speed_mps) << threads << " threads, sample " << k;
+      ASSERT_EQ(several[k].longitudinal_mps2, one[k].longitudinal_mps2) << k;
+      ASSERT_EQ(several[k].yaw_rate_radps, one[k].yaw_rate_radps) << k;
+      ASSERT_EQ(several[k].specific_force_x_mps2, one[k].specific_force_x_mps2) << k;
+      ASSERT_EQ(several[k].specific_force_y_mps2, one[k].specific_force_y_mps2) << k;
+    }
+  }
+  EXPECT_NE(one[1500].speed_mps, first[1500].speed_mps);  // the model changed something
+}
+
 }  // namespace
 }  // namespace odocal

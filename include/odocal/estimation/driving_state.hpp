@@ -14,14 +14,18 @@
 
 namespace odocal {
 
+// The states' speeds and yaw rate are means over +-this, s.
+inline constexpr double kDrivingStateHalfWindowS = 0.25;
+
 // One state per wheel sample. half_window_s: speeds and the yaw rate are means over
 // +-half_window_s, and the wheels' accelerations differences of those over the same spacing (the
 // window shrinks at the ends and across chain breaks, whose increments are zero).
 std::vector<DrivingState> driving_states(const Log& log, const OdometryParams& params,
-                                         double half_window_s = 0.25);
+                                         double half_window_s = kDrivingStateHalfWindowS);
 // The same from a wheel stream and the gyro (null: none).
 std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
-                                         const OdometryParams& params, double half_window_s = 0.25);
+                                         const OdometryParams& params,
+                                         double half_window_s = kDrivingStateHalfWindowS);
 // The same from the wheels as `model` counts them at the states `counted_at` (one per wheel
 // sample): driving_states(with_tyre_model(wheels, counted_at, model), ...) without the copy of
 // the stream (a slipping wheel overstates its speed by its slip).
@@ -29,14 +33,15 @@ std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStr
                                          const OdometryParams& params,
                                          const std::vector<DrivingState>& counted_at,
                                          const TyreModel& model, const VehicleBody& body,
-                                         double half_window_s = 0.25);
+                                         double half_window_s = kDrivingStateHalfWindowS);
 
 // The same in place: `states` (one per wheel sample, as the model counted them) become the
-// states of the wheels as `model` counts them there, without a second copy of the states.
+// states of the wheels as `model` counts them there, without a second copy of the states. On
+// `threads` threads (0: one per core), with the same result as on one.
 void measure_driving_states_again(const WheelStream& wheels, const ImuStream* imu,
                                   const OdometryParams& params, const TyreModel& model,
                                   const VehicleBody& body, std::vector<DrivingState>& states,
-                                  double half_window_s = 0.25);
+                                  double half_window_s = kDrivingStateHalfWindowS, int threads = 1);
 
 // The wheel stream whose rear increments carry the model's factors (c_i,eff / c_i), and its
 // side slip per sample where the model has one: dead reckoning it with c_i is dead reckoning
