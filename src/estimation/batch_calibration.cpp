@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "batch_consistency.hpp"
@@ -27,7 +28,7 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, std::optional<TyreTerms> terms,
                       BatchSummary& summary, const FitDecision& finish,
                       const std::optional<std::array<double, 2>>& rival_circumference,
-                      const std::optional<GnssNoiseModel>& noise) {
+                      const std::optional<GnssNoiseModel>& noise, const AdaptedDecision& go_on) {
   BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
   if (noise) {
     batch.set_gnss_noise(noise->white_scale, noise->gauss_markov_sigma_m,
@@ -64,6 +65,17 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
   }
   adapt_doppler_noise(batch, options, summary, solver);
   adapt_gnss_noise(batch, options, common, summary, solver);
+  if (go_on) {
+    AdaptedFacts adapted{{batch.params()[0], batch.params()[1]}, std::nullopt};
+    const double scale = summary.gnss_noise.covariance_scale;
+    constexpr double kInfinite = std::numeric_limits<double>::infinity();
+    if (!std::isfinite(scale)) {
+      adapted.min_variance = {kInfinite, kInfinite};  // summarise leaves no sigma
+    } else if (const auto u = batch.uncertainty()) {
+      adapted.min_variance = {scale * u->params(0, 0), scale * u->params(1, 1)};
+    }
+    if (!go_on(adapted)) return false;
+  }
   batch.set_model_spread(spread());  // at the solution reported
   batch.add_considered_uncertainty();
   summarise(run.log(), options, batch, solver, summary);

@@ -54,16 +54,28 @@ inline constexpr double kMaxSideSlipRad = 0.1;
 // RMS while driving.
 inline constexpr double kMaxSlipCoefficient = 0.1;
 
+// A fit after its GNSS noise adaptation: its circumferences, and the least variance it can
+// report for them (the data's own, scaled as the adaptation scales it: the considered
+// uncertainty, the models' spread and the misfit only add to it; infinite where the adaptation
+// leaves no sigma). None where the information is singular.
+struct AdaptedFacts {
+  std::array<double, 2> circumference{};
+  std::optional<std::array<double, 2>> min_variance;
+};
+using AdaptedDecision = std::function<bool(const AdaptedFacts&)>;
+
 // Fits one model (the plain one, or a tyre model's family of terms); unless `finish` (when
-// given) declines the solved fit, adapts its GNSS noise and fills the summary. Returns whether it
-// did. With `rival_circumference` (another tyre model's fit of the log), the circumferences'
-// gap to it is added to their variance (BatchSummary::model_spread_m). With `noise`, the fit is
-// solved under that GNSS noise model from the start. The problem is freed on return.
+// given) declines the solved fit, adapts its GNSS noise, and unless `go_on` (when given) declines
+// the adapted fit, fills the summary. Returns whether it did. With `rival_circumference` (another
+// tyre model's fit of the log), the circumferences' gap to it is added to their variance
+// (BatchSummary::model_spread_m). With `noise`, the fit is solved under that GNSS noise model
+// from the start. The problem is freed on return.
 bool fit_model(const CalibrationRun& run, const BatchOptions& options,
                const CalibrationOptions& common, std::optional<TyreTerms> terms,
                BatchSummary& summary, const FitDecision& finish = {},
                const std::optional<std::array<double, 2>>& rival_circumference = std::nullopt,
-               const std::optional<GnssNoiseModel>& noise = std::nullopt);
+               const std::optional<GnssNoiseModel>& noise = std::nullopt,
+               const AdaptedDecision& go_on = {});
 
 // The tyre models that auto tries and that judge a plain fit, in order: the physical terms
 // (three coefficients of load and slip), then the regression terms (seven).

@@ -16,10 +16,27 @@ bool witness_physical_fit(const CalibrationRun& run, const BatchOptions& fitting
                           const CalibrationOptions& common, const BatchSummary& unfitted,
                           BatchSummary& summary, int& solves) {
   BatchSummary witness = unfitted;
-  const bool tyre =
-      fit_model(run, fitting, common, TyreTerms::kRegression, witness, [&](const FitFacts& facts) {
+  // Where the gap lies inside kWitnessSigmas even of the least combined sigma the witness can
+  // report, it cannot fire: its considered uncertainty is not worked out (a tenth of its time on
+  // the 10-hour drive). The margin covers the solve that the summary is taken after.
+  constexpr double kMargin = 1e-3;
+  const auto could_fire = [&](const AdaptedFacts& adapted) {
+    if (!adapted.min_variance) return true;  // no floor: see it through
+    if (summary.parameters.size() < 2) return false;
+    for (std::size_t wheel = 0; wheel < 2; ++wheel) {
+      const double gap = adapted.circumference[wheel] - summary.parameters[wheel].value;
+      const double floor = std::hypot(summary.parameters[wheel].sigma,
+                                      std::sqrt(std::max((*adapted.min_variance)[wheel], 0.0)));
+      if (!(std::abs(gap) <= (1.0 - kMargin) * kWitnessSigmas * floor)) return true;
+    }
+    return false;
+  };
+  const bool tyre = fit_model(
+      run, fitting, common, TyreTerms::kRegression, witness,
+      [&](const FitFacts& facts) {
         return facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
-      });
+      },
+      std::nullopt, std::nullopt, could_fire);
   solves += witness.solves;
   // A witness that is no tyre, or whose circumferences the log leaves open, says nothing.
   if (!tyre || witness.parameters.size() < 2 || summary.parameters.size() < 2) return false;
