@@ -26,9 +26,11 @@ using batch::BatchProblem;
 
 bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, std::optional<TyreTerms> terms,
-                      BatchSummary& summary, const FitDecision& finish,
-                      const std::optional<std::array<double, 2>>& rival_circumference,
-                      const std::optional<GnssNoiseModel>& noise, const AdaptedDecision& go_on) {
+                      BatchSummary& summary, const FitControls& controls) {
+  const FitDecision& finish = controls.finish;
+  const std::optional<std::array<double, 2>>& rival_circumference = controls.rival_circumference;
+  const std::optional<GnssNoiseModel>& noise = controls.noise;
+  const AdaptedDecision& go_on = controls.go_on;
   BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
   if (noise) {
     batch.set_gnss_noise(noise->white_scale, noise->gauss_markov_sigma_m,

@@ -64,18 +64,25 @@ struct AdaptedFacts {
 };
 using AdaptedDecision = std::function<bool(const AdaptedFacts&)>;
 
-// Fits one model (the plain one, or a tyre model's family of terms); unless `finish` (when
-// given) declines the solved fit, adapts its GNSS noise, and unless `go_on` (when given) declines
-// the adapted fit, fills the summary. Returns whether it did. With `rival_circumference` (another
-// tyre model's fit of the log), the circumferences' gap to it is added to their variance
-// (BatchSummary::model_spread_m). With `noise`, the fit is solved under that GNSS noise model
-// from the start. The problem is freed on return.
+// What steers one fit besides its model, each optional.
+struct FitControls {
+  // Declines the solved fit (before its GNSS noise adaptation): then nothing more is done.
+  FitDecision finish{};
+  // Another tyre model's fit of the log: the circumferences' gap to it is added to their
+  // variance (BatchSummary::model_spread_m).
+  std::optional<std::array<double, 2>> rival_circumference{};
+  // A GNSS noise model to solve under from the start.
+  std::optional<GnssNoiseModel> noise{};
+  // Declines the adapted fit: then the summary is not filled.
+  AdaptedDecision go_on{};
+};
+
+// Fits one model (the plain one, or a tyre model's family of terms); unless `controls` declines
+// it, adapts its GNSS noise and fills the summary. Returns whether it did. The problem is freed
+// on return.
 bool fit_model(const CalibrationRun& run, const BatchOptions& options,
                const CalibrationOptions& common, std::optional<TyreTerms> terms,
-               BatchSummary& summary, const FitDecision& finish = {},
-               const std::optional<std::array<double, 2>>& rival_circumference = std::nullopt,
-               const std::optional<GnssNoiseModel>& noise = std::nullopt,
-               const AdaptedDecision& go_on = {});
+               BatchSummary& summary, const FitControls& controls = {});
 
 // The tyre models that auto tries and that judge a plain fit, in order: the physical terms
 // (three coefficients of load and slip), then the regression terms (seven).

@@ -81,8 +81,9 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"max_relinearisations", "1", 0.0, 100.0, "at most this many re-linearisations",
        &O::max_relinearisations},
       {"threads", "1", 0.0, 1024.0,
-       "threads the wheels are pre-integrated and the fixes folded on (0: one per core); the "
-       "result is the same on any number",
+       "threads the passes over the wheel samples and fixes run on (pre-integrating, folding, "
+       "measuring the driving states, whitening the residuals; 0: one per core); the result is "
+       "the same on any number",
        &O::threads},
       {"max_sigma_circumference_m", "m", 0.0, 1.0,
        "a circumference with a larger 1-sigma counts as not identified",

@@ -317,6 +317,16 @@ class BatchProblem {
   }
 
   bool use_heading() const { return batch_.use_heading && log_.heading; }
+  // Where a pass over the intervals in time order stands at interval i's start, so that a part of
+  // them can start there: its first GNSS fix and heading sample (0 without headings).
+  struct MeasurementCursors {
+    std::size_t fix, heading;
+  };
+  MeasurementCursors cursors_at(std::size_t interval) const {
+    const double start_s = log_.wheels.t_s[keyframes_[interval]];
+    return {first_at_or_after(log_.gnss.t_s, start_s),
+            use_heading() ? first_at_or_after(log_.heading->t_s, start_s) : 0};
+  }
 
   // What the folds of one part of the intervals counted (preintegrate_all folds the parts on
   // threads and adds their tallies up).
@@ -354,9 +364,7 @@ class BatchProblem {
       std::vector<Whitened>& out = whitened[part];
       out.clear();
       if (begin == end) return;
-      const double start_s = log_.wheels.t_s[keyframes_[begin]];
-      std::size_t next_fix = first_at_or_after(log_.gnss.t_s, start_s);
-      std::size_t next_heading = headings ? first_at_or_after(log_.heading->t_s, start_s) : 0;
+      auto [next_fix, next_heading] = cursors_at(begin);
       for (std::size_t i = begin; i < end; ++i) {
         if (gap_segment(i)) continue;
         const PreintegratedSegment seg = preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1],

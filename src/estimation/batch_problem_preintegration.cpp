@@ -104,10 +104,7 @@ void BatchProblem::preintegrate_all(double slip_floor, bool remeasure_states, Fo
   std::vector<FoldTally> tallies(static_cast<std::size_t>(threads));
   const auto integrate_part = [&](std::size_t part, std::size_t begin, std::size_t end) {
     if (begin == end) return;
-    // Where the sequential pass would stand: at the first fix of interval `begin`.
-    const double start_s = log_.wheels.t_s[keyframes_[begin]];
-    std::size_t next_fix = first_at_or_after(log_.gnss.t_s, start_s);
-    std::size_t next_heading = use_heading() ? first_at_or_after(log_.heading->t_s, start_s) : 0;
+    auto [next_fix, next_heading] = cursors_at(begin);
     for (std::size_t i = begin; i < end; ++i) {
       const PreintegratedSegment segment =
           preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise,

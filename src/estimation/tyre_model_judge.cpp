@@ -75,14 +75,16 @@ TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOp
                                                      shared_noise, candidate.solves))
                      : std::nullopt;
     BatchSummary fitted = unfitted;
-    fit_model(run, judging, common, terms, fitted, [&](const FitFacts& facts) {
-      candidate.bic = shared_bic.value_or(facts.bic);
-      candidate.tyre = facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
-      candidate.every_coefficient_held = facts.usable && facts.free_tyre_coefficients == 0;
-      candidate.needed = candidate.can_stand() && candidate.bic < judgement.plain_bic;
-      if (facts.usable) candidate.circumference = facts.circumference;
-      return false;
-    });
+    fit_model(run, judging, common, terms, fitted, {.finish = [&](const FitFacts& facts) {
+                candidate.bic = shared_bic.value_or(facts.bic);
+                candidate.tyre =
+                    facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
+                candidate.every_coefficient_held =
+                    facts.usable && facts.free_tyre_coefficients == 0;
+                candidate.needed = candidate.can_stand() && candidate.bic < judgement.plain_bic;
+                if (facts.usable) candidate.circumference = facts.circumference;
+                return false;
+              }});
     candidate.solves += fitted.solves;
     judgement.candidates.push_back(candidate);
     if (candidate.needed) judgement.better = judgement.candidates.size() - 1;
@@ -130,7 +132,8 @@ BatchSummary fit_plain_carrying_gap(const CalibrationRun& run, const BatchOption
                                     const CalibrationOptions& common, const BatchSummary& unfitted,
                                     const TyreJudgement& judgement) {
   BatchSummary summary = unfitted;
-  fit_model(run, options, common, std::nullopt, summary, {}, judgement.better_fit()->circumference);
+  fit_model(run, options, common, std::nullopt, summary,
+            {.rival_circumference = judgement.better_fit()->circumference});
   say_a_tyre_model_fits_better(summary.model_adequacy, judgement, summary.model_spread_m,
                                "the plain ones");
   return summary;
@@ -140,10 +143,10 @@ void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, BatchSummary& summary) {
   const BatchSummary unfitted = summary;
   FitFacts plain;
-  fit_model(run, options, common, std::nullopt, summary, [&](const FitFacts& facts) {
-    plain = facts;
-    return true;
-  });
+  fit_model(run, options, common, std::nullopt, summary, {.finish = [&](const FitFacts& facts) {
+              plain = facts;
+              return true;
+            }});
   if (!plain.usable) return;
   const TyreJudgement judgement =
       judge_against_tyre_models(run, options, common, unfitted, summary.gnss_noise, plain.bic);

@@ -75,13 +75,13 @@ double criterion_under(const CalibrationRun& run, const BatchOptions& options,
                        int& solves) {
   double bic = std::numeric_limits<double>::infinity();
   BatchSummary scratch = unfitted;
-  fit_model(
-      run, options, common, terms, scratch,
-      [&](const FitFacts& facts) {
-        bic = facts.bic;
-        return false;
-      },
-      std::nullopt, noise);
+  fit_model(run, options, common, terms, scratch,
+            {.finish =
+                 [&](const FitFacts& facts) {
+                   bic = facts.bic;
+                   return false;
+                 },
+             .noise = noise});
   solves += scratch.solves;
   return bic;
 }
@@ -106,10 +106,10 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
               BatchSummary& summary) {
   const BatchSummary unfitted = summary;
   FitFacts plain;
-  fit_model(run, options, common, std::nullopt, summary, [&](const FitFacts& facts) {
-    plain = facts;
-    return true;
-  });
+  fit_model(run, options, common, std::nullopt, summary, {.finish = [&](const FitFacts& facts) {
+              plain = facts;
+              return true;
+            }});
   if (!plain.usable) return false;
   int all_solves = summary.solves;
   // The criteria are compared under one GNSS noise model. Where the plain fit's residuals showed
@@ -239,8 +239,11 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
         return better && candidate.needed;
       };
       fitted = unfitted;
-      accepted = fit_model(run, *fitting, common, terms, fitted, choose,
-                           terms == TyreTerms::kRegression ? physical_circumference : std::nullopt);
+      accepted =
+          fit_model(run, *fitting, common, terms, fitted,
+                    {.finish = choose,
+                     .rival_circumference =
+                         terms == TyreTerms::kRegression ? physical_circumference : std::nullopt});
       candidate.solves = fitted.solves + comparison_solves;
       all_solves += candidate.solves;
       // The plain fit's residuals need not show a wrong track: where its GNSS noise adaptation

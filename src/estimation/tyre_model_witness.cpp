@@ -31,12 +31,13 @@ bool witness_physical_fit(const CalibrationRun& run, const BatchOptions& fitting
     }
     return false;
   };
-  const bool tyre = fit_model(
-      run, fitting, common, TyreTerms::kRegression, witness,
-      [&](const FitFacts& facts) {
-        return facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
-      },
-      std::nullopt, std::nullopt, could_fire);
+  const bool tyre = fit_model(run, fitting, common, TyreTerms::kRegression, witness,
+                              {.finish =
+                                   [&](const FitFacts& facts) {
+                                     return facts.usable && is_tyre(facts, unfitted.nominal,
+                                                                    common.max_relative_change);
+                                   },
+                               .go_on = could_fire});
   solves += witness.solves;
   // A witness that is no tyre, or whose circumferences the log leaves open, says nothing.
   if (!tyre || witness.parameters.size() < 2 || summary.parameters.size() < 2) return false;
@@ -57,7 +58,7 @@ bool witness_physical_fit(const CalibrationRun& run, const BatchOptions& fitting
   judged.tyre_selection = summary.tyre_selection;
   judged.tyre_selection.chosen_gap_to = tyre_model_option(TyreTerms::kRegression);
   judged.tyre_selection.chosen_gap_sigmas = sigmas;
-  fit_model(run, fitting, common, TyreTerms::kPhysical, judged, {}, at_rest);
+  fit_model(run, fitting, common, TyreTerms::kPhysical, judged, {.rival_circumference = at_rest});
   solves += judged.solves;
   std::string& verdict = judged.model_adequacy.verdict;
   verdict += fmt::format(

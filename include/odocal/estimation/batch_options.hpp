@@ -109,8 +109,9 @@ struct BatchOptions {
   // solution moves them by more than this fraction, it is integrated again and re-solved.
   double relinearise_relative_change = 1e-4;
   int max_relinearisations = 3;
-  // Threads the batch pre-integrates the wheels and folds the fixes on (0: one per core). The
-  // result is the same on any number.
+  // Threads the batch's passes over the wheel samples and fixes run on: pre-integrating, folding,
+  // measuring the driving states again, whitening the residuals (0: one per core). The result is
+  // the same on any number.
   int threads = 0;
   // Observability: a parameter whose 1-sigma exceeds its threshold counts as not identified.
   double max_sigma_circumference_m = 1e-3;
