@@ -147,10 +147,8 @@ BatchSummary calibrate_as_configured(const Log& log, const BatchOptions& options
                                                            : std::nullopt;
     const BatchSummary unfitted = summary;
     batch::fit_model(run, options, common, terms, summary);
-    // Chosen by hand, the physical terms are witnessed as under auto.
-    const bool stands = summary.termination == Termination::kConverged ||
-                        summary.termination == Termination::kNotIdentifiable;
-    if (terms == TyreTerms::kPhysical && common.judge_model_adequacy && stands) {
+    // Chosen by hand, the physical terms are witnessed as under auto (where their answer stands).
+    if (terms == TyreTerms::kPhysical && common.judge_model_adequacy) {
       int witness_solves = 0;
       batch::witness_physical_fit(run, options, common, unfitted, summary, witness_solves);
       summary.tyre_selection.other_solves += witness_solves;

@@ -140,7 +140,9 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
 // solved again with its gap to the regression terms' in its sigma, and the verdict says so.
 // Not 2: on right bodies the two disagree by up to 2.3 combined sigma (the fleet's drives of
 // tests/python/test_fleet_health.py). `fitting`: the options the physical fit stood with.
-// Returns whether it replaced the fit (the caller scores it: run.finish); adds its solves.
+// Only where the physical fit's answer stands (Termination::kConverged): a refused one is no
+// confident answer to guard. Returns whether it replaced the fit (the caller scores it:
+// run.finish); adds its solves.
 inline constexpr double kWitnessSigmas = 3.0;
 bool witness_physical_fit(const CalibrationRun& run, const BatchOptions& fitting,
                           const CalibrationOptions& common, const BatchSummary& unfitted,

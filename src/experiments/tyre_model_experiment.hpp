@@ -29,8 +29,9 @@ namespace odocal::experiments {
 // itself (at most 0.1), not by its effect at the log's RMS state; 24: a plain fit that a model
 // which is no tyre explains decisively better carries its gap to it; 25: the physical terms
 // witnessed by the regression terms; 26: and to a tyre fit that holds every coefficient; 27: a
-// latency that a tyre fit's residuals show, estimated.
-inline constexpr int kTyreModelExperimentVersion = 27;
+// latency that a tyre fit's residuals show, estimated; 28: the witness only where the physical
+// fit's answer stands.
+inline constexpr int kTyreModelExperimentVersion = 28;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_quiet_accelerometer: {rear: {auto},

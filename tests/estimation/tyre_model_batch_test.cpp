@@ -311,6 +311,19 @@ TEST(TyreModelBatch, AutoCarriesTheRegressionTermsGapWhereVehicleYamlsBodyMovesT
   EXPECT_EQ(by_hand.estimate.circumference_rl_m, wrong.estimate.circumference_rl_m);
   EXPECT_EQ(by_hand.sigma_rl_m(), wrong.sigma_rl_m());
   EXPECT_EQ(by_hand.termination, Termination::kNotIdentifiable);
+
+  // Where the physical fit is refused on its own sigma (the default 1 mm), there is no answer to
+  // guard: the witness is not fitted, and nothing is carried.
+  options.tyre_model = TyreModelChoice::kAuto;
+  options.max_sigma_circumference_m = BatchOptions{}.max_sigma_circumference_m;
+  const BatchSummary refused = calibrate_batch(log, options);
+  EXPECT_EQ(refused.tyre_selection.chosen, "physical") << refused.full_report();
+  EXPECT_EQ(refused.termination, Termination::kNotIdentifiable) << refused.full_report();
+  EXPECT_EQ(refused.tyre_selection.chosen_gap_to, "") << refused.full_report();
+  EXPECT_EQ(refused.model_spread_m[0], 0.0);
+  EXPECT_EQ(refused.estimate.circumference_rl_m, wrong.estimate.circumference_rl_m);
+  EXPECT_LT(refused.solves + refused.tyre_selection.other_solves,
+            wrong.solves + wrong.tyre_selection.other_solves);
 }
 
 TEST(TyreModelBatch, APlainFitThatANoTyreModelExplainsDecisivelyBetterCarriesItsGap) {
