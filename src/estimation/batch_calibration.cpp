@@ -27,12 +27,8 @@ using batch::BatchProblem;
 bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, std::optional<TyreTerms> terms,
                       BatchSummary& summary, const FitControls& controls) {
-  const FitDecision& finish = controls.finish;
-  const std::optional<std::array<double, 2>>& rival_circumference = controls.rival_circumference;
-  const std::optional<GnssNoiseModel>& noise = controls.noise;
-  const AdaptedDecision& go_on = controls.go_on;
   BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
-  if (noise) {
+  if (const std::optional<GnssNoiseModel>& noise = controls.noise) {
     batch.set_gnss_noise(noise->white_scale, noise->gauss_markov_sigma_m,
                          noise->gauss_markov_tau_s);
   }
@@ -41,14 +37,13 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
                                            : solve_relinearised(batch, options, summary);
   const auto spread = [&] {
     std::array<double, 2> gap{};
-    if (rival_circumference) {
-      for (std::size_t w = 0; w < 2; ++w)
-        gap[w] = std::abs(batch.params()[w] - (*rival_circumference)[w]);
+    if (const auto& rival = controls.rival_circumference) {
+      for (std::size_t w = 0; w < 2; ++w) gap[w] = std::abs(batch.params()[w] - (*rival)[w]);
     }
     return gap;
   };
   batch.set_model_spread(spread());
-  if (finish) {
+  if (controls.finish) {
     batch::FitFacts facts;
     if (solver.IsSolutionUsable()) {
       facts.usable = true;
@@ -63,11 +58,11 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
                                           u->params(1, 1) + gap[1] * gap[1]};
       }
     }
-    if (!finish(facts)) return false;
+    if (!controls.finish(facts)) return false;
   }
   adapt_doppler_noise(batch, options, summary, solver);
   adapt_gnss_noise(batch, options, common, summary, solver);
-  if (go_on) {
+  if (controls.go_on) {
     AdaptedFacts adapted{{batch.params()[0], batch.params()[1]}, std::nullopt};
     const double scale = summary.gnss_noise.covariance_scale;
     constexpr double kInfinite = std::numeric_limits<double>::infinity();
@@ -76,7 +71,7 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
     } else if (const auto u = batch.uncertainty()) {
       adapted.min_variance = {scale * u->params(0, 0), scale * u->params(1, 1)};
     }
-    if (!go_on(adapted)) return false;
+    if (!controls.go_on(adapted)) return false;
   }
   batch.set_model_spread(spread());  // at the solution reported
   batch.add_considered_uncertainty();
@@ -127,10 +122,12 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
 
 namespace {
 
-BatchSummary calibrate_as_configured(const Log& log, const BatchOptions& options,
-                                     const CalibrationOptions& common) {
-  BatchSummary summary;
-  CalibrationRun run(log, common, CalibrationMethod::kBatch, summary);
+// `run` prepared `log` once for both of calibrate_batch's passes; `unfitted` is the summary as it
+// filled it.
+BatchSummary calibrate_as_configured(const Log& log, CalibrationRun& run,
+                                     const BatchOptions& options, const CalibrationOptions& common,
+                                     const BatchSummary& unfitted) {
+  BatchSummary summary = unfitted;
   // The Doppler fit reads the column (the reference has judged it already where it reads it too).
   if (options.doppler_sigma_mps(!run.log().gnss.speed_mps.empty()) > 0.0 &&
       !common.reference.use_gnss_speed)
@@ -145,7 +142,6 @@ BatchSummary calibrate_as_configured(const Log& log, const BatchOptions& options
         options.tyre_model == TyreModelChoice::kExtended   ? std::optional(TyreTerms::kRegression)
         : options.tyre_model == TyreModelChoice::kPhysical ? std::optional(TyreTerms::kPhysical)
                                                            : std::nullopt;
-    const BatchSummary unfitted = summary;
     batch::fit_model(run, options, common, terms, summary);
     // Chosen by hand, the physical terms are witnessed as under auto (where their answer stands).
     if (terms == TyreTerms::kPhysical && common.judge_model_adequacy) {
@@ -164,7 +160,9 @@ BatchSummary calibrate_as_configured(const Log& log, const BatchOptions& options
 BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
                              const CalibrationOptions& common) {
   require_valid("batch", options.validate());
-  BatchSummary summary = calibrate_as_configured(log, options, common);
+  BatchSummary unfitted;
+  CalibrationRun run(log, common, CalibrationMethod::kBatch, unfitted);
+  BatchSummary summary = calibrate_as_configured(log, run, options, common, unfitted);
   // The plain model's residuals follow a_x where the wheels slip, the lag's signature too: only a
   // fit whose tyre terms take the slip tells the two apart (the realistic urban drive, rear-driven,
   // the plain model: the latency took the slip).
@@ -176,7 +174,7 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   BatchOptions lagged = options;
   lagged.estimate_latency = true;
   return batch::take_latency_where_significant(
-      std::move(summary), calibrate_as_configured(log, lagged, common), *signature);
+      std::move(summary), calibrate_as_configured(log, run, lagged, common, unfitted), *signature);
 }
 
 }  // namespace odocal
