@@ -142,7 +142,14 @@ BatchSummary calibrate_as_configured(const Log& log, CalibrationRun& run,
         options.tyre_model == TyreModelChoice::kExtended   ? std::optional(TyreTerms::kRegression)
         : options.tyre_model == TyreModelChoice::kPhysical ? std::optional(TyreTerms::kPhysical)
                                                            : std::nullopt;
-    batch::fit_model(run, options, common, terms, summary);
+    // Chosen by hand, the regression terms carry their gap to the physical ones as under auto.
+    std::optional<std::array<double, 2>> rival;
+    if (terms == TyreTerms::kRegression && common.judge_model_adequacy) {
+      rival = batch::physical_rival(run, options, common, unfitted,
+                                    summary.tyre_selection.other_solves);
+      if (rival) summary.tyre_selection.chosen_gap_to = tyre_model_option(TyreTerms::kPhysical);
+    }
+    batch::fit_model(run, options, common, terms, summary, {.rival_circumference = rival});
     // Chosen by hand, the physical terms are witnessed as under auto (where their answer stands).
     if (terms == TyreTerms::kPhysical && common.judge_model_adequacy) {
       int witness_solves = 0;

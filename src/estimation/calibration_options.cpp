@@ -86,8 +86,9 @@ OptionTable<CalibrationOptions> CalibrationOptions::fields() {
       {"judge_model_adequacy", "", 0, 0,
        "judge the two-wheel model: iterative, fixed-p, augmented on a plain batch fit, each and "
        "the batch under tyre_model none against the tyre models' fits, whose gap to the "
-       "estimate enters its sigma where one fits the log better, and the batch's physical "
-       "terms against the regression terms, where they disagree (a few solves more)",
+       "estimate enters its sigma where one fits the log better, the batch's physical "
+       "terms against the regression terms, where they disagree, and its regression terms "
+       "chosen by hand against the physical terms (a few solves more)",
        &O::judge_model_adequacy},
       {"min_distance_m", "m", 0.0, 1e9, "refuse logs with less wheel odometry than this",
        &O::min_distance_m},

@@ -21,7 +21,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "batch_fit.hpp"
 
@@ -69,21 +68,21 @@ std::optional<double> stated_track_score(CalibrationRun& run, const BatchSummary
 
 }  // namespace
 
-double criterion_under(const CalibrationRun& run, const BatchOptions& options,
-                       const CalibrationOptions& common, const BatchSummary& unfitted,
-                       std::optional<TyreTerms> terms, const std::optional<GnssNoiseModel>& noise,
-                       int& solves) {
-  double bic = std::numeric_limits<double>::infinity();
+FitFacts solved_facts(const CalibrationRun& run, const BatchOptions& options,
+                      const CalibrationOptions& common, const BatchSummary& unfitted,
+                      std::optional<TyreTerms> terms, const std::optional<GnssNoiseModel>& noise,
+                      int& solves) {
+  FitFacts solved;
   BatchSummary scratch = unfitted;
   fit_model(run, options, common, terms, scratch,
             {.finish =
                  [&](const FitFacts& facts) {
-                   bic = facts.bic;
+                   solved = facts;
                    return false;
                  },
              .noise = noise});
   solves += scratch.solves;
-  return bic;
+  return solved;
 }
 
 bool is_tyre(const FitFacts& facts, const OdometryParams& nominal, double max_change) {

@@ -1,6 +1,6 @@
 // The physical terms' circumferences at rest witnessed by the regression terms, which need no
 // body (batch_fit.hpp, witness_physical_fit; docs/tyre-model.md, "A body that vehicle.yaml gets
-// wrong").
+// wrong"), and the regression terms chosen by hand judged by the physical ones (physical_rival).
 
 #include <fmt/format.h>
 
@@ -76,6 +76,18 @@ bool witness_physical_fit(const CalibrationRun& run, const BatchOptions& fitting
       1e3 * std::abs(gap_m[0]), 1e3 * std::abs(gap_m[1]), sigmas);
   summary = std::move(judged);
   return true;
+}
+
+std::optional<std::array<double, 2>> physical_rival(const CalibrationRun& run,
+                                                    const BatchOptions& options,
+                                                    const CalibrationOptions& common,
+                                                    const BatchSummary& unfitted, int& solves) {
+  BatchOptions physical = options;
+  physical.tyre_model = TyreModelChoice::kPhysical;  // with the Doppler speed it fits by default
+  const FitFacts facts =
+      solved_facts(run, physical, common, unfitted, TyreTerms::kPhysical, std::nullopt, solves);
+  if (!facts.usable) return std::nullopt;
+  return facts.circumference;
 }
 
 }  // namespace odocal::batch

@@ -31,7 +31,7 @@ namespace odocal::experiments {
 // witnessed by the regression terms; 26: and to a tyre fit that holds every coefficient; 27: a
 // latency that a tyre fit's residuals show, estimated; 28: the witness only where the physical
 // fit's answer stands.
-inline constexpr int kTyreModelExperimentVersion = 28;
+inline constexpr int kTyreModelExperimentVersion = 29;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_quiet_accelerometer: {rear: {auto},

@@ -155,12 +155,15 @@ TEST(BatchCalibrationNoise, AWronglyConfiguredGnssNoiseIsEstimatedAndTheSigmaCov
   const BatchSummary adapted = calibrate_batch(log, {}, claimed);
   BatchOptions fixed;
   fixed.adapt_gnss_noise = false;
-  // The regression terms, which auto chooses here: they take up some of the drift. (Under auto
-  // their sigma also carries their gap to the physical terms' fit, 3.7 mm since the physical
-  // slip divides the circumference, 2026-11-30, which covers this error for a reason that is not
-  // the noise; the plain model's misfit widens its sigma past it as well.)
+  // The regression terms, which auto chooses here: they take up some of the drift. Unjudged:
+  // judged (and under auto) their sigma also carries their gap to the physical terms' fit,
+  // 3.7 mm since the physical slip divides the circumference (2026-11-30), which covers this
+  // error for a reason that is not the noise; the plain model's misfit widens its sigma past it
+  // as well.
   fixed.tyre_model = TyreModelChoice::kExtended;
-  const BatchSummary configured = calibrate_batch(log, fixed, claimed);
+  CalibrationOptions claimed_unjudged = claimed;
+  claimed_unjudged.judge_model_adequacy = false;
+  const BatchSummary configured = calibrate_batch(log, fixed, claimed_unjudged);
   SCOPED_TRACE(adapted.full_report());
   ASSERT_TRUE(adapted.gnss_noise.adapted);
   // The residuals show part of the drift; the model keeps their random-walk intensity over at

@@ -64,7 +64,7 @@ struct CalibrationOptions {
   double prepare_block_s = 600.0;
   // After an iterative, fixed-P or augmented calibration: whether the two-wheel model explains
   // the log, judged on a plain batch fit (one batch solve more; the batch method always judges
-  // its own fit).
+  // its own fit). The batch's tyre models chosen by hand are judged by the other family.
   bool judge_model_adequacy = true;
 
   static OptionTable<CalibrationOptions> fields();  // without `reference` (its own table)
