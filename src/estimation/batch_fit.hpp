@@ -161,7 +161,7 @@ bool witness_physical_fit(const CalibrationRun& run, const BatchOptions& fitting
 // in their sigma as under auto (tyre_model_witness.cpp). Both extrapolate to rest from the same
 // drive, and the regression terms' extrapolation can fail where their sigma does not show it: a
 // drive at one speed lets their speed term take the circumference's place (the 2-hour urban drive
-// without a Doppler column: -18.7 mm at a sigma of 3.0 mm, the physical terms -0.1 mm). None
+// without a Doppler column: -18.7 mm at a sigma of 3.0 mm, the physical terms -0.3 mm). None
 // where the physical fit is not usable; its solves are added to `solves`.
 std::optional<std::array<double, 2>> physical_rival(const CalibrationRun& run,
                                                     const BatchOptions& options,

@@ -30,7 +30,8 @@ namespace odocal::experiments {
 // which is no tyre explains decisively better carries its gap to it; 25: the physical terms
 // witnessed by the regression terms; 26: and to a tyre fit that holds every coefficient; 27: a
 // latency that a tyre fit's residuals show, estimated; 28: the witness only where the physical
-// fit's answer stands.
+// fit's answer stands; 29: the regression terms chosen by hand judged by the physical ones (the
+// experiment's fits are unjudged: nothing moved).
 inline constexpr int kTyreModelExperimentVersion = 29;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
