@@ -117,12 +117,16 @@ class FactGathering {
     if (own.empty()) return;
     facts_.standing = true;
     if (log.imu) {
+      const auto add_window = [&](const std::vector<double>& values, WindowSum& total,
+                                  const Standstill& still) {
+        const WindowSum window = window_sum(log.imu->t_s, values, still.start_s, still.end_s);
+        total.sum += window.sum;
+        total.sum_squares += window.sum_squares;
+        total.count += window.count;
+      };
       for (const Standstill& still : own) {
-        const WindowSum window =
-            window_sum(log.imu->t_s, log.imu->wz_radps, still.start_s, still.end_s);
-        facts_.gyro_standing_sum += window.sum;
-        facts_.gyro_standing_sum_squares += window.sum_squares;
-        facts_.gyro_standing_samples += window.count;
+        add_window(log.imu->wz_radps, facts_.gyro_standing, still);
+        add_window(log.imu->ax_mps2, facts_.ax_standing, still);
       }
     }
     if (rate_sensor(log.wheels.unit_rear)) {

@@ -10,6 +10,7 @@
 
 #include "diagnosis_signals.hpp"
 #include "odocal/data/log_source.hpp"
+#include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
 
@@ -33,8 +34,8 @@ struct DiagnosisFacts {
   // The longest GNSS interval beyond max(2 s, 10 of its block's median), and that median.
   std::optional<std::pair<double, double>> gnss_gap;
   bool standing{};  // the wheels, GNSS and gyro agree on a standstill somewhere
-  double gyro_standing_sum{}, gyro_standing_sum_squares{};
-  std::size_t gyro_standing_samples{};
+  // The gyro's and the accelerometer's forward readings over the standstills.
+  WindowSum gyro_standing, ax_standing;
   // Angular-rate wheel sensors: the median rate over each block's standstills, averaged over the
   // blocks by their standing time.
   std::optional<WheelRateBias> wheel_rate_bias;
