@@ -74,6 +74,7 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
     if (!controls.go_on(adapted)) return false;
   }
   batch.set_model_spread(spread());  // at the solution reported
+  batch.set_forward_offset_sigma(run.forward_offset_sigma_mps2());
   batch.add_considered_uncertainty();
   summarise(run.log(), options, batch, solver, summary);
   return true;

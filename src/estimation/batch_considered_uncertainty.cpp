@@ -1,5 +1,6 @@
-// The circumferences' sigma from what the batch takes as known: the body's numbers and the held
-// tyre coefficients, each moved by a step of its uncertainty (docs/tyre-model.md).
+// The circumferences' sigma from what the batch takes as known: the body's numbers, the held
+// tyre coefficients and the accelerometer's forward offset, each moved by a step of its
+// uncertainty (docs/tyre-model.md).
 #include "batch_body_uncertainty.hpp"
 #include "batch_problem.hpp"
 
@@ -10,6 +11,8 @@ void BatchProblem::add_considered_uncertainty() {
   held_covariance_.setZero();
   body_responses_.clear();
   held_responses_.clear();
+  forward_offset_covariance_.setZero();
+  forward_offset_response_.reset();
   if (!tyre_terms_) return;
   preintegrate_all(0.0, false);
   const Unknowns solution = unknowns(Folds::kKeep);
@@ -51,6 +54,18 @@ void BatchProblem::add_considered_uncertainty() {
       body_responses_.push_back({body_, kStep * moved, kStep});
     }
     body_ = stated;
+    if (forward_offset_sigma_mps2_ > 0.0) {
+      const auto shift = [&](double by) {
+        for (DrivingState& state : states_)
+          state.specific_force_x_mps2 = static_cast<float>(state.specific_force_x_mps2 + by);
+      };
+      shift(kStep * forward_offset_sigma_mps2_);
+      preintegrate_all(0.0, false, Folds::kKeep);
+      const batch::ParamsVector moved = respond();
+      forward_offset_covariance_ = moved * moved.transpose();
+      forward_offset_response_ = Response{stated, kStep * moved, kStep};
+      shift(-kStep * forward_offset_sigma_mps2_);
+    }
     preintegrate_all(0.0, false, Folds::kKeep);
   }
   solve();  // the solution's own problem again, for the summary (it starts converged)

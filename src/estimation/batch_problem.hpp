@@ -245,6 +245,18 @@ class BatchProblem {
   const Eigen::Matrix<double, batch::kParams, batch::kParams>& held_covariance() const {
     return held_covariance_;
   }
+  // What the accelerometer's forward offset left in imu.csv's ax is uncertain by, m/s^2
+  // (accelerometer_offset.hpp; 0: the log has no accelerometer). The physical terms take ax for
+  // the drive force, so add_considered_uncertainty moves it by a step of this too.
+  void set_forward_offset_sigma(double sigma_mps2) { forward_offset_sigma_mps2_ = sigma_mps2; }
+  double forward_offset_sigma() const { return forward_offset_sigma_mps2_; }
+  // Of the parameters, from that offset; and what its step moved them by (none where nothing).
+  const Eigen::Matrix<double, batch::kParams, batch::kParams>& forward_offset_covariance() const {
+    return forward_offset_covariance_;
+  }
+  const std::optional<Response>& forward_offset_response() const {
+    return forward_offset_response_;
+  }
   const VehicleBody& body() const { return body_; }
   const Block2& lever() const { return lever_; }
   double gyro_bias() const { return gyro_bias_; }
@@ -504,6 +516,10 @@ class BatchProblem {
       Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
   std::vector<Response> body_responses_;
   std::vector<HeldResponse> held_responses_;
+  double forward_offset_sigma_mps2_{};
+  Eigen::Matrix<double, batch::kParams, batch::kParams> forward_offset_covariance_ =
+      Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
+  std::optional<Response> forward_offset_response_;
   std::array<double, 2> model_spread_m_{};
   std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};     // > 0: held
   std::array<double, TyreModel::kCoefficients> tyre_held_estimate_{};  // its value while free

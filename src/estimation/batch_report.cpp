@@ -89,6 +89,13 @@ std::string BatchSummary::full_report() const {
         "(vehicle.yaml body: {}{})\n",
         "body", 1e3 * body_sigma_m[0], 1e3 * body_sigma_m[1], fmt::join(assumed, ", "), most);
   }
+  if (forward_offset_sigma_m[0] > 0.0 || forward_offset_sigma_m[1] > 0.0) {
+    text += fmt::format(
+        "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the accelerometer's "
+        "forward offset, known to +-{:.3g} m/s^2 (the tyre model takes ax for drive force)\n",
+        "imu ax", 1e3 * forward_offset_sigma_m[0], 1e3 * forward_offset_sigma_m[1],
+        forward_offset_sigma_mps2);
+  }
   if (held_sigma_m[0] > 0.0 || held_sigma_m[1] > 0.0) {
     std::vector<std::string> parts;
     for (const HeldSigmaPart& part : held_sigma_parts) {

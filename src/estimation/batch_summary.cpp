@@ -63,6 +63,7 @@ ReferenceCircumference reference_circumference(
     for (const BatchProblem::Response& response : batch.body_responses()) add_response(response);
     for (const BatchProblem::HeldResponse& held : batch.held_responses())
       add_response(held.response);
+    if (const auto& offset = batch.forward_offset_response()) add_response(*offset);
     const double sigma = std::sqrt(std::max(variance, 0.0));
     (wheel == 0 ? r.circumference_rl_m : r.circumference_rr_m) = value;
     (wheel == 0 ? r.sigma_rl_m : r.sigma_rr_m) = sigma;
@@ -99,6 +100,13 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
   add_parts(summary.held_sigma_m[wheel], summary.held_sigma_parts,
             "from the tyre coefficients held",
             [](const std::string& key) { return "drive more of what shows " + key; });
+  if (const double offset_m = summary.forward_offset_sigma_m[wheel]; offset_m > 0.0) {
+    shares.push_back(
+        {offset_m,
+         fmt::format("{:.2g} mm from the accelerometer's forward offset (+-{:.2g} m/s^2)",
+                     1e3 * offset_m, summary.forward_offset_sigma_mps2),
+         "level the IMU and stop the car a few times in the log, so that its offset is measured"});
+  }
   if (spread_m > 0.0) {
     // The physical terms carry their gap to the regression terms only where a body number is
     // likely wrong (witness_physical_fit).
@@ -189,7 +197,7 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   // at a reference speed adds the body's share per body number itself, and makes no
   // extrapolation to rest.
   const Eigen::Matrix<double, batch::kParams, batch::kParams> data_covariance = u.params;
-  u.params += batch.body_covariance() + batch.held_covariance();
+  u.params += batch.body_covariance() + batch.held_covariance() + batch.forward_offset_covariance();
   const std::array<double, 2>& spread = batch.model_spread_m();
   for (int w = 0; w < 2; ++w)
     u.params(w, w) += spread[static_cast<std::size_t>(w)] * spread[static_cast<std::size_t>(w)];
@@ -207,6 +215,10 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   }
   summary.held_sigma_m = {std::sqrt(batch.held_covariance()(0, 0)),
                           std::sqrt(batch.held_covariance()(1, 1))};
+  summary.forward_offset_sigma_m = {std::sqrt(batch.forward_offset_covariance()(0, 0)),
+                                    std::sqrt(batch.forward_offset_covariance()(1, 1))};
+  summary.forward_offset_sigma_mps2 =
+      batch.forward_offset_response() ? batch.forward_offset_sigma() : 0.0;
   summary.held_sigma_parts.clear();
   for (const BatchProblem::HeldResponse& held : batch.held_responses()) {
     const auto j = static_cast<std::size_t>(held.coefficient);
@@ -264,7 +276,8 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
     if (!parameter.identified) {
       parameter.verdict = unidentified_reason(parameter.name, coverage, block_used[i]);
       const bool considered =
-          i < 2 && (summary.body_sigma_m[i] > 0.0 || summary.held_sigma_m[i] > 0.0);
+          i < 2 && (summary.body_sigma_m[i] > 0.0 || summary.held_sigma_m[i] > 0.0 ||
+                    summary.forward_offset_sigma_m[i] > 0.0);
       const bool extrapolated =
           i < 2 && batch.tyre_fitted() && (!batch.tyre_model().plain() || considered);
       if (extrapolated) {

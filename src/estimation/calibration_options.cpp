@@ -53,7 +53,7 @@ std::string ReferenceOptions::validate() const { return check_option_ranges(fiel
 
 OptionTable<CalibrationOptions> CalibrationOptions::fields() {
   using O = CalibrationOptions;
-  static const std::array<OptionField<O>, 15> kFields{{
+  static const std::array<OptionField<O>, 16> kFields{{
       {"measurement_diagonal", "[m^2, m^2, rad^2]", 1e-12, 1e12,
        "M (eq. 13a): covariance of the reference pose in the odometry filters",
        &O::measurement_diagonal},
@@ -73,6 +73,9 @@ OptionTable<CalibrationOptions> CalibrationOptions::fields() {
       {"remove_wheel_rate_bias", "", 0, 0,
        "estimate the zero-rate bias of angular-rate wheel sensors at standstill and remove it",
        &O::remove_wheel_rate_bias},
+      {"remove_accelerometer_offset", "", 0, 0,
+       "measure imu.csv's forward reading at standstill (a mount's pitch) and remove it from ax",
+       &O::remove_accelerometer_offset},
       {"start_at_first_motion", "", 0, 0, "use the log from its first motion on",
        &O::start_at_first_motion},
       {"use_gnss_altitude", "", 0, 0,

@@ -10,6 +10,7 @@
 #include "batch_fit.hpp"
 #include "input_mistake_hint.hpp"
 #include "odocal/error.hpp"
+#include "odocal/estimation/accelerometer_offset.hpp"
 #include "odocal/estimation/driving_state.hpp"
 #include "odocal/model/angle.hpp"
 
@@ -172,6 +173,20 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
       reference_(checked_reference(this->log(), options)),
       evaluator_(this->log().wheels, reference_, options) {
   summary.method = method;
+  if (this->log().imu) {
+    // Measured at 3 stops or more; otherwise the unmeasured sigma, no narrower than what the
+    // accelerometer reads beyond the wheels while driving (a phone pitched by 4 deg: comma2k19).
+    const auto& offset = summary.preparation.accelerometer_offset;
+    if (offset && offset->stops >= kMinStopsForOffset) {
+      forward_offset_sigma_mps2_ = offset->sigma_mps2;
+    } else {
+      forward_offset_sigma_mps2_ = kUnmeasuredForwardOffsetSigmaMps2;
+      const auto driving = driving_forward_offset(this->log(), log.vehicle.nominal_params());
+      summary.preparation.driving_forward_offset_mps2 = driving;
+      if (driving)
+        forward_offset_sigma_mps2_ = std::max(forward_offset_sigma_mps2_, std::abs(*driving));
+    }
+  }
   summary.nominal = log.vehicle.nominal_params();
   summary.estimate = summary.nominal;
   summary.reference_samples = reference_.poses.size();

@@ -28,6 +28,9 @@ class CalibrationRun {
   const Log& log() const { return prepared_ ? *prepared_ : log_; }
   const ReferenceTrajectory& reference() const { return reference_; }
   WholeLogEvaluator& evaluator() { return evaluator_; }
+  // What is left of imu.csv's forward offset after preparing, 1 sigma, m/s^2 (0 without imu.csv):
+  // the physical tyre terms take the forward reading for drive force.
+  double forward_offset_sigma_mps2() const { return forward_offset_sigma_mps2_; }
 
   // Scores the estimate (`after`; with a non-finite estimate `after` stays `before`) and turns
   // a converged result that makes no physical sense into Termination::kImplausible: not finite,
@@ -48,6 +51,7 @@ class CalibrationRun {
   std::optional<Log> prepared_;  // only when preparing changed something
   ReferenceTrajectory reference_;
   WholeLogEvaluator evaluator_;
+  double forward_offset_sigma_mps2_{};
 };
 
 // Mean position error plus the paper's 10 m/rad of mean heading error: lower dead-reckons better.

@@ -97,19 +97,20 @@ void Doctor::check_standstill_biases() {
     }
     // The physical tyre terms take the forward reading for the force the tyres push with: an
     // offset of 0.3 m/s^2 (a mount pitched by 1.75 deg) put the urban drive's circumferences
-    // 4.5 mm off at a sigma of 0.62 mm (docs/tyre-model.md, "Not yet"). Standing, the reading
-    // is the offset and the slope where the car stood.
+    // 4.5 mm off at a sigma of 0.62 mm until the preparation took it out at the stops
+    // (accelerometer_offset.hpp). Standing, the reading is the offset and the slope where the
+    // car stood: a note, for whoever uses the log's ax elsewhere.
     constexpr double kMinAxOffsetMps2 = 0.1;
     if (const StandingMean ax = standing_mean(facts_.ax_standing); ax.beyond(kMinAxOffsetMps2)) {
-      add("imu.ax_offset", FindingSeverity::kWarning,
+      add("imu.ax_offset", FindingSeverity::kNote,
           fmt::format("the accelerometer reads {:+.2f} m/s^2 forward at standstill", ax.mean),
           fmt::format("{:+.3f} m/s^2 over {} samples (standard error {:.3f}), as a mount pitched "
                       "by {:+.1f} deg reads",
                       ax.mean, ax.samples, ax.standard_error,
                       deg_from_rad(std::asin(std::clamp(ax.mean / kGravityMps2, -1.0, 1.0)))),
           "an IMU mounted pitched, an accelerometer bias, or the slope where the car stood",
-          "level the IMU or take the offset out of ax; the tyre model takes the forward reading "
-          "for drive force (0.1 m/s^2 moves a rear-driven car's circumferences by 1 to 2 mm)");
+          "none needed for odocal, which measures it at the stops and takes it out of ax "
+          "(remove_accelerometer_offset); level the IMU for other uses of its forward reading");
     }
   }
   if (const auto& bias = facts_.wheel_rate_bias) {

@@ -49,6 +49,18 @@ std::string LogPreparation::describe() const {
           wheel_rate_bias_per_block.size(), rl.first, rl.second, rr.first, rr.second);
     }
   }
+  if (accelerometer_offset) {
+    text += fmt::format(
+        "; accelerometer's forward offset removed: {:+.3f} m/s^2 (1-sigma {:.3f}) at {} stop(s)",
+        accelerometer_offset->forward_mps2, accelerometer_offset->sigma_mps2,
+        accelerometer_offset->stops);
+  }
+  if (driving_forward_offset_mps2) {
+    text += fmt::format(
+        "; the accelerometer reads {:+.3f} m/s^2 forward beyond the wheels' acceleration while "
+        "driving straight (too few stops to measure its offset at: not removed)",
+        *driving_forward_offset_mps2);
+  }
   if (started_at_s) text += fmt::format("; used from {:.1f} s (first motion)", *started_at_s);
   if (typical_max_grade) {
     text += fmt::format(

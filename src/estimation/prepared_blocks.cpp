@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include "odocal/data/stream_columns.hpp"
+#include "odocal/estimation/accelerometer_offset.hpp"
 #include "odocal/estimation/log_window.hpp"
 #include "odocal/estimation/road_grade.hpp"
 #include "odocal/estimation/standstill.hpp"
@@ -189,6 +191,20 @@ void BlockPreparation::prepare(PreparedBlock& block) {
         done_.grade_scale_variance = profile->scale_variance();
       }
       project_to_horizontal(log, *profile);
+      changed_ = true;
+    }
+  }
+
+  // After the grade's projection: on a hill with altitude, a stop's reading is the offset alone.
+  if (options_.remove_accelerometer_offset && log.imu) {
+    std::vector<Standstill> own_stops;
+    std::copy_if(standing.begin(), standing.end(), std::back_inserter(own_stops),
+                 [&](const Standstill& still) { return own(still.start_s); });
+    const std::vector<StopReading> readings = standing_forward_readings(*log.imu, own_stops);
+    done_.forward_readings.insert(done_.forward_readings.end(), readings.begin(), readings.end());
+    done_.accelerometer_offset = accelerometer_offset(done_.forward_readings);
+    if (done_.accelerometer_offset) {
+      remove_accelerometer_offset(*log.imu, done_.accelerometer_offset->forward_mps2);
       changed_ = true;
     }
   }

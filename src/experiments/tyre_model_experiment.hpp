@@ -31,8 +31,9 @@ namespace odocal::experiments {
 // witnessed by the regression terms; 26: and to a tyre fit that holds every coefficient; 27: a
 // latency that a tyre fit's residuals show, estimated; 28: the witness only where the physical
 // fit's answer stands; 29: the regression terms chosen by hand judged by the physical ones (the
-// experiment's fits are unjudged: nothing moved).
-inline constexpr int kTyreModelExperimentVersion = 29;
+// experiment's fits are unjudged: nothing moved); 30: the accelerometer's forward offset taken
+// out at the stops, and what is left of it in the physical terms' sigma.
+inline constexpr int kTyreModelExperimentVersion = 30;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_quiet_accelerometer: {rear: {auto},

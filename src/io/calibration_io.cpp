@@ -35,6 +35,14 @@ json preparation_json(const LogPreparation& p) {
     out["wheel_rate_bias_deg_per_s"] = {{"rl", 360.0 * p.wheel_rate_bias->rl_rev_per_s},
                                         {"rr", 360.0 * p.wheel_rate_bias->rr_rev_per_s}};
   }
+  if (const auto& offset = p.accelerometer_offset) {
+    out["accelerometer_offset"] = {{"forward_mps2", offset->forward_mps2},
+                                   {"sigma_mps2", offset->sigma_mps2},
+                                   {"stops", offset->stops},
+                                   {"standing_s", offset->standing_s}};
+  }
+  if (p.driving_forward_offset_mps2)
+    out["accelerometer_driving_offset_mps2"] = *p.driving_forward_offset_mps2;
   if (p.started_at_s) out["used_from_s"] = *p.started_at_s;
   return out;
 }
@@ -196,6 +204,10 @@ void add_details(json& out, const BatchSummary& s) {
     for (const BatchSummary::BodySigmaPart& part : s.body_sigma_parts)
       parts[part.key] = {part.sigma_m[0], part.sigma_m[1]};
     out["body_sigma_parts_m"] = parts;
+  }
+  if (s.forward_offset_sigma_m[0] > 0.0 || s.forward_offset_sigma_m[1] > 0.0) {
+    out["forward_offset_sigma_m"] = {s.forward_offset_sigma_m[0], s.forward_offset_sigma_m[1]};
+    out["forward_offset_sigma_mps2"] = s.forward_offset_sigma_mps2;
   }
   if (s.held_sigma_m[0] > 0.0 || s.held_sigma_m[1] > 0.0) {
     out["held_sigma_m"] = {s.held_sigma_m[0], s.held_sigma_m[1]};

@@ -52,9 +52,11 @@ struct CalibrationOptions {
   double min_turning_for_difference_rad = 0.785;  // 45 deg
   MotionCoverageOptions coverage;
   // Standing still (standstill.hpp): the zero-rate bias of angular-rate wheel sensors (radps, mps)
-  // is estimated there and removed, and the log is used from its first motion on.
+  // is estimated there and removed, and the log is used from its first motion on. So is the
+  // accelerometer's forward offset (accelerometer_offset.hpp).
   StandstillOptions standstill;
   bool remove_wheel_rate_bias = true;
+  bool remove_accelerometer_offset = true;
   bool start_at_first_motion = true;
   // Hills (road_grade.hpp): with gnss.csv's alt column, the wheel increments are projected to
   // the horizontal with the grade fitted over grade_window_m of driving.

@@ -1,15 +1,16 @@
 #pragma once
 // What every command does to a log before the odometry is used: for a calibration, only the span
 // that both wheels and GNSS cover is used (a wheel stream hours past the last fix, from a clock
-// jump, would otherwise be odometry with no reference); the zero-rate bias of
-// angular-rate wheel sensors, estimated at standstill, is removed; the log is used from its first
-// motion on; on hills the wheels are projected to the horizontal; and the odometry chain breaks
-// at wheel gaps. The record of it goes into reports.
+// jump, would otherwise be odometry with no reference); the zero-rate bias of angular-rate wheel
+// sensors and the accelerometer's forward offset, estimated at standstill, are removed; the log
+// is used from its first motion on; on hills the wheels are projected to the horizontal; and the
+// odometry chain breaks at wheel gaps. The record of it goes into reports.
 
 #include <optional>
 #include <vector>
 
 #include "odocal/data/log.hpp"
+#include "odocal/estimation/accelerometer_offset.hpp"
 #include "odocal/estimation/calibration_options.hpp"
 #include "odocal/estimation/road_grade.hpp"
 #include "odocal/estimation/standstill.hpp"
@@ -30,6 +31,13 @@ struct LogPreparation {
     WheelRateBias bias;
   };
   std::vector<BlockBias> wheel_rate_bias_per_block;
+  // The accelerometer's forward offset (imu.csv only), from every stop's reading: each block
+  // has the offset that the stops up to its end measured removed.
+  std::vector<StopReading> forward_readings;
+  std::optional<AccelerometerOffset> accelerometer_offset;
+  // Where fewer than 3 stops measured it: the forward reading while driving straight less the
+  // wheels' acceleration (driving_forward_offset; a calibration's, not removed).
+  std::optional<double> driving_forward_offset_mps2;
   std::optional<double> started_at_s;  // used from here on (first motion)
   std::vector<WheelGap> wheel_gaps;    // where the odometry chain breaks
   // Hills: the grade 95 % of the road stays within, and how much longer the 3-D path was
@@ -45,11 +53,11 @@ struct LogPreparation {
 
 // The prepared log, or nothing when preparing changes nothing (then use `log` itself); `done`
 // records what was found and done. Uses options' standstill, remove_wheel_rate_bias,
-// start_at_first_motion, coverage.moving_speed_mps, max_wheel_gap_s, use_gnss_altitude,
-// grade_window_m and prepare_block_s (prepared_blocks.hpp: one block after another).
-// `need_gnss_span`: cut the wheels to the GNSS span (calibration and validation; dead reckoning
-// drives on where GNSS is missing). Throws InsufficientDataError when wheels and GNSS share less
-// than 2 s.
+// remove_accelerometer_offset, start_at_first_motion, coverage.moving_speed_mps, max_wheel_gap_s,
+// use_gnss_altitude, grade_window_m and prepare_block_s (prepared_blocks.hpp: one block after
+// another). `need_gnss_span`: cut the wheels to the GNSS span (calibration and validation; dead
+// reckoning drives on where GNSS is missing). Throws InsufficientDataError when wheels and GNSS
+// share less than 2 s.
 std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options,
                                LogPreparation& done, bool need_gnss_span = true);
 

@@ -1,0 +1,114 @@
+#include "odocal/estimation/accelerometer_offset.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "odocal/estimation/interpolation.hpp"
+#include "odocal/estimation/median.hpp"
+#include "odocal/model/odometry_model.hpp"
+
+namespace odocal {
+namespace {
+
+constexpr double kSettleS = 1.0;
+// Driving straight: 2 s bins above 3 m/s turning less than 3 deg/s (the turn's -w^2 x that an
+// accelerometer ahead of the rear axle reads stays below 0.004 m/s^2), the wheels' speed over 1 s
+// at either end.
+constexpr double kDrivingBinS = 2.0, kSpeedWindowS = 1.0;
+constexpr double kMinDrivingSpeedMps = 3.0, kMaxStraightTurnRadps = 0.05;
+constexpr std::size_t kMinDrivingBins = 10;
+constexpr double kFullWeightS = 10.0;
+constexpr double kCommonSlopeSigmaMps2 = 0.005;  // 0.05 % of g, 0.03 deg
+
+}  // namespace
+
+std::vector<StopReading> standing_forward_readings(const ImuStream& imu,
+                                                   const std::vector<Standstill>& standing) {
+  std::vector<StopReading> readings;
+  for (const Standstill& still : standing) {
+    const double from = still.start_s + kSettleS, to = still.end_s - kSettleS;
+    if (!(to > from)) continue;
+    if (const std::optional<double> mean = window_sum(imu.t_s, imu.ax_mps2, from, to).mean())
+      readings.push_back({*mean, to - from});
+  }
+  return readings;
+}
+
+std::optional<double> driving_forward_offset(const Log& log, const OdometryParams& nominal) {
+  const WheelStream& wheels = log.wheels;
+  if (!log.imu || wheels.size() < 3) return std::nullopt;
+  // The wheels' distance, heading and chain breaks summed from the start, for differences.
+  std::vector<double> distance(wheels.size()), heading(wheels.size()), breaks(wheels.size());
+  for (std::size_t k = 1; k < wheels.size(); ++k) {
+    const BodyIncrement step = body_increment(wheels.increment(k), nominal);
+    distance[k] = distance[k - 1] + step.distance_m;
+    heading[k] = heading[k - 1] + step.yaw_rad;
+    breaks[k] = breaks[k - 1] + (wheels.breaks_at(k) ? 1.0 : 0.0);
+  }
+  const auto at = [&](const std::vector<double>& sums, double t_s) {
+    return interpolate_linear(wheels.t_s, sums, t_s);
+  };
+  const auto speed = [&](double t_s) -> std::optional<double> {
+    const auto behind = at(distance, t_s - 0.5 * kSpeedWindowS);
+    const auto ahead = at(distance, t_s + 0.5 * kSpeedWindowS);
+    if (!behind || !ahead) return std::nullopt;
+    return (*ahead - *behind) / kSpeedWindowS;
+  };
+  std::vector<double> readings;  // one allocation, however long the log
+  readings.reserve(
+      static_cast<std::size_t>((wheels.t_s.back() - wheels.t_s.front()) / kDrivingBinS) + 1);
+  for (double from = wheels.t_s.front() + kSpeedWindowS;
+       from + kDrivingBinS + kSpeedWindowS <= wheels.t_s.back(); from += kDrivingBinS) {
+    const double to = from + kDrivingBinS;
+    const auto v0 = speed(from), v1 = speed(to);
+    const auto turned0 = at(heading, from), turned1 = at(heading, to);
+    const auto broken0 = at(breaks, from - kSpeedWindowS), broken1 = at(breaks, to + kSpeedWindowS);
+    if (!v0 || !v1 || !turned0 || !turned1 || !broken0 || !broken1) continue;
+    if (*broken1 != *broken0 || std::min(*v0, *v1) < kMinDrivingSpeedMps ||
+        std::abs(*turned1 - *turned0) > kMaxStraightTurnRadps * kDrivingBinS)
+      continue;
+    const std::optional<double> ax = window_sum(log.imu->t_s, log.imu->ax_mps2, from, to).mean();
+    if (ax) readings.push_back(*ax - (*v1 - *v0) / kDrivingBinS);
+  }
+  if (readings.size() < kMinDrivingBins) return std::nullopt;
+  return median(std::move(readings));
+}
+
+std::optional<AccelerometerOffset> accelerometer_offset(const std::vector<StopReading>& stops) {
+  if (stops.empty()) return std::nullopt;
+  AccelerometerOffset offset;
+  offset.stops = stops.size();
+  // Each stop weighs by its settled time up to kFullWeightS: the noise's share of a longer stop
+  // is small beside its slope, so that one long stop on a hill does not outvote the others.
+  const auto weight = [](const StopReading& stop) {
+    return std::min(stop.standing_s, kFullWeightS);
+  };
+  double weights = 0.0, squared_weights = 0.0;
+  for (const StopReading& stop : stops) {
+    offset.forward_mps2 += weight(stop) * stop.forward_mps2;
+    offset.standing_s += stop.standing_s;
+    weights += weight(stop);
+    squared_weights += weight(stop) * weight(stop);
+  }
+  offset.forward_mps2 /= weights;
+  if (stops.size() < kMinStopsForOffset) {
+    offset.sigma_mps2 = kUnmeasuredForwardOffsetSigmaMps2;
+    return offset;
+  }
+  double scatter = 0.0;
+  for (const StopReading& stop : stops) {
+    const double off = stop.forward_mps2 - offset.forward_mps2;
+    scatter += weight(stop) * off * off;
+  }
+  // The weighted sample variance (reliability weights) and the weighted mean's share of it.
+  const double variance = scatter / (weights - squared_weights / weights);
+  const double standard_error = std::sqrt(variance * squared_weights) / weights;
+  offset.sigma_mps2 = std::hypot(standard_error, kCommonSlopeSigmaMps2);
+  return offset;
+}
+
+void remove_accelerometer_offset(ImuStream& imu, double forward_mps2) {
+  for (double& ax : imu.ax_mps2) ax -= forward_mps2;
+}
+
+}  // namespace odocal
