@@ -178,7 +178,7 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
     // accelerometer reads beyond the wheels while driving (a phone pitched by 4 deg: comma2k19).
     const auto& offset = summary.preparation.accelerometer_offset;
     if (offset && offset->stops >= kMinStopsForOffset) {
-      forward_offset_sigma_mps2_ = offset->sigma_mps2;
+      forward_offset_sigma_mps2_ = offset->left_sigma_mps2();
     } else {
       forward_offset_sigma_mps2_ = kUnmeasuredForwardOffsetSigmaMps2;
       const auto driving = driving_forward_offset(this->log(), log.vehicle.nominal_params());

@@ -49,11 +49,11 @@ std::string LogPreparation::describe() const {
           wheel_rate_bias_per_block.size(), rl.first, rl.second, rr.first, rr.second);
     }
   }
-  if (accelerometer_offset) {
+  if (const auto& offset = accelerometer_offset) {
     text += fmt::format(
-        "; accelerometer's forward offset removed: {:+.3f} m/s^2 (1-sigma {:.3f}) at {} stop(s)",
-        accelerometer_offset->forward_mps2, accelerometer_offset->sigma_mps2,
-        accelerometer_offset->stops);
+        "; accelerometer's forward offset {}: {:+.3f} m/s^2 (1-sigma {:.3f}) at {} stop(s)",
+        offset->removed ? "removed" : "within its noise, left in", offset->forward_mps2,
+        offset->sigma_mps2, offset->stops);
   }
   if (driving_forward_offset_mps2) {
     text += fmt::format(

@@ -203,7 +203,7 @@ void BlockPreparation::prepare(PreparedBlock& block) {
     const std::vector<StopReading> readings = standing_forward_readings(*log.imu, own_stops);
     done_.forward_readings.insert(done_.forward_readings.end(), readings.begin(), readings.end());
     done_.accelerometer_offset = accelerometer_offset(done_.forward_readings);
-    if (done_.accelerometer_offset) {
+    if (done_.accelerometer_offset && done_.accelerometer_offset->removed) {
       remove_accelerometer_offset(*log.imu, done_.accelerometer_offset->forward_mps2);
       changed_ = true;
     }

@@ -32,8 +32,9 @@ namespace odocal::experiments {
 // latency that a tyre fit's residuals show, estimated; 28: the witness only where the physical
 // fit's answer stands; 29: the regression terms chosen by hand judged by the physical ones (the
 // experiment's fits are unjudged: nothing moved); 30: the accelerometer's forward offset taken
-// out at the stops, and what is left of it in the physical terms' sigma.
-inline constexpr int kTyreModelExperimentVersion = 30;
+// out at the stops, and what is left of it in the physical terms' sigma; 31: only where it
+// stands out of its sigma.
+inline constexpr int kTyreModelExperimentVersion = 31;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_quiet_accelerometer: {rear: {auto},

@@ -39,7 +39,8 @@ json preparation_json(const LogPreparation& p) {
     out["accelerometer_offset"] = {{"forward_mps2", offset->forward_mps2},
                                    {"sigma_mps2", offset->sigma_mps2},
                                    {"stops", offset->stops},
-                                   {"standing_s", offset->standing_s}};
+                                   {"standing_s", offset->standing_s},
+                                   {"removed", offset->removed}};
   }
   if (p.driving_forward_offset_mps2)
     out["accelerometer_driving_offset_mps2"] = *p.driving_forward_offset_mps2;

@@ -77,16 +77,30 @@ Log standing_lap(double offset) {
   return log;
 }
 
+TEST(AccelerometerOffset, StandingOutOfItsSigmaItIsRemovedAndWithinLeftIn) {
+  EXPECT_TRUE(accelerometer_offset({{0.35, 5.0}})->removed);  // beyond 3 x 0.1
+  EXPECT_FALSE(accelerometer_offset({{0.25, 5.0}})->removed);
+  EXPECT_FALSE(accelerometer_offset({{0.015, 5.0}, {0.015, 5.0}, {0.015, 5.0}})->removed);
+  EXPECT_TRUE(accelerometer_offset({{0.025, 5.0}, {0.025, 5.0}, {0.025, 5.0}})->removed);
+  AccelerometerOffset offset;
+  offset.forward_mps2 = 0.03;
+  offset.sigma_mps2 = 0.04;
+  EXPECT_NEAR(offset.left_sigma_mps2(), 0.05, 1e-12);  // left in: itself and its sigma
+  offset.removed = true;
+  EXPECT_EQ(offset.left_sigma_mps2(), 0.04);
+}
+
 TEST(AccelerometerOffset, IsTakenOutOfTheLogWhereItIsPrepared) {
-  const Log log = standing_lap(0.3);
+  const Log log = standing_lap(0.5);
   LogPreparation done;
   const std::optional<Log> prepared = prepare_log(log, CalibrationOptions{}, done);
   ASSERT_TRUE(prepared.has_value());
   ASSERT_TRUE(done.accelerometer_offset.has_value());
   EXPECT_EQ(done.accelerometer_offset->stops, 2u);
-  EXPECT_NEAR(done.accelerometer_offset->forward_mps2, 0.3, 0.02);
+  EXPECT_NEAR(done.accelerometer_offset->forward_mps2, 0.5, 0.02);
   EXPECT_EQ(done.accelerometer_offset->sigma_mps2, kUnmeasuredForwardOffsetSigmaMps2);
-  EXPECT_NE(done.describe().find("accelerometer's forward offset removed: +0.3"), std::string::npos)
+  EXPECT_TRUE(done.accelerometer_offset->removed);
+  EXPECT_NE(done.describe().find("accelerometer's forward offset removed: +0.5"), std::string::npos)
       << done.describe();
   // The prepared log starts at first motion: its samples are the input's less the offset.
   const ImuStream& in = *log.imu;
@@ -98,6 +112,13 @@ TEST(AccelerometerOffset, IsTakenOutOfTheLogWhereItIsPrepared) {
     EXPECT_NEAR(out.ax_mps2[k], in.ax_mps2[first + k] - done.accelerometer_offset->forward_mps2,
                 1e-12);
   }
+
+  // The clean lap's reading is within its noise: left in (the log not copied for it).
+  LogPreparation clean;
+  prepare_log(standing_lap(0.0), CalibrationOptions{}, clean);
+  ASSERT_TRUE(clean.accelerometer_offset.has_value());
+  EXPECT_FALSE(clean.accelerometer_offset->removed);
+  EXPECT_NE(clean.describe().find("within its noise, left in"), std::string::npos);
 
   CalibrationOptions kept;
   kept.remove_accelerometer_offset = false;

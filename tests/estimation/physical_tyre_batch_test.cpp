@@ -497,7 +497,9 @@ TEST(PhysicalTyreBatch, TheAccelerometersForwardOffsetIsTakenOutAtTheStopsAndIts
   const AccelerometerOffset& offset = *pitched.preparation.accelerometer_offset;
   EXPECT_NEAR(offset.forward_mps2, -0.3, 0.02);
   EXPECT_GE(offset.stops, 3u);
-  EXPECT_NEAR(pitched.estimate.circumference_rl_m, clean.estimate.circumference_rl_m, 1e-5);
+  EXPECT_TRUE(offset.removed);
+  // The clean log's +0.002 m/s^2 is within its noise and left in: 0.05 mm.
+  EXPECT_NEAR(pitched.estimate.circumference_rl_m, clean.estimate.circumference_rl_m, 1e-4);
   EXPECT_LT(std::abs(pitched.estimate.circumference_rl_m - truth_m), 3.0 * pitched.sigma_rl_m())
       << pitched.full_report();
   EXPECT_EQ(pitched.forward_offset_sigma_mps2, offset.sigma_mps2);

@@ -7,6 +7,7 @@
 // altitude, the grade's share is taken out before), so each stop gives one reading, and their
 // scatter over the stops says how well their mean is known.
 
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -23,10 +24,15 @@ struct StopReading {
 };
 
 struct AccelerometerOffset {
-  double forward_mps2{};  // removed from ax
-  double sigma_mps2{};    // 1 sigma of what is left of it
+  double forward_mps2{};  // the stops' mean reading
+  double sigma_mps2{};    // its 1 sigma
   std::size_t stops{};
   double standing_s{};
+  bool removed{};  // from ax: only where it stands out of its sigma (accelerometer_offset)
+  // 1 sigma of what is left in ax: of the removed offset its sigma; of one left in, itself too.
+  double left_sigma_mps2() const {
+    return removed ? sigma_mps2 : std::hypot(forward_mps2, sigma_mps2);
+  }
 };
 
 // What the offset is taken to be uncertain by where no stop measured it, or too few to show
@@ -41,7 +47,8 @@ std::vector<StopReading> standing_forward_readings(const ImuStream& imu,
 
 // The mean of the stops' readings, each weighing by its time up to 10 s, and its sigma: their
 // scatter about it (from 3 stops on; fewer cannot tell a slope, kUnmeasuredForwardOffsetSigmaMps2),
-// and no better than a common slope of 0.05 % under every stop. Nothing without a stop.
+// and no better than a common slope of 0.05 % under every stop; to be removed where it is beyond
+// 3 sigma and 0.02 m/s^2. Nothing without a stop.
 std::optional<AccelerometerOffset> accelerometer_offset(const std::vector<StopReading>& stops);
 
 void remove_accelerometer_offset(ImuStream& imu, double forward_mps2);
