@@ -203,9 +203,9 @@ struct BatchSummary : CalibrationSummary {
   };
   std::vector<HeldSigmaPart> held_sigma_parts;
   // The physical terms take imu.csv's forward reading for drive force: what is left of its
-  // offset after preparing (LogPreparation::accelerometer_offset; 0.1 m/s^2 where no stop
-  // measured it) moves the circumferences by this much (zero for any other model and without
-  // imu.csv; it is in sigma and covariance too).
+  // offset after preparing (LogPreparation::accelerometer_offset; where fewer than 3 stops
+  // measured it, 0.1 m/s^2 or what driving straight reads, if more) moves the circumferences by
+  // this much (zero for any other model and without imu.csv; it is in sigma and covariance too).
   std::array<double, 2> forward_offset_sigma_m{};
   double forward_offset_sigma_mps2{};
   // The regression terms' share of the circumferences' sigma under tyre_model auto: their gap to

@@ -2,9 +2,10 @@
 // What every command does to a log before the odometry is used: for a calibration, only the span
 // that both wheels and GNSS cover is used (a wheel stream hours past the last fix, from a clock
 // jump, would otherwise be odometry with no reference); the zero-rate bias of angular-rate wheel
-// sensors and the accelerometer's forward offset, estimated at standstill, are removed; the log
-// is used from its first motion on; on hills the wheels are projected to the horizontal; and the
-// odometry chain breaks at wheel gaps. The record of it goes into reports.
+// sensors and the accelerometer's forward offset (where it stands out of its noise), estimated
+// at standstill, are removed; the log is used from its first motion on; on hills the wheels are
+// projected to the horizontal; and the odometry chain breaks at wheel gaps. The record of it goes
+// into reports.
 
 #include <optional>
 #include <vector>
@@ -32,7 +33,8 @@ struct LogPreparation {
   };
   std::vector<BlockBias> wheel_rate_bias_per_block;
   // The accelerometer's forward offset (imu.csv only), from every stop's reading: each block
-  // has the offset that the stops up to its end measured removed.
+  // has the offset that the stops up to its end measured removed, where it stands out of its
+  // sigma (AccelerometerOffset::removed).
   std::vector<StopReading> forward_readings;
   std::optional<AccelerometerOffset> accelerometer_offset;
   // Where fewer than 3 stops measured it: the forward reading while driving straight less the
