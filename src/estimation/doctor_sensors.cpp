@@ -97,9 +97,9 @@ void Doctor::check_standstill_biases() {
     }
     // The physical tyre terms take the forward reading for the force the tyres push with: an
     // offset of 0.3 m/s^2 (a mount pitched by 1.75 deg) put the urban drive's circumferences
-    // 4.5 mm off at a sigma of 0.62 mm until the preparation took it out at the stops
-    // (accelerometer_offset.hpp). Standing, the reading is the offset and the slope where the
-    // car stood: a note, for whoever uses the log's ax elsewhere.
+    // 4.5 mm off at a sigma of 0.62 mm until the preparation took it out at the stops, or the
+    // sigma carried it (accelerometer_offset.hpp). Standing, the reading is the offset and the
+    // slope where the car stood: a note, for whoever uses the log's ax elsewhere.
     constexpr double kMinAxOffsetMps2 = 0.1;
     if (const StandingMean ax = standing_mean(facts_.ax_standing); ax.beyond(kMinAxOffsetMps2)) {
       add("imu.ax_offset", FindingSeverity::kNote,
@@ -109,7 +109,8 @@ void Doctor::check_standstill_biases() {
                       ax.mean, ax.samples, ax.standard_error,
                       deg_from_rad(std::asin(std::clamp(ax.mean / kGravityMps2, -1.0, 1.0)))),
           "an IMU mounted pitched, an accelerometer bias, or the slope where the car stood",
-          "none needed for odocal, which measures it at the stops and takes it out of ax "
+          "none needed for odocal: it takes the offset out of ax where the stops measure it "
+          "beyond their scatter, and carries it in the tyre model's sigma otherwise "
           "(remove_accelerometer_offset); level the IMU for other uses of its forward reading");
     }
   }
