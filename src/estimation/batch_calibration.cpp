@@ -18,6 +18,7 @@
 #include "calibration_run.hpp"
 #include "doppler_scale.hpp"
 #include "latency_detection.hpp"
+#include "mounting_detection.hpp"
 #include "odocal/error.hpp"
 
 namespace odocal {
@@ -171,6 +172,20 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   BatchSummary unfitted;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, unfitted);
   BatchSummary summary = calibrate_as_configured(log, run, options, common, unfitted);
+  // A mounting first: an antenna off the rear axle's centre is no lag, and a lag is looked for
+  // with it in place.
+  BatchOptions fitted = options;
+  if (options.detect_mounting && common.judge_model_adequacy) {
+    if (const auto signature = batch::mounting_signature(summary.mounting_residuals, options)) {
+      BatchOptions mounted = options;
+      mounted.estimate_lever_arm = options.estimate_lever_arm || signature->lever_arm;
+      mounted.estimate_heading_bias = options.estimate_heading_bias || signature->heading_bias;
+      summary = batch::take_mounting_where_significant(
+          std::move(summary), calibrate_as_configured(log, run, mounted, common, unfitted),
+          *signature, options);
+      if (summary.mounting_detection->taken) fitted = mounted;
+    }
+  }
   // The plain model's residuals follow a_x where the wheels slip, the lag's signature too: only a
   // fit whose tyre terms take the slip tells the two apart (the realistic urban drive, rear-driven,
   // the plain model: the latency took the slip).
@@ -179,7 +194,7 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
     return summary;
   const std::optional<ResidualDependence> signature = batch::lag_signature(summary.model_adequacy);
   if (!signature) return summary;
-  BatchOptions lagged = options;
+  BatchOptions lagged = fitted;
   lagged.estimate_latency = true;
   return batch::take_latency_where_significant(
       std::move(summary), calibrate_as_configured(log, run, lagged, common, unfitted), *signature);

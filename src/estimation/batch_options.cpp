@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 36> kFields{{
+  static const std::array<OptionField<O>, 39> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -50,6 +50,18 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"estimate_lever_arm", "", 0, 0, "also estimate the GNSS antenna's lever arm",
        &O::estimate_lever_arm},
       {"estimate_latency", "", 0, 0, "also estimate the GNSS latency", &O::estimate_latency},
+      {"lever_arm_x_m", "m", -10.0, 10.0,
+       "the GNSS antenna's position ahead of the rear axle's centre: held there, or where "
+       "estimate_lever_arm starts",
+       &O::lever_arm_x_m},
+      {"lever_arm_y_m", "m", -10.0, 10.0,
+       "the GNSS antenna's position left of the rear axle's centre: held there, or where "
+       "estimate_lever_arm starts",
+       &O::lever_arm_y_m},
+      {"detect_mounting", "", 0, 0,
+       "where the lever arm or the heading bias is not estimated and the residuals show it, "
+       "calibrate again with it estimated and take that fit where it is significant",
+       &O::detect_mounting},
       {"detect_latency", "", 0, 0,
        "where the latency is not estimated and the residuals follow the longitudinal "
        "acceleration, calibrate again with it estimated and take that fit where it is "

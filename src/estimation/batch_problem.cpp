@@ -64,6 +64,7 @@ BatchProblem::BatchProblem(const Log& log, const ReferenceTrajectory& reference,
   }
   start_poses_ = poses_;
   params_ = {nominal.circumference_rl_m, nominal.circumference_rr_m, nominal.track_width_m};
+  lever_ = {batch_.lever_arm_x_m, batch_.lever_arm_y_m};
   if (batch_.tyre_model != TyreModelChoice::kNone || gentle_limits()) {
     // The driving state from the log at the nominal parameters: a per mille off in speed
     // moves a coefficient by as much, far inside its sigma.
@@ -163,7 +164,7 @@ void BatchProblem::restart() {
   poses_ = start_poses_;
   params_ = {nominal_.circumference_rl_m, nominal_.circumference_rr_m, nominal_.track_width_m};
   std::copy(tyre_held_value_.begin(), tyre_held_value_.end(), params_.begin() + kTyreOffset);
-  lever_ = {0.0, 0.0};
+  lever_ = {batch_.lever_arm_x_m, batch_.lever_arm_y_m};
   latency_ = heading_bias_ = gyro_bias_ = 0.0;
   std::fill(gnss_bias_.begin(), gnss_bias_.end(), Block2{0.0, 0.0});
   std::fill(count_error_.begin(), count_error_.end(), Block2{0.0, 0.0});
@@ -190,7 +191,7 @@ double BatchProblem::information_criterion(const ceres::Solver::Summary& solver)
       [&](std::size_t, std::size_t, const Eigen::Vector2d& whitened) {
         measured_cost += 0.5 * robust(whitened.squaredNorm())[0];
       },
-      [&](double whitened) { measured_cost += 0.5 * whitened * whitened; });
+      [&](std::size_t, double whitened) { measured_cost += 0.5 * whitened * whitened; });
   const double residuals = static_cast<double>(problem_->NumResiduals()) -
                            static_cast<double>(folded_rows_) +
                            static_cast<double>(measurement_rows_);

@@ -158,6 +158,9 @@ class BatchProblem {
   // a modelled Gauss-Markov error counts as part of it.
   // (Computed again at each call, segment by segment: a long log's errors are not held.)
   GnssResidualSource gnss_errors() const;
+  // The fixes' and heading samples' mean errors at the current unknowns
+  // (batch_mounting_residuals.cpp).
+  MountingResiduals mounting_residuals() const;
 
   // Every odometry interval in the problem: fitted poses, and their relative motion minus the
   // wheels' at the fitted parameters (model_adequacy.hpp). Where the gyro is used, the heading
@@ -352,8 +355,8 @@ class BatchProblem {
                      std::size_t& next_heading, FoldTally& tally);
 
   // Calls visit_fix(fix, segment, whitened residual) for every fix in the problem and
-  // visit_heading(whitened residual) for every heading sample, in time order, at the current
-  // unknowns and as the folds linearise them, pre-integrating again segment by segment. The
+  // visit_heading(segment, whitened residual) for every heading sample, in time order, at the
+  // current unknowns and as the folds linearise them, pre-integrating again segment by segment. The
   // segments of a chunk are whitened on threads (parallel_parts.hpp) and visited in order after
   // them, so that memory stays per chunk and the visits are the same on any number of threads.
   template <typename VisitFix, typename VisitHeading>
@@ -406,7 +409,7 @@ class BatchProblem {
         for (const Whitened& w : whitened[part]) {
           if constexpr (kHeadings) {
             if (w.heading) {
-              visit_heading(w.value.x());
+              visit_heading(w.segment, w.value.x());
               continue;
             }
           }

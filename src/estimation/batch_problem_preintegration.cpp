@@ -180,7 +180,7 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
                                 at.circumference_rr_m * 2.0 * r.half_revolutions[1]);
   r.sigma_m = speed_scale_ * std::sqrt(doppler_variance + slip_variance);
   r.speed_change_mps = interval->speed_change_mps;
-  if (!batch_.estimate_lever_arm) {
+  if (!batch_.estimate_lever_arm && batch_.lever_arm_x_m == 0.0 && batch_.lever_arm_y_m == 0.0) {
     // Held at zero: the integral alone.
     double distance = 0.0;
     for (std::size_t f = 0; f < interval->fixes.size(); ++f)

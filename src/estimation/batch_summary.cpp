@@ -186,6 +186,10 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                                                      ? tyre_model_option(*batch.tyre_terms())
                                                      : "");
   summary.misfit_sigma_scale = misfit_sigma_scale(summary.model_adequacy);
+  const bool mounting_open =
+      !b.estimate_lever_arm || (!b.estimate_heading_bias && log.heading.has_value());
+  summary.mounting_residuals =
+      b.detect_mounting && mounting_open ? batch.mounting_residuals() : MountingResiduals{};
   const double scale =
       summary.gnss_noise.covariance_scale * summary.misfit_sigma_scale * summary.misfit_sigma_scale;
   u.params *= scale;

@@ -38,7 +38,18 @@ bool witness_physical_fit(const CalibrationRun& run, const BatchOptions& fitting
     }
     return false;
   };
-  const bool tyre = fit_model(run, fitting, common, TyreTerms::kRegression, witness,
+  // The mounting is the vehicle's, not the body's: where the physical fit estimated the antenna's
+  // lever arm, the witness holds it there (freed, the regression terms trade their side terms
+  // with it: the 2-hour urban drive, the antenna 0.3 m left, 12 mm apart).
+  BatchOptions witnessing = fitting;
+  if (fitting.estimate_lever_arm) {
+    for (const EstimatedParameter& p : summary.parameters) {
+      if (p.name == "lever_arm_x_m") witnessing.lever_arm_x_m = p.value;
+      if (p.name == "lever_arm_y_m") witnessing.lever_arm_y_m = p.value;
+    }
+    witnessing.estimate_lever_arm = false;
+  }
+  const bool tyre = fit_model(run, witnessing, common, TyreTerms::kRegression, witness,
                               {.finish =
                                    [&](const FitFacts& facts) {
                                      return facts.usable && is_tyre(facts, unfitted.nominal,

@@ -199,6 +199,41 @@ void add_details(json& out, const BatchSummary& s) {
         {"taken", d.taken},
         {"circumference_without_m", {d.circumference_without_m[0], d.circumference_without_m[1]}}};
   }
+  const auto mounting_json = [](const MountingResiduals& m) {
+    nlohmann::json j = nlohmann::json::object();
+    if (m.gnss) {
+      j["gnss_mean_m"] = {m.gnss_mean_m[0], m.gnss_mean_m[1]};
+      j["gnss_standard_error_m"] = {m.gnss_standard_error_m[0], m.gnss_standard_error_m[1]};
+    }
+    if (m.doppler) {
+      j["doppler_left_m"] = m.doppler_left_m;
+      j["doppler_left_standard_error_m"] = m.doppler_left_standard_error_m;
+    }
+    if (m.heading) {
+      j["heading_mean_rad"] = m.heading_mean_rad;
+      j["heading_standard_error_rad"] = m.heading_standard_error_rad;
+    }
+    return j;
+  };
+  if (s.mounting_residuals.gnss || s.mounting_residuals.heading || s.mounting_residuals.doppler)
+    out["mounting_residuals"] = mounting_json(s.mounting_residuals);
+  if (s.mounting_detection) {
+    const BatchSummary::MountingDetection& d = *s.mounting_detection;
+    nlohmann::json j = {
+        {"signature", mounting_json(d.signature)},
+        {"fitted", d.fitted},
+        {"taken", d.taken},
+        {"circumference_without_m", {d.circumference_without_m[0], d.circumference_without_m[1]}}};
+    if (d.lever_arm) {
+      j["lever_arm_m"] = {d.lever_arm_m[0], d.lever_arm_m[1]};
+      j["lever_arm_sigma_m"] = {d.lever_arm_sigma_m[0], d.lever_arm_sigma_m[1]};
+    }
+    if (d.heading_bias) {
+      j["heading_bias_rad"] = d.heading_bias_rad;
+      j["heading_bias_sigma_rad"] = d.heading_bias_sigma_rad;
+    }
+    out["mounting_detection"] = j;
+  }
   if (s.body_sigma_m[0] > 0.0 || s.body_sigma_m[1] > 0.0) {
     out["body_sigma_m"] = {s.body_sigma_m[0], s.body_sigma_m[1]};
     nlohmann::json parts = nlohmann::json::object();

@@ -161,6 +161,21 @@ struct PartsConsistency {
   std::string verdict;  // in words
 };
 
+// What a fit's residuals say of the sensors' mounting (BatchOptions::detect_mounting): the GNSS
+// fixes' mean error turned into the vehicle's frame (where the antenna sits off the lever arm the
+// fit holds) and heading.csv's mean error against the fitted heading (a mount's yaw offset), each
+// with the standard error of that mean from the keyframe intervals' means, their lag-1
+// correlation taken in (a GNSS error that wanders is no offset).
+struct MountingResiduals {
+  std::array<double, 2> gnss_mean_m{}, gnss_standard_error_m{};  // [ahead, left]
+  double heading_mean_rad{}, heading_standard_error_rad{};
+  // Where the Doppler speed is in the fit: the antenna's left offset that its residual shows. An
+  // antenna y left of the centre runs -y times the interval's turn beside the wheels: minus the
+  // slope of the Doppler residual over the intervals' turns, with its standard error.
+  double doppler_left_m{}, doppler_left_standard_error_m{};
+  bool gnss{}, heading{}, doppler{};  // measured: enough keyframe intervals with each
+};
+
 struct BatchSummary : CalibrationSummary {
   std::vector<EstimatedParameter> parameters;  // every unknown besides the poses
   std::string solver_report;                   // Ceres' brief report of the last solve
@@ -229,6 +244,19 @@ struct BatchSummary : CalibrationSummary {
     std::array<double, 2> circumference_without_m{};  // the fit without the latency's
   };
   std::optional<LatencyDetection> latency_detection;
+  MountingResiduals mounting_residuals;  // of the fit returned
+  // BatchOptions::detect_mounting: where the fit without them showed the antenna's lever arm or
+  // heading.csv's bias, the fit with them estimated, and whether it stands.
+  struct MountingDetection {
+    MountingResiduals signature;       // what the fit without them left
+    bool lever_arm{}, heading_bias{};  // which were estimated
+    std::array<double, 2> lever_arm_m{}, lever_arm_sigma_m{};
+    double heading_bias_rad{}, heading_bias_sigma_rad{};
+    bool fitted{};  // the fit with them estimated stood (converged, or only not identified)
+    bool taken{};   // one of them beyond kMountingSigmas of its sigma: this summary is that fit
+    std::array<double, 2> circumference_without_m{};
+  };
+  std::optional<MountingDetection> mounting_detection;
 
   std::string full_report() const;
 };

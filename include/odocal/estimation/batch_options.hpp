@@ -82,6 +82,20 @@ struct BatchOptions {
   bool estimate_heading_bias = false;
   bool estimate_lever_arm = false;
   bool estimate_latency = false;
+  // The GNSS antenna's position from the rear axle's centre (x forward, y left, m): held there,
+  // or where estimate_lever_arm starts. An antenna off the centreline that the fit takes to be on
+  // it runs y times the net turn shorter or longer than the wheels: 0.3 m on the 2-hour urban
+  // drive of left-hand loops moved the circumferences by -4 mm (docs/batch-calibration.md, "The
+  // mounting the log shows").
+  double lever_arm_x_m = 0.0;
+  double lever_arm_y_m = 0.0;
+  // Where the lever arm or heading.csv's bias is not estimated and the fit's residuals show it
+  // (the GNSS fixes' mean error in the vehicle's frame, heading.csv's mean error against the
+  // fitted heading, each beyond kMountingSigmas of its standard error and a size that matters),
+  // the log is calibrated again with it estimated, and that fit stands where what it finds lies
+  // beyond kMountingSigmas of its sigma. Only with judge_model_adequacy, as detect_latency.
+  bool detect_mounting = true;
+  static constexpr double kMountingSigmas = 5.0;
   // Where the latency is not estimated and a tyre model's fit leaves its along-track or Doppler
   // residual following the longitudinal acceleration (a lag tau between the GNSS and the wheels
   // leaves -tau a_x there, and the tyre terms have taken the slip), the log is calibrated again

@@ -1,0 +1,156 @@
+#include "mounting_detection.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace odocal::batch {
+
+namespace {
+
+bool shows(double mean, double standard_error, double min_size) {
+  return std::abs(mean) >= min_size &&
+         std::abs(mean) >= BatchOptions::kMountingSigmas * standard_error;
+}
+
+const EstimatedParameter* estimated(const BatchSummary& summary, const char* name) {
+  const auto p = std::find_if(summary.parameters.begin(), summary.parameters.end(),
+                              [&](const EstimatedParameter& q) { return q.name == name; });
+  if (p == summary.parameters.end() || !p->estimated || !std::isfinite(p->value) ||
+      !std::isfinite(p->sigma) || !(p->sigma > 0.0))
+    return nullptr;
+  return &*p;
+}
+
+}  // namespace
+
+std::optional<MountingSignature> mounting_signature(const MountingResiduals& residuals,
+                                                    const BatchOptions& options) {
+  MountingSignature signature;
+  if (!options.estimate_lever_arm && residuals.gnss) {
+    const double size = std::hypot(residuals.gnss_mean_m[0], residuals.gnss_mean_m[1]);
+    for (std::size_t a = 0; a < 2; ++a) {
+      signature.lever_arm =
+          signature.lever_arm ||
+          (size >= kMinLeverArmM && shows(residuals.gnss_mean_m[a],
+                                          residuals.gnss_standard_error_m[a], 0.5 * kMinLeverArmM));
+    }
+  }
+  // The poses take up most of an offset that the fixes show (the antenna 0.5 m left: 0.21 m
+  // left in the fixes' mean); the Doppler speed's residual shows it whole.
+  if (!options.estimate_lever_arm && residuals.doppler) {
+    signature.lever_arm =
+        signature.lever_arm ||
+        shows(residuals.doppler_left_m, residuals.doppler_left_standard_error_m, kMinLeverArmM);
+  }
+  signature.heading_bias =
+      !options.estimate_heading_bias && residuals.heading &&
+      shows(residuals.heading_mean_rad, residuals.heading_standard_error_rad, kMinHeadingBiasRad);
+  if (!signature.lever_arm && !signature.heading_bias) return std::nullopt;
+  return signature;
+}
+
+BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary with,
+                                             const MountingSignature& signature,
+                                             const BatchOptions& options) {
+  BatchSummary::MountingDetection detection;
+  detection.signature = without.mounting_residuals;
+  detection.lever_arm = signature.lever_arm;
+  detection.heading_bias = signature.heading_bias;
+  detection.circumference_without_m = {without.estimate.circumference_rl_m,
+                                       without.estimate.circumference_rr_m};
+  detection.fitted = with.termination == Termination::kConverged ||
+                     with.termination == Termination::kNotIdentifiable;
+  bool significant = false;
+  if (signature.lever_arm) {
+    const EstimatedParameter* x = estimated(with, "lever_arm_x_m");
+    const EstimatedParameter* y = estimated(with, "lever_arm_y_m");
+    detection.fitted = detection.fitted && x && y;
+    if (x && y) {
+      detection.lever_arm_m = {x->value, y->value};
+      detection.lever_arm_sigma_m = {x->sigma, y->sigma};
+      const double dx = x->value - options.lever_arm_x_m, dy = y->value - options.lever_arm_y_m;
+      significant = significant || (std::hypot(dx, dy) >= kMinLeverArmM &&
+                                    (std::abs(dx) > BatchOptions::kMountingSigmas * x->sigma ||
+                                     std::abs(dy) > BatchOptions::kMountingSigmas * y->sigma));
+    }
+  }
+  if (signature.heading_bias) {
+    const EstimatedParameter* bias = estimated(with, "heading_bias_rad");
+    detection.fitted = detection.fitted && bias;
+    if (bias) {
+      detection.heading_bias_rad = bias->value;
+      detection.heading_bias_sigma_rad = bias->sigma;
+      significant =
+          significant || (std::abs(bias->value) >= kMinHeadingBiasRad &&
+                          std::abs(bias->value) > BatchOptions::kMountingSigmas * bias->sigma);
+    }
+  }
+  detection.taken = detection.fitted && significant;
+  BatchSummary& kept = detection.taken ? with : without;
+  const BatchSummary& other = detection.taken ? without : with;
+  kept.tyre_selection.other_solves += other.solves + other.tyre_selection.other_solves;
+  kept.mounting_detection = detection;
+  return std::move(kept);
+}
+
+std::string mounting_detection_report(const BatchSummary::MountingDetection& detection,
+                                      const OdometryParams& estimate) {
+  const MountingResiduals& s = detection.signature;
+  std::vector<std::string> seen, found, fixes;
+  if (detection.lever_arm) {
+    std::string doppler;
+    if (s.doppler) {
+      doppler =
+          fmt::format(" and the Doppler speed as from {:+.2f} m left (standard error {:.2f} m)",
+                      s.doppler_left_m, s.doppler_left_standard_error_m);
+    }
+    seen.push_back(fmt::format(
+        "the GNSS fixes {:+.2f} m ahead and {:+.2f} m left of the fitted path (standard error "
+        "{:.2f} / {:.2f} m){}, as an antenna off the rear axle's centre leaves them",
+        s.gnss_mean_m[0], s.gnss_mean_m[1], s.gnss_standard_error_m[0], s.gnss_standard_error_m[1],
+        doppler));
+    found.push_back(fmt::format(
+        "the antenna {:+.3f} m ahead (1-sigma {:.3f}) and {:+.3f} m left (1-sigma {:.3f}) of the "
+        "rear axle's centre",
+        detection.lever_arm_m[0], detection.lever_arm_sigma_m[0], detection.lever_arm_m[1],
+        detection.lever_arm_sigma_m[1]));
+    fixes.push_back("lever_arm_x_m and lever_arm_y_m (or estimate_lever_arm: true)");
+  }
+  if (detection.heading_bias) {
+    constexpr double kDeg = 180.0 / 3.14159265358979323846;
+    seen.push_back(fmt::format(
+        "heading.csv {:+.2f} deg off the fitted heading (standard error {:.2f} deg), as a mount's "
+        "yaw offset leaves it",
+        kDeg * s.heading_mean_rad, kDeg * s.heading_standard_error_rad));
+    found.push_back(
+        fmt::format("heading.csv reading {:+.2f} deg (1-sigma {:.2f}) beyond the heading",
+                    kDeg * detection.heading_bias_rad, kDeg * detection.heading_bias_sigma_rad));
+    fixes.push_back("estimate_heading_bias: true");
+  }
+  const auto joined = [](const std::vector<std::string>& parts) {
+    return fmt::format("{}", fmt::join(parts, "; "));
+  };
+  const std::string left = fmt::format("the fit without them left {}", joined(seen));
+  if (!detection.fitted) {
+    return fmt::format("{:<13}{}; with them estimated the fit did not stand: kept without\n",
+                       "mounting", left);
+  }
+  if (!detection.taken) {
+    return fmt::format(
+        "{:<13}{}; estimated, {} lies within {:g} sigma (or {:g} m / {:.2f} deg) of what was held: "
+        "kept without\n",
+        "mounting", left, joined(found), BatchOptions::kMountingSigmas, kMinLeverArmM,
+        kMinHeadingBiasRad * 180.0 / 3.14159265358979323846);
+  }
+  return fmt::format(
+      "{:<13}{}; estimated: {}, which moves the circumferences by {:+.3g} / {:+.3g} mm to these; "
+      "state it ({})\n",
+      "mounting", left, joined(found),
+      1e3 * (estimate.circumference_rl_m - detection.circumference_without_m[0]),
+      1e3 * (estimate.circumference_rr_m - detection.circumference_without_m[1]), joined(fixes));
+}
+
+}  // namespace odocal::batch
