@@ -2,6 +2,7 @@
 with plotly's script embedded once (offline: nothing is fetched from the network)."""
 import html
 import json
+import math
 
 import plotly.io
 import plotly.offline
@@ -64,6 +65,36 @@ def latency_detection_text(detection, result):
             f"circumferences by {moved[0]:+.3g} / {moved[1]:+.3g} mm to these")
 
 
+def mounting_detection_text(detection, result):
+    """What detect_mounting found (docs/batch-calibration.md, "The mounting the log shows")."""
+    seen, found = [], []
+    signature = detection["signature"]
+    if "lever_arm_m" in detection:
+        ahead, left = signature.get("gnss_mean_m", [0.0, 0.0])
+        doppler = (f", the Doppler speed as from {signature['doppler_left_m']:+.2f} m left"
+                   if "doppler_left_m" in signature else "")
+        seen.append(f"the GNSS fixes {ahead:+.2f} m ahead and {left:+.2f} m left of the fitted "
+                    f"path{doppler}")
+        (x, y), (sx, sy) = detection["lever_arm_m"], detection["lever_arm_sigma_m"]
+        found.append(f"the antenna {x:+.3f} m ahead (1-sigma {sx:.3f}) and {y:+.3f} m left "
+                     f"(1-sigma {sy:.3f}) of the rear axle's centre")
+    if "heading_bias_rad" in detection:
+        seen.append(f"heading.csv {math.degrees(signature.get('heading_mean_rad', 0.0)):+.2f} deg "
+                    "off the fitted heading")
+        found.append(f"heading.csv reading {math.degrees(detection['heading_bias_rad']):+.2f} deg "
+                     f"(1-sigma {math.degrees(detection['heading_bias_sigma_rad']):.2f}) beyond "
+                     "the heading")
+    text = "the fit without them left " + "; ".join(seen)
+    if not detection["fitted"]:
+        return text + "; with them estimated the fit did not stand: kept without"
+    if not detection["taken"]:
+        return text + "; estimated, " + "; ".join(found) + ", not significant: kept without"
+    without = detection["circumference_without_m"]
+    moved = [1000 * (result[f"circumference_{w}_m"] - without[i]) for i, w in enumerate(("rl", "rr"))]
+    return (text + "; estimated: " + "; ".join(found) +
+            f", which moves the circumferences by {moved[0]:+.3g} / {moved[1]:+.3g} mm to these")
+
+
 def summary_rows(result):
     def mm(value):
         return f"{1000 * value:.3f} mm" if isinstance(value, (int, float)) else "–"
@@ -84,6 +115,8 @@ def summary_rows(result):
         rows.append(("model adequacy", result["model_adequacy"]["verdict"]))
     if result.get("tyre_selection"):
         rows.append(("tyre model", tyre_selection_text(result["tyre_selection"])))
+    if result.get("mounting_detection"):
+        rows.append(("mounting", mounting_detection_text(result["mounting_detection"], result)))
     if result.get("latency_detection"):
         rows.append(("latency", latency_detection_text(result["latency_detection"], result)))
     if result.get("misfit_sigma_scale", 1.0) > 1.0:

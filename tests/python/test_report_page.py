@@ -78,3 +78,29 @@ def test_a_latency_found_is_shown_with_what_it_moved():
         "-1.2 ms (1-sigma 1.0 ms), not significant: kept without the latency")
     del result["latency_detection"]
     assert "latency" not in dict(summary_rows(result))
+
+
+def test_a_mounting_found_is_shown_with_what_it_moved():
+    result = {"method": "batch", "usable": True, "termination": "converged",
+              "circumference_rl_m": 1.964206, "circumference_rr_m": 1.964200,
+              "mounting_detection": {
+                  "signature": {"gnss_mean_m": [-0.004, 0.208], "doppler_left_m": 0.49},
+                  "lever_arm_m": [0.057, 0.501], "lever_arm_sigma_m": [0.048, 0.005],
+                  "fitted": True, "taken": True,
+                  "circumference_without_m": [1.959226, 1.959220]}}
+    text = dict(summary_rows(result))["mounting"]
+    assert text.startswith("the fit without them left the GNSS fixes -0.00 m ahead and +0.21 m "
+                           "left of the fitted path, the Doppler speed as from +0.49 m left")
+    assert "the antenna +0.057 m ahead (1-sigma 0.048) and +0.501 m left (1-sigma 0.005)" in text
+    assert text.endswith("by +4.98 / +4.98 mm to these")
+    detection = result["mounting_detection"]
+    detection.update(heading_bias_rad=0.0503, heading_bias_sigma_rad=0.0013, taken=False)
+    detection["signature"]["heading_mean_rad"] = 0.0438
+    text = dict(summary_rows(result))["mounting"]
+    assert "; heading.csv +2.51 deg off the fitted heading" in text
+    assert "heading.csv reading +2.88 deg (1-sigma 0.07) beyond the heading" in text
+    assert text.endswith("not significant: kept without")
+    detection["fitted"] = False
+    assert dict(summary_rows(result))["mounting"].endswith("did not stand: kept without")
+    del result["mounting_detection"]
+    assert "mounting" not in dict(summary_rows(result))
