@@ -39,8 +39,7 @@ bool witness_physical_fit(const CalibrationRun& run, const BatchOptions& fitting
     return false;
   };
   // The mounting is the vehicle's, not the body's: where the physical fit estimated the antenna's
-  // lever arm, the witness holds it there (freed, the regression terms trade their side terms
-  // with it: the 2-hour urban drive, the antenna 0.3 m left, 12 mm apart).
+  // lever arm, the witness judges the body with the antenna held where that fit put it.
   BatchOptions witnessing = fitting;
   if (fitting.estimate_lever_arm) {
     for (const EstimatedParameter& p : summary.parameters) {

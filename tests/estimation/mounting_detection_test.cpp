@@ -24,9 +24,10 @@ sim::SimulatedDrive urban_drive(double heading_bias_rad = 0.0) {
   return sim::simulate(scenario);
 }
 
-// The fixes as an antenna `left_m` left of the rear axle's centre reports them: its position
-// turned with the vehicle, its Doppler speed less the yaw rate times the offset.
-void move_antenna_left(sim::SimulatedDrive& drive, double left_m) {
+// The fixes as an antenna `ahead_m` ahead of and `left_m` left of the rear axle's centre reports
+// them: its position turned with the vehicle, its Doppler speed that of the point turning about the
+// axle's centre.
+void move_antenna(sim::SimulatedDrive& drive, double ahead_m, double left_m) {
   const PoseStream& truth = drive.truth;
   std::size_t k = 0;
   for (std::size_t j = 0; j < drive.gnss_t_s.size(); ++j) {
@@ -34,10 +35,12 @@ void move_antenna_left(sim::SimulatedDrive& drive, double left_m) {
     const double yaw = truth.pose[k].z();
     const double yaw_rate =
         (truth.pose[k + 1].z() - truth.pose[k].z()) / (truth.t_s[k + 1] - truth.t_s[k]);
-    drive.gnss_a[j] -= std::sin(yaw) * left_m;
-    drive.gnss_b[j] += std::cos(yaw) * left_m;
-    if (!drive.gnss_speed_mps.empty())
-      drive.gnss_speed_mps[j] = std::abs(drive.gnss_speed_mps[j] - yaw_rate * left_m);
+    drive.gnss_a[j] += std::cos(yaw) * ahead_m - std::sin(yaw) * left_m;
+    drive.gnss_b[j] += std::sin(yaw) * ahead_m + std::cos(yaw) * left_m;
+    if (!drive.gnss_speed_mps.empty()) {
+      drive.gnss_speed_mps[j] =
+          std::hypot(drive.gnss_speed_mps[j] - yaw_rate * left_m, yaw_rate * ahead_m);
+    }
   }
 }
 
@@ -53,7 +56,7 @@ double error_rl(const BatchSummary& s, const sim::SimulatedDrive& drive) {
 
 TEST(MountingDetection, AnAntennaLeftOfTheCentreIsFoundAndItsFitStands) {
   sim::SimulatedDrive drive = urban_drive();
-  move_antenna_left(drive, 0.5);
+  move_antenna(drive, 0.0, 0.5);
   const Log log = simulated_log(drive);
   BatchOptions options = options_that_report();
 
@@ -89,6 +92,30 @@ TEST(MountingDetection, AnAntennaLeftOfTheCentreIsFoundAndItsFitStands) {
   EXPECT_LT(std::abs(error_rl(stated, drive)), 3.0 * stated.sigma_rl_m()) << stated.full_report();
   EXPECT_NEAR(stated.estimate.circumference_rl_m, found.estimate.circumference_rl_m,
               found.sigma_rl_m());
+}
+
+// Ahead of the axle, the antenna's Doppler speed is the hypotenuse of the axle's and the yaw rate
+// times the lever: a yaw rate of one wheel sample, quantised by the encoders, put the stated
+// antenna's fit 1.6 sigma low with its Doppler noise 1.4 times the configured.
+TEST(MountingDetection, AnAntennaAheadOfTheAxleIsFoundAndAsStatedFitsAsOnTheAxle) {
+  sim::SimulatedDrive drive = urban_drive();
+  move_antenna(drive, 1.5, 0.3);
+  const Log log = simulated_log(drive);
+  BatchOptions options = options_that_report();
+  const BatchSummary found = calibrate_batch(log, options);
+  ASSERT_TRUE(found.mounting_detection.has_value()) << found.full_report();
+  const BatchSummary::MountingDetection& detection = *found.mounting_detection;
+  EXPECT_TRUE(detection.taken);
+  EXPECT_NEAR(detection.lever_arm_m[0], 1.5, 3.0 * detection.lever_arm_sigma_m[0] + 0.01);
+  EXPECT_NEAR(detection.lever_arm_m[1], 0.3, 3.0 * detection.lever_arm_sigma_m[1] + 0.01);
+  EXPECT_LT(std::abs(error_rl(found, drive)), 3.0 * found.sigma_rl_m()) << found.full_report();
+
+  options.lever_arm_x_m = 1.5;
+  options.lever_arm_y_m = 0.3;
+  const BatchSummary stated = calibrate_batch(log, options);
+  EXPECT_EQ(stated.termination, Termination::kConverged) << stated.full_report();
+  EXPECT_LT(stated.doppler_sigma_scale, 1.2) << stated.full_report();
+  EXPECT_LT(std::abs(error_rl(stated, drive)), 2.0 * stated.sigma_rl_m()) << stated.full_report();
 }
 
 TEST(MountingDetection, AHeadingReadOffByAMountsYawIsFoundAndEstimated) {
