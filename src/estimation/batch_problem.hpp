@@ -359,8 +359,10 @@ class BatchProblem {
   // current unknowns and as the folds linearise them, pre-integrating again segment by segment. The
   // segments of a chunk are whitened on threads (parallel_parts.hpp) and visited in order after
   // them, so that memory stays per chunk and the visits are the same on any number of threads.
+  // With `interval_stride` n > 1, only every n-th interval's.
   template <typename VisitFix, typename VisitHeading>
-  void for_each_measurement(VisitFix&& visit_fix, VisitHeading&& visit_heading) const {
+  void for_each_measurement(VisitFix&& visit_fix, VisitHeading&& visit_heading,
+                            std::size_t interval_stride = 1) const {
     const OdometryParams at{params_lin_(0), params_lin_(1), params_lin_(2)};
     const TyreConditions tyre{states_,
                               TyreModel::from(params_lin_.tail<TyreModel::kCoefficients>()), body_};
@@ -381,7 +383,7 @@ class BatchProblem {
       if (begin == end) return;
       auto [next_fix, next_heading] = cursors_at(begin);
       for (std::size_t i = begin; i < end; ++i) {
-        if (gap_segment(i)) continue;
+        if (i % interval_stride != 0 || gap_segment(i)) continue;
         const PreintegratedSegment seg = preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1],
                                                       at, noise_, tyre_fitted() ? &tyre : nullptr);
         visit_fixes(i, seg, log_.gnss.t_s, next_fix, [&](std::size_t j, const MotionAt& motion) {

@@ -104,12 +104,12 @@ std::string mounting_detection_report(const BatchSummary::MountingDetection& det
     std::string doppler;
     if (s.doppler) {
       doppler =
-          fmt::format(" and the Doppler speed as from {:+.2f} m left (standard error {:.2f} m)",
+          fmt::format(" and the Doppler speed as from {:+.2f} m left (standard error {:.3f} m)",
                       s.doppler_left_m, s.doppler_left_standard_error_m);
     }
     seen.push_back(fmt::format(
         "the GNSS fixes {:+.2f} m ahead and {:+.2f} m left of the fitted path (standard error "
-        "{:.2f} / {:.2f} m){}, as an antenna off the rear axle's centre leaves them",
+        "{:.3f} / {:.3f} m){}, as an antenna off the rear axle's centre leaves them",
         s.gnss_mean_m[0], s.gnss_mean_m[1], s.gnss_standard_error_m[0], s.gnss_standard_error_m[1],
         doppler));
     found.push_back(fmt::format(
