@@ -137,6 +137,17 @@ void append_diagnosis_signals(const Log& log, double from, double step_s, std::s
           interpolate_angle(log.heading->t_s, log.heading->heading_rad, t + 0.5 * step_s);
       s.heading_rate_radps.push_back(before && after ? angle_difference(*after, *before) / step_s
                                                      : kNaN);
+      const double chord_turn_rad = (s.speed_long_rr_mps.back() - s.speed_long_rl_mps.back()) *
+                                    kLongS / nominal.track_width_m;
+      double offset = kNaN;
+      const double wheel_speed = 0.5 * (s.speed_long_rl_mps.back() + s.speed_long_rr_mps.back());
+      if (position_speed >= DiagnosisSignals::kCourseSpeedMps &&
+          wheel_speed >= DiagnosisSignals::kCourseSpeedMps &&
+          std::abs(chord_turn_rad) < DiagnosisSignals::kStraightChordRad) {
+        if (const auto heading = interpolate_angle(log.heading->t_s, log.heading->heading_rad, t))
+          offset = angle_difference(*heading, std::atan2(gy1 - gy0, gx1 - gx0));
+      }
+      s.heading_minus_course_rad.push_back(offset);
     }
   }
 }

@@ -31,6 +31,13 @@ struct DiagnosisSignals {
   }
   std::vector<double> gyro_radps, ax_mps2, ay_mps2;  // empty without imu.csv
   std::vector<double> heading_rate_radps;            // empty without heading.csv
+  // heading.csv less the course of the 4 s chord where it is straight (the wheels turn less than
+  // kStraightChordRad over it) and forward at kCourseSpeedMps or more: a mount's yaw offset. NaN
+  // elsewhere; empty without heading.csv. (Below 5 m/s too: the parking drive's straights, at
+  // 2-4 m/s, find a 3 deg offset on 16 of 20 seeds, none from 5 m/s.)
+  static constexpr double kStraightChordRad = 0.02;
+  static constexpr double kCourseSpeedMps = 2.0;
+  std::vector<double> heading_minus_course_rad;
 
   std::size_t size() const { return t_s.size(); }
 };

@@ -29,6 +29,7 @@ Diagnosis Doctor::run() {
     check_clock_offsets();
     if (signs_ok) check_track_width();
     if (signs_ok) check_imu_axes();
+    if (signs_ok) check_heading_offset();
     // The wheels were compared with the Doppler speed where there is one: in another unit it
     // makes right wheels look wrong by its factor.
     if (check_doppler_unit()) {

@@ -73,6 +73,9 @@ class Doctor {
   // The lateral acceleration in a turn is speed x yaw rate, to the left.
   void check_imu_axes();
 
+  // heading.csv against the GNSS course, driving straight: a mount's yaw offset.
+  void check_heading_offset();
+
   // The Doppler column against the positions' own speed over the 4 s baseline, driving straight
   // (a chord cuts a turn short) above 5 m/s (the positions' noise then biases their speed by well
   // under a per cent). Returns whether it found the column in another unit.

@@ -63,6 +63,50 @@ void Doctor::check_imu_axes() {
   }
 }
 
+void Doctor::check_heading_offset() {
+  const auto& offsets = signals_.heading_minus_course_rad;
+  if (offsets.size() != signals_.size() || has("heading.convention") || has("gnss.mirrored"))
+    return;
+  // Medians of blocks of 5 s of straight driving each: the chord's course errs alike over its 4 s,
+  // so the blocks' scatter gives the standard error, and a block's median shrugs off a manoeuvre.
+  constexpr double kBlockS = 5.0;
+  constexpr std::size_t kMinBlocks = 5;
+  const auto rows_per_block =
+      std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(kBlockS / signals_.step_s)));
+  std::vector<double> block_medians, block;
+  std::size_t straight_rows = 0;
+  for (const double offset : offsets) {
+    if (!std::isfinite(offset)) continue;
+    block.push_back(offset);
+    ++straight_rows;
+    if (block.size() == rows_per_block) {
+      block_medians.push_back(median(block));
+      block.clear();
+    }
+  }
+  if (block_medians.size() < kMinBlocks) return;
+  const auto n = static_cast<double>(block_medians.size());
+  double mean = 0.0;
+  for (const double m : block_medians) mean += m;
+  mean /= n;
+  double variance = 0.0;
+  for (const double m : block_medians) variance += (m - mean) * (m - mean);
+  const double standard_error = std::sqrt(variance / (n - 1.0) / n);
+  // Below a degree a mount's offset moves little (the batch looks for it from 0.003 rad).
+  constexpr double kMinOffsetRad = 0.0175;
+  if (std::abs(mean) < kMinOffsetRad || std::abs(mean) < 5.0 * standard_error) return;
+  add("heading.offset", FindingSeverity::kWarning,
+      fmt::format("heading.csv reads {:+.1f} deg beyond the GNSS course while driving straight",
+                  deg_from_rad(mean)),
+      fmt::format("{:+.2f} deg (standard error {:.2f} deg) over {:.0f} s straight above {:g} m/s",
+                  deg_from_rad(mean), deg_from_rad(standard_error), seconds(straight_rows),
+                  DiagnosisSignals::kCourseSpeedMps),
+      "a heading sensor mounted at a yaw to the vehicle (a dual antenna's baseline, an IMU's "
+      "orientation with its own zero)",
+      "the batch finds and estimates it (detect_mounting, or estimate_heading_bias: true); for the "
+      "other methods subtract it (import map: the heading's mounting yaw)");
+}
+
 bool Doctor::check_doppler_unit() {
   const auto& doppler = signals_.doppler_speed_mps;
   const auto& positions = signals_.position_speed_long_mps;

@@ -233,6 +233,11 @@ std::vector<Fault> faults() {
                   [](Row& r) { r["heading"] = std::fmod(r["heading"] * 180 / kPi + 360, 360); });
        },
        "heading.degrees"},
+      {"heading mounted 3 deg off", "",
+       [](const fs::path& log) {
+         edit_csv(log / "heading.csv", [](Row& r) { r["heading"] += 0.05; });
+       },
+       "heading.offset", FindingSeverity::kWarning},
       {"x and y swapped", "",
        [](const fs::path& log) {
          edit_csv(log / "gnss.csv", [](Row& r) { std::swap(r["x"], r["y"]); });
