@@ -171,18 +171,21 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   require_valid("batch", options.validate());
   BatchSummary unfitted;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, unfitted);
-  BatchSummary summary = calibrate_as_configured(log, run, options, common, unfitted);
+  // Unjudged, no mounting is looked for, and its residuals are not measured (a pass over the
+  // fixes per fit).
+  BatchOptions fitted = options;
+  fitted.detect_mounting = options.detect_mounting && common.judge_model_adequacy;
+  BatchSummary summary = calibrate_as_configured(log, run, fitted, common, unfitted);
   // A mounting first: an antenna off the rear axle's centre is no lag, and a lag is looked for
   // with it in place.
-  BatchOptions fitted = options;
-  if (options.detect_mounting && common.judge_model_adequacy) {
-    if (const auto signature = batch::mounting_signature(summary.mounting_residuals, options)) {
-      BatchOptions mounted = options;
-      mounted.estimate_lever_arm = options.estimate_lever_arm || signature->lever_arm;
-      mounted.estimate_heading_bias = options.estimate_heading_bias || signature->heading_bias;
+  if (fitted.detect_mounting) {
+    if (const auto signature = batch::mounting_signature(summary.mounting_residuals, fitted)) {
+      BatchOptions mounted = fitted;
+      mounted.estimate_lever_arm = fitted.estimate_lever_arm || signature->lever_arm;
+      mounted.estimate_heading_bias = fitted.estimate_heading_bias || signature->heading_bias;
       summary = batch::take_mounting_where_significant(
           std::move(summary), calibrate_as_configured(log, run, mounted, common, unfitted),
-          *signature, options);
+          *signature, fitted);
       if (summary.mounting_detection->taken) fitted = mounted;
     }
   }
