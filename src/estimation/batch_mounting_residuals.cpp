@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "batch_problem.hpp"
+#include "sample_mean.hpp"
 
 namespace odocal::batch {
 
@@ -51,14 +52,8 @@ MeanWithError mean_of_interval_means(const IntervalSums& sums) {
   for (std::size_t i = 0; i < sums.sum.size(); ++i)
     if (sums.count[i] > 0) means.push_back(sums.sum[i] / static_cast<double>(sums.count[i]));
   if (means.size() < kMinIntervals) return {};
-  const auto n = static_cast<double>(means.size());
-  double mean = 0.0;
-  for (const double m : means) mean += m;
-  mean /= n;
-  double variance = 0.0;
-  for (const double m : means) variance += (m - mean) * (m - mean);
-  variance /= n - 1.0;
-  return {mean, std::sqrt(variance / n) * correlation_widening(means, mean), true};
+  const SampleMean m = sample_mean(means);
+  return {m.mean, m.standard_error * correlation_widening(means, m.mean), true};
 }
 
 // Through the origin: the slope of `error` over `turn` and its standard error (widened as above).

@@ -9,6 +9,7 @@
 #include "odocal/estimation/median.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/model/angle.hpp"
+#include "sample_mean.hpp"
 
 namespace odocal::detail {
 namespace {
@@ -85,13 +86,7 @@ void Doctor::check_heading_offset() {
     }
   }
   if (block_medians.size() < kMinBlocks) return;
-  const auto n = static_cast<double>(block_medians.size());
-  double mean = 0.0;
-  for (const double m : block_medians) mean += m;
-  mean /= n;
-  double variance = 0.0;
-  for (const double m : block_medians) variance += (m - mean) * (m - mean);
-  const double standard_error = std::sqrt(variance / (n - 1.0) / n);
+  const auto [mean, standard_error] = sample_mean(block_medians);
   // Below a degree a mount's offset moves little (the batch looks for it from 0.003 rad).
   constexpr double kMinOffsetRad = 0.0175;
   if (std::abs(mean) < kMinOffsetRad || std::abs(mean) < 5.0 * standard_error) return;

@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+
+#include "second_fit.hpp"
 
 namespace odocal::batch {
 
@@ -24,22 +26,15 @@ BatchSummary take_latency_where_significant(BatchSummary without, BatchSummary w
   detection.latency_s = detection.sigma_s = std::numeric_limits<double>::quiet_NaN();
   detection.circumference_without_m = {without.estimate.circumference_rl_m,
                                        without.estimate.circumference_rr_m};
-  const auto latency = std::find_if(
-      with.parameters.begin(), with.parameters.end(),
-      [](const EstimatedParameter& p) { return p.name == "latency_s" && p.estimated; });
-  const bool sound = with.termination == Termination::kConverged ||
-                     with.termination == Termination::kNotIdentifiable;
-  if (latency != with.parameters.end() && sound && std::isfinite(latency->value) &&
-      std::isfinite(latency->sigma) && latency->sigma > 0.0) {
+  const EstimatedParameter* latency = estimated_parameter(with, "latency_s");
+  if (latency && second_fit_stood(with)) {
     detection.latency_s = latency->value;
     detection.sigma_s = latency->sigma;
     detection.taken = std::abs(latency->value) > BatchOptions::kLatencySigmas * latency->sigma;
   }
-  BatchSummary& kept = detection.taken ? with : without;
-  const BatchSummary& other = detection.taken ? without : with;
-  kept.tyre_selection.other_solves += other.solves + other.tyre_selection.other_solves;
+  BatchSummary kept = keep_one_fit(std::move(without), std::move(with), detection.taken);
   kept.latency_detection = detection;
-  return std::move(kept);
+  return kept;
 }
 
 std::string latency_detection_report(const BatchSummary::LatencyDetection& detection,

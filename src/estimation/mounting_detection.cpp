@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
+
+#include "second_fit.hpp"
 
 namespace odocal::batch {
 
@@ -13,15 +15,6 @@ namespace {
 bool shows(double mean, double standard_error, double min_size) {
   return std::abs(mean) >= min_size &&
          std::abs(mean) >= BatchOptions::kMountingSigmas * standard_error;
-}
-
-const EstimatedParameter* estimated(const BatchSummary& summary, const char* name) {
-  const auto p = std::find_if(summary.parameters.begin(), summary.parameters.end(),
-                              [&](const EstimatedParameter& q) { return q.name == name; });
-  if (p == summary.parameters.end() || !p->estimated || !std::isfinite(p->value) ||
-      !std::isfinite(p->sigma) || !(p->sigma > 0.0))
-    return nullptr;
-  return &*p;
 }
 
 }  // namespace
@@ -61,12 +54,11 @@ BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary 
   detection.heading_bias = signature.heading_bias;
   detection.circumference_without_m = {without.estimate.circumference_rl_m,
                                        without.estimate.circumference_rr_m};
-  detection.fitted = with.termination == Termination::kConverged ||
-                     with.termination == Termination::kNotIdentifiable;
+  detection.fitted = second_fit_stood(with);
   bool significant = false;
   if (signature.lever_arm) {
-    const EstimatedParameter* x = estimated(with, "lever_arm_x_m");
-    const EstimatedParameter* y = estimated(with, "lever_arm_y_m");
+    const EstimatedParameter* x = estimated_parameter(with, "lever_arm_x_m");
+    const EstimatedParameter* y = estimated_parameter(with, "lever_arm_y_m");
     detection.fitted = detection.fitted && x && y;
     if (x && y) {
       detection.lever_arm_m = {x->value, y->value};
@@ -78,7 +70,7 @@ BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary 
     }
   }
   if (signature.heading_bias) {
-    const EstimatedParameter* bias = estimated(with, "heading_bias_rad");
+    const EstimatedParameter* bias = estimated_parameter(with, "heading_bias_rad");
     detection.fitted = detection.fitted && bias;
     if (bias) {
       detection.heading_bias_rad = bias->value;
@@ -89,11 +81,9 @@ BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary 
     }
   }
   detection.taken = detection.fitted && significant;
-  BatchSummary& kept = detection.taken ? with : without;
-  const BatchSummary& other = detection.taken ? without : with;
-  kept.tyre_selection.other_solves += other.solves + other.tyre_selection.other_solves;
+  BatchSummary kept = keep_one_fit(std::move(without), std::move(with), detection.taken);
   kept.mounting_detection = detection;
-  return std::move(kept);
+  return kept;
 }
 
 std::string mounting_detection_report(const BatchSummary::MountingDetection& detection,
