@@ -90,9 +90,12 @@ def mounting_detection_text(detection, result):
     if not detection["taken"]:
         return text + "; estimated, " + "; ".join(found) + ", not significant: kept without"
     without = detection["circumference_without_m"]
-    moved = [1000 * (result[f"circumference_{w}_m"] - without[i]) for i, w in enumerate(("rl", "rr"))]
+    # Its own fit's: a latency found after it moves the result again (the latency row says so).
+    with_it = detection.get("circumference_with_m",
+                            [result["circumference_rl_m"], result["circumference_rr_m"]])
+    moved = [1000 * (with_it[i] - without[i]) for i in range(2)]
     return (text + "; estimated: " + "; ".join(found) +
-            f", which moves the circumferences by {moved[0]:+.3g} / {moved[1]:+.3g} mm to these")
+            f", which moves the circumferences by {moved[0]:+.3g} / {moved[1]:+.3g} mm")
 
 
 def summary_rows(result):

@@ -199,8 +199,12 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   if (!signature) return summary;
   BatchOptions lagged = fitted;
   lagged.estimate_latency = true;
-  return batch::take_latency_where_significant(
+  // The latency's fit holds the mounting found before it: what was found carries over.
+  auto mounting_detection = summary.mounting_detection;
+  BatchSummary result = batch::take_latency_where_significant(
       std::move(summary), calibrate_as_configured(log, run, lagged, common, unfitted), *signature);
+  result.mounting_detection = std::move(mounting_detection);
+  return result;
 }
 
 }  // namespace odocal

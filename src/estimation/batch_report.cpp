@@ -63,7 +63,7 @@ std::string BatchSummary::full_report() const {
             static_cast<double>(std::max<std::size_t>(odometry_intervals, 1)));
   }
   text += batch::tyre_selection_report(*this);
-  if (mounting_detection) text += batch::mounting_detection_report(*mounting_detection, estimate);
+  if (mounting_detection) text += batch::mounting_detection_report(*mounting_detection);
   if (latency_detection) text += batch::latency_detection_report(*latency_detection, estimate);
   if (reference_circumference) {
     const ReferenceCircumference& r = *reference_circumference;

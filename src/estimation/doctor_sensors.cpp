@@ -9,12 +9,11 @@
 #include "odocal/estimation/median.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/model/gravity.hpp"
 #include "sample_mean.hpp"
 
 namespace odocal::detail {
 namespace {
-
-constexpr double kGravityMps2 = 9.81;
 
 // A sensor's mean reading over the standstills, and whether it stands beyond `floor` and its own
 // noise over them (4 standard errors): a bias, not the noise of a few standing seconds.

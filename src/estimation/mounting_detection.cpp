@@ -54,6 +54,8 @@ BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary 
   detection.heading_bias = signature.heading_bias;
   detection.circumference_without_m = {without.estimate.circumference_rl_m,
                                        without.estimate.circumference_rr_m};
+  detection.circumference_with_m = {with.estimate.circumference_rl_m,
+                                    with.estimate.circumference_rr_m};
   detection.fitted = second_fit_stood(with);
   bool significant = false;
   if (signature.lever_arm) {
@@ -86,8 +88,7 @@ BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary 
   return kept;
 }
 
-std::string mounting_detection_report(const BatchSummary::MountingDetection& detection,
-                                      const OdometryParams& estimate) {
+std::string mounting_detection_report(const BatchSummary::MountingDetection& detection) {
   const MountingResiduals& s = detection.signature;
   std::vector<std::string> seen, found, fixes;
   if (detection.lever_arm) {
@@ -136,11 +137,12 @@ std::string mounting_detection_report(const BatchSummary::MountingDetection& det
         kMinHeadingBiasRad * 180.0 / 3.14159265358979323846);
   }
   return fmt::format(
-      "{:<13}{}; estimated: {}, which moves the circumferences by {:+.3g} / {:+.3g} mm to these; "
-      "state it ({})\n",
+      "{:<13}{}; estimated: {}, which moves the circumferences by {:+.3g} / {:+.3g} mm; state it "
+      "({})\n",
       "mounting", left, joined(found),
-      1e3 * (estimate.circumference_rl_m - detection.circumference_without_m[0]),
-      1e3 * (estimate.circumference_rr_m - detection.circumference_without_m[1]), joined(fixes));
+      1e3 * (detection.circumference_with_m[0] - detection.circumference_without_m[0]),
+      1e3 * (detection.circumference_with_m[1] - detection.circumference_without_m[1]),
+      joined(fixes));
 }
 
 }  // namespace odocal::batch

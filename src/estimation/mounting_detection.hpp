@@ -36,8 +36,7 @@ BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary 
                                              const MountingSignature& signature,
                                              const BatchOptions& options);
 
-// The report's line on it; `estimate` the summary's.
-std::string mounting_detection_report(const BatchSummary::MountingDetection& detection,
-                                      const OdometryParams& estimate);
+// The report's line on it.
+std::string mounting_detection_report(const BatchSummary::MountingDetection& detection);
 
 }  // namespace odocal::batch

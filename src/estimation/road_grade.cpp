@@ -5,11 +5,10 @@
 
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/rolled_distance.hpp"
+#include "odocal/model/gravity.hpp"
 
 namespace odocal {
 namespace {
-
-constexpr double kGravityMps2 = 9.81;
 
 double cos_pitch(double grade) { return 1.0 / std::sqrt(1.0 + grade * grade); }
 

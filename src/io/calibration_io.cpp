@@ -223,7 +223,8 @@ void add_details(json& out, const BatchSummary& s) {
         {"signature", mounting_json(d.signature)},
         {"fitted", d.fitted},
         {"taken", d.taken},
-        {"circumference_without_m", {d.circumference_without_m[0], d.circumference_without_m[1]}}};
+        {"circumference_without_m", {d.circumference_without_m[0], d.circumference_without_m[1]}},
+        {"circumference_with_m", {d.circumference_with_m[0], d.circumference_with_m[1]}}};
     if (d.lever_arm) {
       j["lever_arm_m"] = {d.lever_arm_m[0], d.lever_arm_m[1]};
       j["lever_arm_sigma_m"] = {d.lever_arm_sigma_m[0], d.lever_arm_sigma_m[1]};

@@ -114,6 +114,8 @@ void parse_sensors(YamlMap sensors, sim::Scenario& s) {
     gnss->read("outlier_min_m", s.gnss.outlier_min_m, 0.0, 1e6);
     gnss->read("outlier_max_m", s.gnss.outlier_max_m, s.gnss.outlier_min_m, 1e6);
     gnss->read("latency_s", s.gnss.latency_s, 0.0, 10.0);
+    gnss->read("lever_arm_x_m", s.gnss.lever_arm_x_m, -100.0, 100.0);
+    gnss->read("lever_arm_y_m", s.gnss.lever_arm_y_m, -100.0, 100.0);
     gnss->read("altitude_sigma_m", s.gnss.altitude_sigma_m, -1.0, 1e3);
     gnss->read("speed_sigma_mps", s.gnss.speed_sigma_mps, -1.0, 100.0);
     const auto outages = gnss->sequence("outages");
@@ -397,6 +399,8 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("outlier_min_m", s.gnss.outlier_min_m);
   key("outlier_max_m", s.gnss.outlier_max_m);
   key("latency_s", s.gnss.latency_s);
+  key("lever_arm_x_m", s.gnss.lever_arm_x_m);
+  key("lever_arm_y_m", s.gnss.lever_arm_y_m);
   key("altitude_sigma_m", s.gnss.altitude_sigma_m);
   key("speed_sigma_mps", s.gnss.speed_sigma_mps);
   out << YAML::Key << "outages" << YAML::Value << YAML::BeginSeq;

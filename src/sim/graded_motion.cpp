@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "odocal/model/gravity.hpp"
+
 namespace odocal::sim {
 namespace {
 
-constexpr double kGravityMps2 = 9.81;
 constexpr double kGridHz = 200.0;
 
 }  // namespace

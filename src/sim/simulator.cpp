@@ -1,5 +1,6 @@
 #include "odocal/sim/simulator.hpp"
 
+#include <Eigen/Geometry>
 #include <GeographicLib/LocalCartesian.hpp>
 #include <algorithm>
 #include <array>
@@ -123,13 +124,19 @@ void simulate_wheels(const Scenario& scenario, const MotionTruth& truth, std::mt
 }
 
 // The reference point's horizontal speed over ground at t (central difference of the truth).
-double ground_speed_mps(const MotionTruth& truth, double t_s) {
+// Where the antenna at `lever` (ahead, left of the rear axle's centre) is at `pose`.
+Eigen::Vector2d antenna_at(const Pose2& pose, const Eigen::Vector2d& lever) {
+  return pose.head<2>() + Eigen::Rotation2Dd(pose.z()) * lever;
+}
+
+// The antenna's speed over ground, its side slip and its turn about the axle's centre included.
+double ground_speed_mps(const MotionTruth& truth, double t_s, const Eigen::Vector2d& lever) {
   constexpr double kHalfStep = 1e-3;
   const double from = std::max(t_s - kHalfStep, 0.0);
   const double to = std::min(t_s + kHalfStep, truth.duration_s());
   if (to <= from) return 0.0;
-  const Pose2 a = truth.at(from).pose, b = truth.at(to).pose;
-  return (b.head<2>() - a.head<2>()).norm() / (to - from);
+  return (antenna_at(truth.at(to).pose, lever) - antenna_at(truth.at(from).pose, lever)).norm() /
+         (to - from);
 }
 
 void simulate_gnss(const GnssSimConfig& config, bool altitude, const MotionTruth& truth,
@@ -148,6 +155,7 @@ void simulate_gnss(const GnssSimConfig& config, bool altitude, const MotionTruth
   const double drive_sigma = config.gauss_markov_sigma_m * std::sqrt(1.0 - decay * decay);
   Eigen::Vector2d coloured(config.gauss_markov_sigma_m * unit(rng),
                            config.gauss_markov_sigma_m * unit(rng));
+  const Eigen::Vector2d lever(config.lever_arm_x_m, config.lever_arm_y_m);
   out.gnss_latlon = config.output_latlon;
   out.gnss_sigma_m = std::hypot(config.sigma_m, config.gauss_markov_sigma_m);
   for (double t : sample_times(truth.duration_s(), config.rate_hz)) {
@@ -171,14 +179,14 @@ void simulate_gnss(const GnssSimConfig& config, bool altitude, const MotionTruth
     }
     if (in_outage || t < config.latency_s) continue;
     const TruthSample sample = truth.at(t - config.latency_s);
-    const Pose2& pose = sample.pose;
-    const double x = pose.x() + error.x();
-    const double y = pose.y() + error.y();
+    const Eigen::Vector2d antenna = antenna_at(sample.pose, lever);
+    const double x = antenna.x() + error.x();
+    const double y = antenna.y() + error.y();
     const double up = altitude ? sample.altitude_m + altitude_noise : 0.0;
     out.gnss_t_s.push_back(t);
     if (config.speed_sigma_mps >= 0.0) {
       out.gnss_speed_mps.push_back(
-          std::max(ground_speed_mps(truth, t - config.latency_s) + speed_noise, 0.0));
+          std::max(ground_speed_mps(truth, t - config.latency_s, lever) + speed_noise, 0.0));
     }
     if (config.output_latlon) {
       double lat = 0, lon = 0, alt = 0;

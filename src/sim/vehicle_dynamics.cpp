@@ -6,11 +6,10 @@
 
 #include "hills.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/model/gravity.hpp"
 
 namespace odocal::sim {
 namespace {
-
-constexpr double kGravity = 9.81;
 
 // CG state: position, yaw, body velocities, yaw rate, rear wheel angles.
 struct State {
@@ -51,7 +50,7 @@ class Vehicle {
   // Resistance forces opposing motion (smoothed through standstill).
   double resistance_n(double vx) const {
     return 0.5 * c_.air_density_kgpm3 * c_.drag_area_m2 * vx * std::abs(vx) +
-           c_.rolling_resistance * c_.mass_kg * kGravity * std::tanh(vx / 0.2);
+           c_.rolling_resistance * c_.mass_kg * kGravityMps2 * std::tanh(vx / 0.2);
   }
 
   Derivative derivative(const State& s, const Controls& u, double* ay_out = nullptr) const {
@@ -74,13 +73,13 @@ class Vehicle {
     // On a slope the ground's force also holds the weight's component along it: that moves load
     // to the rear as acceleration does.
     const Pitch& pitch = u.pitch;
-    const double slope_n = c_.mass_kg * kGravity * pitch.sin;
+    const double slope_n = c_.mass_kg * kGravityMps2 * pitch.sin;
     const double transfer_x =
         c_.load_transfer
-            ? c_.mass_kg * (u.ax_estimate_mps2 + kGravity * pitch.sin) * c_.cg_height_m / L_
+            ? c_.mass_kg * (u.ax_estimate_mps2 + kGravityMps2 * pitch.sin) * c_.cg_height_m / L_
             : 0.0;
-    const double load_front = c_.mass_kg * kGravity * pitch.cos * b_ / L_ - transfer_x;
-    const double load_rear = c_.mass_kg * kGravity * pitch.cos * a_ / L_ + transfer_x;
+    const double load_front = c_.mass_kg * kGravityMps2 * pitch.cos * b_ / L_ - transfer_x;
+    const double load_rear = c_.mass_kg * kGravityMps2 * pitch.cos * a_ / L_ + transfer_x;
     double ay = s.vx * r;
     if (kinematic(s)) {
       d.vx = (u.force_n - resistance_n(s.vx) - slope_n) / c_.mass_kg;
@@ -204,7 +203,7 @@ class RecordedMotion : public MotionTruth {
 }  // namespace
 
 double static_rear_wheel_load_n(const VehicleDynamicsConfig& config, double wheelbase_m) {
-  return config.mass_kg * kGravity * config.cg_to_front_axle_m / wheelbase_m / 2.0;
+  return config.mass_kg * kGravityMps2 * config.cg_to_front_axle_m / wheelbase_m / 2.0;
 }
 
 std::array<double, 2> steady_rolling_radii_m(const VehicleDynamicsConfig& config,
@@ -290,12 +289,12 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
           std::clamp(direction * reference.acc_mps2 +
                          config.speed_gain_1ps * (direction * reference.speed_mps - s.vx) +
                          config.position_gain_1ps2 * direction * behind_m,
-                     -config.friction * kGravity, config.friction * kGravity);
+                     -config.friction * kGravityMps2, config.friction * kGravityMps2);
       // The driver holds the speed on a hill: the slope's share of the weight is driven (or
       // braked) on top.
       controls.pitch = Pitch(grade ? grade(progress_m) : 0.0);
       controls.force_n = config.mass_kg * acc + vehicle.resistance_n(s.vx) +
-                         config.mass_kg * kGravity * controls.pitch.sin;
+                         config.mass_kg * kGravityMps2 * controls.pitch.sin;
       controls.ax_estimate_mps2 = acc;
     }
 

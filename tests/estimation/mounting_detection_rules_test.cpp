@@ -44,6 +44,7 @@ TEST(MountingDetection, TheSecondFitStandsOnlyWhereWhatItFindsIsSignificant) {
   BatchSummary without, with;
   without.estimate.circumference_rl_m = 1.96;
   without.solves = 4;
+  with.estimate.circumference_rl_m = 1.965;
   with.termination = Termination::kConverged;
   with.solves = 5;
   with.parameters = {{"lever_arm_x_m", 0.02, 0.05, true, true, ""},
@@ -61,13 +62,18 @@ TEST(MountingDetection, TheSecondFitStandsOnlyWhereWhatItFindsIsSignificant) {
   EXPECT_EQ(kept.solves, 5);
   EXPECT_DOUBLE_EQ(kept.mounting_detection->lever_arm_m[1], 0.3);
   EXPECT_DOUBLE_EQ(kept.mounting_detection->circumference_without_m[0], 1.96);
+  EXPECT_DOUBLE_EQ(kept.mounting_detection->circumference_with_m[0], 1.965);
+  // Its line says what its own fit moved, whatever the summary ends as (a latency found after).
+  kept.estimate.circumference_rl_m = 1.97;
+  EXPECT_NE(batch::mounting_detection_report(*kept.mounting_detection).find("by +5 / "),
+            std::string::npos)
+      << batch::mounting_detection_report(*kept.mounting_detection);
   // Where the second fit did not stand, the first does.
   with.termination = Termination::kNoConvergence;
   kept = batch::take_mounting_where_significant(without, with, lever, options);
   EXPECT_FALSE(kept.mounting_detection->taken);
   EXPECT_FALSE(kept.mounting_detection->fitted);
-  EXPECT_NE(batch::mounting_detection_report(*kept.mounting_detection, kept.estimate)
-                .find("did not stand"),
+  EXPECT_NE(batch::mounting_detection_report(*kept.mounting_detection).find("did not stand"),
             std::string::npos);
 }
 

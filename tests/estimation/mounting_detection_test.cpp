@@ -16,32 +16,19 @@
 namespace odocal {
 namespace {
 
-// The built-in urban drive (5 minutes of mostly left-hand loops) with a Doppler column.
-sim::SimulatedDrive urban_drive(double heading_bias_rad = 0.0) {
+// The built-in urban drive (5 minutes of mostly left-hand loops) with a Doppler column; its
+// antenna `ahead_m` ahead of and `left_m` left of the rear axle's centre.
+struct Mounting {
+  double ahead_m{}, left_m{}, heading_bias_rad{}, gnss_latency_s{};
+};
+sim::SimulatedDrive urban_drive(const Mounting& mounting = {}) {
   sim::Scenario scenario = load_scenario("urban");
   scenario.gnss.speed_sigma_mps = 0.05;
-  scenario.heading.bias_rad = heading_bias_rad;
+  scenario.gnss.lever_arm_x_m = mounting.ahead_m;
+  scenario.gnss.lever_arm_y_m = mounting.left_m;
+  scenario.gnss.latency_s = mounting.gnss_latency_s;
+  scenario.heading.bias_rad = mounting.heading_bias_rad;
   return sim::simulate(scenario);
-}
-
-// The fixes as an antenna `ahead_m` ahead of and `left_m` left of the rear axle's centre reports
-// them: its position turned with the vehicle, its Doppler speed that of the point turning about the
-// axle's centre.
-void move_antenna(sim::SimulatedDrive& drive, double ahead_m, double left_m) {
-  const PoseStream& truth = drive.truth;
-  std::size_t k = 0;
-  for (std::size_t j = 0; j < drive.gnss_t_s.size(); ++j) {
-    while (k + 2 < truth.size() && truth.t_s[k + 1] <= drive.gnss_t_s[j]) ++k;
-    const double yaw = truth.pose[k].z();
-    const double yaw_rate =
-        (truth.pose[k + 1].z() - truth.pose[k].z()) / (truth.t_s[k + 1] - truth.t_s[k]);
-    drive.gnss_a[j] += std::cos(yaw) * ahead_m - std::sin(yaw) * left_m;
-    drive.gnss_b[j] += std::sin(yaw) * ahead_m + std::cos(yaw) * left_m;
-    if (!drive.gnss_speed_mps.empty()) {
-      drive.gnss_speed_mps[j] =
-          std::hypot(drive.gnss_speed_mps[j] - yaw_rate * left_m, yaw_rate * ahead_m);
-    }
-  }
 }
 
 BatchOptions options_that_report() {
@@ -55,8 +42,7 @@ double error_rl(const BatchSummary& s, const sim::SimulatedDrive& drive) {
 }
 
 TEST(MountingDetection, AnAntennaLeftOfTheCentreIsFoundAndItsFitStands) {
-  sim::SimulatedDrive drive = urban_drive();
-  move_antenna(drive, 0.0, 0.5);
+  const sim::SimulatedDrive drive = urban_drive({.left_m = 0.5});
   const Log log = simulated_log(drive);
   BatchOptions options = options_that_report();
 
@@ -98,8 +84,7 @@ TEST(MountingDetection, AnAntennaLeftOfTheCentreIsFoundAndItsFitStands) {
 // times the lever: a yaw rate of one wheel sample, quantised by the encoders, put the stated
 // antenna's fit 1.6 sigma low with its Doppler noise 1.4 times the configured.
 TEST(MountingDetection, AnAntennaAheadOfTheAxleIsFoundAndAsStatedFitsAsOnTheAxle) {
-  sim::SimulatedDrive drive = urban_drive();
-  move_antenna(drive, 1.5, 0.3);
+  const sim::SimulatedDrive drive = urban_drive({.ahead_m = 1.5, .left_m = 0.3});
   const Log log = simulated_log(drive);
   BatchOptions options = options_that_report();
   const BatchSummary found = calibrate_batch(log, options);
@@ -119,7 +104,7 @@ TEST(MountingDetection, AnAntennaAheadOfTheAxleIsFoundAndAsStatedFitsAsOnTheAxle
 }
 
 TEST(MountingDetection, AHeadingReadOffByAMountsYawIsFoundAndEstimated) {
-  const sim::SimulatedDrive drive = urban_drive(0.05);
+  const sim::SimulatedDrive drive = urban_drive({.heading_bias_rad = 0.05});
   const Log log = simulated_log(drive);
   BatchOptions options = options_that_report();
   options.detect_mounting = false;
@@ -138,6 +123,38 @@ TEST(MountingDetection, AHeadingReadOffByAMountsYawIsFoundAndEstimated) {
   EXPECT_NEAR(detection.heading_bias_rad, 0.05, 3.0 * detection.heading_bias_sigma_rad);
   EXPECT_EQ(found.termination, Termination::kConverged) << found.full_report();
   EXPECT_LT(std::abs(error_rl(found, drive)), 3.0 * found.sigma_rl_m()) << found.full_report();
+}
+
+// The mounting is looked for first, the latency with it in place; the latency's fit holds the
+// antenna where the mounting's found it, and the summary says what each moved.
+TEST(MountingDetection, AnAntennaOffTheCentreAndALatencyAreBothFoundAndReported) {
+  const sim::SimulatedDrive drive = urban_drive({.left_m = 0.5, .gnss_latency_s = 0.1});
+  const BatchSummary found = calibrate_batch(simulated_log(drive), options_that_report());
+  const std::string report = found.full_report();
+  ASSERT_TRUE(found.mounting_detection.has_value()) << report;
+  ASSERT_TRUE(found.latency_detection.has_value()) << report;
+  const BatchSummary::MountingDetection& mounting = *found.mounting_detection;
+  EXPECT_TRUE(mounting.taken) << report;
+  EXPECT_TRUE(found.latency_detection->taken) << report;
+  EXPECT_NEAR(found.latency_detection->latency_s, 0.1,
+              3.0 * found.latency_detection->sigma_s + 0.01)
+      << report;
+  for (const EstimatedParameter& p : found.parameters) {
+    if (p.name == "lever_arm_y_m") {
+      EXPECT_NEAR(p.value, 0.5, 3.0 * p.sigma + 0.01) << report;
+    }
+    if (p.name == "lever_arm_y_m" || p.name == "latency_s") {
+      EXPECT_TRUE(p.estimated) << p.name;
+    }
+  }
+  // The latency's fit started from the mounting's: the circumferences without the latency are
+  // the mounting's fit's.
+  EXPECT_DOUBLE_EQ(found.latency_detection->circumference_without_m[0],
+                   mounting.circumference_with_m[0]);
+  EXPECT_NE(report.find("mounting     the fit without them left"), std::string::npos) << report;
+  EXPECT_NE(report.find("latency      the fit without it left"), std::string::npos) << report;
+  EXPECT_EQ(found.termination, Termination::kConverged) << report;
+  EXPECT_LT(std::abs(error_rl(found, drive)), 3.0 * found.sigma_rl_m()) << report;
 }
 
 TEST(MountingDetection, AMountingAsStatedIsNotFittedAgain) {

@@ -92,7 +92,11 @@ def test_a_mounting_found_is_shown_with_what_it_moved():
     assert text.startswith("the fit without them left the GNSS fixes -0.00 m ahead and +0.21 m "
                            "left of the fitted path, the Doppler speed as from +0.49 m left")
     assert "the antenna +0.057 m ahead (1-sigma 0.048) and +0.501 m left (1-sigma 0.005)" in text
-    assert text.endswith("by +4.98 / +4.98 mm to these")
+    assert text.endswith("by +4.98 / +4.98 mm")
+    # A latency found after it moved the result again: the row says what the mounting moved.
+    result["mounting_detection"]["circumference_with_m"] = [1.961226, 1.961220]
+    assert dict(summary_rows(result))["mounting"].endswith("by +2 / +2 mm")
+    del result["mounting_detection"]["circumference_with_m"]
     detection = result["mounting_detection"]
     detection.update(heading_bias_rad=0.0503, heading_bias_sigma_rad=0.0013, taken=False)
     detection["signature"]["heading_mean_rad"] = 0.0438

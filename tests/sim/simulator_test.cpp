@@ -218,6 +218,39 @@ TEST(Simulator, DopplerSpeedHasItsConfiguredSigmaAndLeavesThePositionsAlone) {
               0.0, 0.003);
 }
 
+// An antenna off the rear axle's centre: each fix is that point of the true pose, and its Doppler
+// speed the point's, which a turn to the left slows where the antenna sits on the left.
+TEST(Simulator, AnAntennaOffTheAxleReportsItsOwnPositionAndSpeed) {
+  Scenario scenario = load_scenario("urban");
+  scenario.gnss.sigma_m = 0.0;
+  scenario.gnss.speed_sigma_mps = 0.0;
+  scenario.gnss.lever_arm_x_m = 1.5;
+  scenario.gnss.lever_arm_y_m = 0.5;
+  const SimulatedDrive drive = simulate(scenario);
+  const PoseStream& truth = drive.truth;
+  double largest_position_error = 0.0;
+  std::vector<double> speed_error;
+  for (std::size_t k = 0; k < drive.gnss_t_s.size(); ++k) {
+    const double t = drive.gnss_t_s[k];
+    const Pose2 pose = *interpolate_pose(truth, t);
+    const double c = std::cos(pose.z()), s = std::sin(pose.z());
+    largest_position_error = std::max({largest_position_error,
+                                       std::abs(drive.gnss_a[k] - (pose.x() + 1.5 * c - 0.5 * s)),
+                                       std::abs(drive.gnss_b[k] - (pose.y() + 1.5 * s + 0.5 * c))});
+    if (t < truth.t_s.front() + 0.01 || t > truth.t_s.back() - 0.01) continue;
+    // The rigid body's point: v (forward, side slip aside) and the yaw rate's turn of the lever.
+    const Pose2 a = *interpolate_pose(truth, t - 0.01), b = *interpolate_pose(truth, t + 0.01);
+    const double yaw_rate = (b.z() - a.z()) / 0.02;
+    const Eigen::Vector2d velocity = (b.head<2>() - a.head<2>()) / 0.02;
+    const Eigen::Vector2d forward(c, s), left(-s, c);
+    const Eigen::Vector2d antenna = velocity + yaw_rate * (1.5 * left - 0.5 * forward);
+    speed_error.push_back(drive.gnss_speed_mps[k] - antenna.norm());
+  }
+  EXPECT_LT(largest_position_error, 1e-3);  // the truth as written, interpolated
+  ASSERT_GT(speed_error.size(), 1000u);
+  EXPECT_LT(rms(speed_error), 0.01);
+}
+
 TEST(Simulator, NoiseSeedVariesNoiseOverFixedTruth) {
   Scenario scenario = load_scenario("circuit");  // speed_variation 0.05: the trajectory seed acts
   scenario.route.laps = 1;

@@ -254,7 +254,8 @@ struct BatchSummary : CalibrationSummary {
     double heading_bias_rad{}, heading_bias_sigma_rad{};
     bool fitted{};  // the fit with them estimated stood (converged, or only not identified)
     bool taken{};   // one of them beyond kMountingSigmas of its sigma: this summary is that fit
-    std::array<double, 2> circumference_without_m{};
+                    // (or, where a latency was found after, the one it was fitted from)
+    std::array<double, 2> circumference_without_m{}, circumference_with_m{};
   };
   std::optional<MountingDetection> mounting_detection;
 

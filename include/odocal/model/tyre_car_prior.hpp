@@ -53,7 +53,7 @@ inline CarCoefficient car_tyre_coefficient(int j, const VehicleBody& body, doubl
   if (member == &TyreModel::k_brake_slip)
     return sized(body.brake_rear_share / kCarSlipStiffnessPerLoad);
   if (member == &TyreModel::k_side_slip_s2pm)
-    return sized(-1.0 / (kTyreGravityMps2 * kCarCorneringStiffnessPerLoad));
+    return sized(-1.0 / (kGravityMps2 * kCarCorneringStiffnessPerLoad));
   return {};
 }
 

@@ -31,6 +31,7 @@
 #include <optional>
 #include <string>
 
+#include "odocal/model/gravity.hpp"
 #include "odocal/options/enum_names.hpp"
 
 namespace odocal {
@@ -169,9 +170,6 @@ struct DrivingState {
 
 enum class RearWheel { kLeft, kRight };
 
-// What the physical terms and a car's values of them (tyre_car_prior.hpp) take g to be.
-inline constexpr double kTyreGravityMps2 = 9.81;
-
 // The rear axle's share of the drive force.
 inline double drive_rear_share(const VehicleBody& body) {
   switch (body.drivetrain.value_or(Drivetrain::kRear)) {
@@ -209,11 +207,11 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
   // Physical: per vehicle mass, the wheel's load and the force its axle transmits.
   const double f_x = state.specific_force_x_mps2, f_y = state.specific_force_y_mps2;
   const double L = body.wheelbase_m, h = body.cg_height_m;
-  const double static_load = 0.5 * kTyreGravityMps2 * body.rear_axle_load_share;
+  const double static_load = 0.5 * kGravityMps2 * body.rear_axle_load_share;
   const double load_change =
       h * f_x / (2.0 * L) - side * body.rear_roll_share * h * f_y / body.track_width_m;
   const double tractive = f_x + 0.5 * kAirDensity * body.drag_area_m2 / body.mass_kg * v * v +
-                          body.rolling_resistance * kTyreGravityMps2 +
+                          body.rolling_resistance * kGravityMps2 +
                           (1.0 - body.rear_axle_load_share) * L * w * w;
   // A wheel that the turn lifts keeps a tenth of its load: beyond, nothing is linear anyway.
   const double force_over_load =

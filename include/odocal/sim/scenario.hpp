@@ -66,6 +66,9 @@ struct GnssSimConfig {
   double outlier_min_m = 20.0;
   double outlier_max_m = 50.0;
   double latency_s = 0.0;  // a fix stamped t reports the position at t - latency
+  // The antenna ahead of and left of the rear axle's centre: the fixes and the Doppler speed are
+  // that point's (a car's antenna is seldom over the axle; the batch's detect_mounting).
+  double lever_arm_x_m = 0.0, lever_arm_y_m = 0.0;
   // Altitude noise (white, m) of the alt column, written when the terrain is not flat; negative:
   // 1.5 x sigma_m (GNSS altitude is worse than its horizontal position).
   double altitude_sigma_m = -1.0;
