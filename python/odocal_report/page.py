@@ -50,11 +50,19 @@ def tyre_selection_text(selection):
 
 def latency_detection_text(detection, result):
     """What detect_latency found (docs/batch-calibration.md, "A latency the log shows")."""
-    text = (f"the fit without it left the {detection['residual']} residual following the "
-            f"longitudinal acceleration (rho = {detection['correlation']:.2f})")
+    if detection.get("by_doppler_noise"):
+        text = (f"the fit without it left the Doppler speed's noise "
+                f"{detection['doppler_sigma_scale']:.1f} times the configured")
+    else:
+        text = (f"the fit without it left the {detection['residual']} residual following the "
+                f"longitudinal acceleration (rho = {detection['correlation']:.2f})")
     latency, sigma = detection.get("latency_s"), detection.get("sigma_s")
     if latency is None or sigma is None:
         return text + "; with the latency estimated the fit did not stand: kept without"
+    if detection.get("significant") and not detection["taken"]:
+        return (text + f"; estimated, {1000 * latency:.1f} ms (1-sigma {1000 * sigma:.1f} ms), but "
+                f"the Doppler speed's noise stays {detection['doppler_sigma_scale_with']:.1f} "
+                "times the configured with it: not a lag's, kept without the latency")
     if not detection["taken"]:
         return (text + f"; estimated, {1000 * latency:.1f} ms (1-sigma {1000 * sigma:.1f} ms), "
                 "not significant: kept without the latency")
@@ -87,6 +95,9 @@ def mounting_detection_text(detection, result):
     text = "the fit without them left " + "; ".join(seen)
     if not detection["fitted"]:
         return text + "; with them estimated the fit did not stand: kept without"
+    if detection.get("explained_by_latency"):
+        return (text + "; estimated, " + "; ".join(found) + "; but not significant with the "
+                "latency estimated beside it: the lag showed as it, kept without")
     if not detection["taken"]:
         return text + "; estimated, " + "; ".join(found) + ", not significant: kept without"
     without = detection["circumference_without_m"]

@@ -176,6 +176,7 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   BatchOptions fitted = options;
   fitted.detect_mounting = options.detect_mounting && common.judge_model_adequacy;
   BatchSummary summary = calibrate_as_configured(log, run, fitted, common, unfitted);
+  const BatchOptions unmounted = fitted;
   // A mounting first: an antenna off the rear axle's centre is no lag, and a lag is looked for
   // with it in place.
   if (fitted.detect_mounting) {
@@ -195,16 +196,23 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   if (!options.detect_latency || options.estimate_latency || !common.judge_model_adequacy ||
       summary.tyre_model.plain())
     return summary;
-  const std::optional<ResidualDependence> signature = batch::lag_signature(summary.model_adequacy);
+  const std::optional<batch::LagSignature> signature = batch::lag_signature(summary);
   if (!signature) return summary;
   BatchOptions lagged = fitted;
   lagged.estimate_latency = true;
   // The latency's fit holds the mounting found before it: what was found carries over.
   auto mounting_detection = summary.mounting_detection;
   BatchSummary result = batch::take_latency_where_significant(
-      std::move(summary), calibrate_as_configured(log, run, lagged, common, unfitted), *signature);
+      std::move(summary), calibrate_as_configured(log, run, lagged, common, unfitted), *signature,
+      options.latency_s);
   result.mounting_detection = std::move(mounting_detection);
-  return result;
+  // A lag shows in the fixes as an antenna behind the axle: where the mounting taken is no longer
+  // significant beside the latency, the log is calibrated with the latency alone.
+  if (!batch::mounting_explained_by_latency(result, options)) return result;
+  BatchOptions lag_alone = unmounted;
+  lag_alone.estimate_latency = true;
+  return batch::drop_mounting_explained_by_latency(
+      std::move(result), calibrate_as_configured(log, run, lag_alone, common, unfitted), options);
 }
 
 }  // namespace odocal

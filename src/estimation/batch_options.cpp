@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 39> kFields{{
+  static const std::array<OptionField<O>, 40> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -58,6 +58,10 @@ OptionTable<BatchOptions> BatchOptions::fields() {
        "the GNSS antenna's position left of the rear axle's centre: held there, or where "
        "estimate_lever_arm starts",
        &O::lever_arm_y_m},
+      {"latency_s", "s", -1.0, 1.0,
+       "the GNSS fixes' latency behind the wheels (a fix stamped t reports the position at t "
+       "minus it): held there, or where estimate_latency starts",
+       &O::latency_s},
       {"detect_mounting", "", 0, 0,
        "where the lever arm or the heading bias is not estimated and the residuals show it, "
        "calibrate again with it estimated and take that fit where it is significant",

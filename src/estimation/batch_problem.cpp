@@ -65,6 +65,7 @@ BatchProblem::BatchProblem(const Log& log, const ReferenceTrajectory& reference,
   start_poses_ = poses_;
   params_ = {nominal.circumference_rl_m, nominal.circumference_rr_m, nominal.track_width_m};
   lever_ = {batch_.lever_arm_x_m, batch_.lever_arm_y_m};
+  latency_ = batch_.latency_s;
   if (batch_.tyre_model != TyreModelChoice::kNone || gentle_limits()) {
     // The driving state from the log at the nominal parameters: a per mille off in speed
     // moves a coefficient by as much, far inside its sigma.
@@ -165,7 +166,8 @@ void BatchProblem::restart() {
   params_ = {nominal_.circumference_rl_m, nominal_.circumference_rr_m, nominal_.track_width_m};
   std::copy(tyre_held_value_.begin(), tyre_held_value_.end(), params_.begin() + kTyreOffset);
   lever_ = {batch_.lever_arm_x_m, batch_.lever_arm_y_m};
-  latency_ = heading_bias_ = gyro_bias_ = 0.0;
+  latency_ = batch_.latency_s;
+  heading_bias_ = gyro_bias_ = 0.0;
   std::fill(gnss_bias_.begin(), gnss_bias_.end(), Block2{0.0, 0.0});
   std::fill(count_error_.begin(), count_error_.end(), Block2{0.0, 0.0});
   std::fill(gnss_weights_.begin(), gnss_weights_.end(), 1.0f);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -186,8 +187,14 @@ class BatchProblem {
   ceres::Solver::Summary solve(int max_iterations = 0);
 
   // Largest relative change of the parameters since the last pre-integration (for the tyre
-  // coefficients: of the circumference they make at the log's RMS driving state).
-  double relative_change() const { return change_from(params_lin_); }
+  // coefficients: of the circumference they make at the log's RMS driving state; for the latency,
+  // a millisecond counts as 1e-4: the Doppler speed's window is shifted by the latency it was
+  // built at, and the rest is taken to first order).
+  double relative_change() const {
+    constexpr double kPerSecondOfLatency = 0.1;
+    return std::max(change_from(params_lin_),
+                    kPerSecondOfLatency * std::abs(latency_ - latency_lin_));
+  }
 
   // The same measure of the parameters' change since `earlier`.
   double change_from(const Eigen::Ref<const batch::ParamsVector>& earlier) const;
@@ -509,6 +516,7 @@ class BatchProblem {
   WheelNoise noise_;
   double quantisation_sigma_rev_ = 0.0;
   batch::ParamsVector params_lin_ = batch::ParamsVector::Zero();
+  double latency_lin_ = 0.0;          // the latency the Doppler speed's residuals were built at
   std::vector<DrivingState> states_;  // per wheel sample; empty without tyre model and limits
   std::vector<std::uint8_t> rough_segment_;  // per interval: outside the gentle limits
   TyreModel::Vector regressor_rms_ = TyreModel::Vector::Zero();

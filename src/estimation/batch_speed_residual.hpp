@@ -50,8 +50,9 @@ std::optional<DopplerInterval> doppler_interval(const GnssStream& gnss, double b
 // times k^2 (to second order). The Doppler speed is the antenna's: with a lever arm l and yaw rate
 // w, the reference point's speed is w l_y + sqrt(|v|^2 - (w l_x)^2) (its side slip neglected here:
 // the lever's across-track speed is small beside the speed). A fix stamped t reports the speed at t
-// - latency, so the interval's true distance is the integral plus latency x (speed at end - speed
-// at begin).
+// - latency: the fixes are those of the interval shifted by the latency the residual is built at,
+// latency_lin, and the rest of it is taken to first order: the interval's true distance is the
+// integral plus (latency - latency_lin) x (speed at end - speed at begin).
 struct SpeedResidual {
   std::array<double, 2> half_revolutions{};
   Eigen::Matrix<double, 2, TyreModel::kCoefficients> half_tyre_revolutions =
@@ -59,6 +60,7 @@ struct SpeedResidual {
   std::array<double, 2> half_side_slip_revolutions{};
   std::vector<DopplerShare> shares;
   double speed_change_mps{};
+  double latency_lin_s{};
   double sigma_m{};
 
   template <typename T>
@@ -76,7 +78,7 @@ struct SpeedResidual {
           half_side_slip_revolutions[static_cast<std::size_t>(w)] * side_slip * side_slip;
       wheels += params[w] * revolutions;
     }
-    T doppler = latency[0] * speed_change_mps;
+    T doppler = (latency[0] - latency_lin_s) * speed_change_mps;
     for (const DopplerShare& share : shares) {
       const T across = share.yaw_rate_radps * lever[0];
       const T squared = share.speed_mps * share.speed_mps - across * across;

@@ -15,15 +15,29 @@
 
 namespace odocal::batch {
 
+// A lag of tau leaves tau a_x in the Doppler speed's error (145 ms at 2 m/s^2: 0.29 m/s against a
+// configured 0.05), so the noise adaptation widens it. Where the regression terms took up the rest
+// of the signature (the urban drive with the fixes 145 ms late and heading.csv 4 deg off: the
+// physical terms no tyre with the lag in, the regression terms' residuals following nothing, the
+// Doppler noise 5.5 times the configured, refused at a sigma of 19 mm), that is what is left.
+inline constexpr double kLagDopplerScale = 2.0;
+
 // The dependence a lag leaves in the fit's residuals: along-track or Doppler speed against the
-// longitudinal acceleration, as the model-adequacy judgement counts it (none: not there).
-std::optional<ResidualDependence> lag_signature(const ModelAdequacy& adequacy);
+// longitudinal acceleration, as the model-adequacy judgement counts it; or, where none counts but
+// the Doppler speed's noise was widened kLagDopplerScale times or more, the Doppler speed's
+// dependence as it stands (`by_doppler_noise`). None: neither is there.
+struct LagSignature {
+  ResidualDependence dependence;
+  bool by_doppler_noise{};
+};
+std::optional<LagSignature> lag_signature(const BatchSummary& summary);
 
 // The fit with the latency estimated where the latency lies beyond
-// BatchOptions::kLatencySigmas of its sigma, the fit without it otherwise; either carries what was
-// found (BatchSummary::latency_detection) and the other's solves.
+// BatchOptions::kLatencySigmas of its sigma from the one stated (BatchOptions::latency_s), the fit
+// without it otherwise; either carries what was found (BatchSummary::latency_detection) and the
+// other's solves.
 BatchSummary take_latency_where_significant(BatchSummary without, BatchSummary with,
-                                            const ResidualDependence& signature);
+                                            const LagSignature& signature, double stated_s);
 
 // The report's line on it; `estimate` the summary's.
 std::string latency_detection_report(const BatchSummary::LatencyDetection& detection,

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "latency_detection.hpp"
 #include "second_fit.hpp"
 
 namespace odocal::batch {
@@ -45,6 +46,47 @@ std::optional<MountingSignature> mounting_signature(const MountingResiduals& res
   return signature;
 }
 
+namespace {
+
+// What `with` found of what the signature shows: the detection's fields, whether each was
+// estimated (complete), and whether one lies beyond kMountingSigmas of its sigma and the sizes
+// that matter from where `stated` holds it.
+struct MountingFound {
+  bool complete = true, significant = false;
+};
+MountingFound fill_found(const BatchSummary& with, const BatchOptions& stated,
+                         BatchSummary::MountingDetection& detection) {
+  MountingFound found;
+  if (detection.lever_arm) {
+    const EstimatedParameter* x = estimated_parameter(with, "lever_arm_x_m");
+    const EstimatedParameter* y = estimated_parameter(with, "lever_arm_y_m");
+    found.complete = found.complete && x && y;
+    if (x && y) {
+      detection.lever_arm_m = {x->value, y->value};
+      detection.lever_arm_sigma_m = {x->sigma, y->sigma};
+      const double dx = x->value - stated.lever_arm_x_m, dy = y->value - stated.lever_arm_y_m;
+      found.significant =
+          found.significant || (std::hypot(dx, dy) >= kMinLeverArmM &&
+                                (std::abs(dx) > BatchOptions::kMountingSigmas * x->sigma ||
+                                 std::abs(dy) > BatchOptions::kMountingSigmas * y->sigma));
+    }
+  }
+  if (detection.heading_bias) {
+    const EstimatedParameter* bias = estimated_parameter(with, "heading_bias_rad");
+    found.complete = found.complete && bias;
+    if (bias) {
+      detection.heading_bias_rad = bias->value;
+      detection.heading_bias_sigma_rad = bias->sigma;
+      found.significant = found.significant ||
+                          (std::abs(bias->value) >= kMinHeadingBiasRad &&
+                           std::abs(bias->value) > BatchOptions::kMountingSigmas * bias->sigma);
+    }
+  }
+  return found;
+}
+
+}  // namespace
+
 BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary with,
                                              const MountingSignature& signature,
                                              const BatchOptions& options) {
@@ -56,35 +98,44 @@ BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary 
                                        without.estimate.circumference_rr_m};
   detection.circumference_with_m = {with.estimate.circumference_rl_m,
                                     with.estimate.circumference_rr_m};
-  detection.fitted = second_fit_stood(with);
-  bool significant = false;
-  if (signature.lever_arm) {
-    const EstimatedParameter* x = estimated_parameter(with, "lever_arm_x_m");
-    const EstimatedParameter* y = estimated_parameter(with, "lever_arm_y_m");
-    detection.fitted = detection.fitted && x && y;
-    if (x && y) {
-      detection.lever_arm_m = {x->value, y->value};
-      detection.lever_arm_sigma_m = {x->sigma, y->sigma};
-      const double dx = x->value - options.lever_arm_x_m, dy = y->value - options.lever_arm_y_m;
-      significant = significant || (std::hypot(dx, dy) >= kMinLeverArmM &&
-                                    (std::abs(dx) > BatchOptions::kMountingSigmas * x->sigma ||
-                                     std::abs(dy) > BatchOptions::kMountingSigmas * y->sigma));
-    }
-  }
-  if (signature.heading_bias) {
-    const EstimatedParameter* bias = estimated_parameter(with, "heading_bias_rad");
-    detection.fitted = detection.fitted && bias;
-    if (bias) {
-      detection.heading_bias_rad = bias->value;
-      detection.heading_bias_sigma_rad = bias->sigma;
-      significant =
-          significant || (std::abs(bias->value) >= kMinHeadingBiasRad &&
-                          std::abs(bias->value) > BatchOptions::kMountingSigmas * bias->sigma);
-    }
-  }
-  detection.taken = detection.fitted && significant;
+  const MountingFound found = fill_found(with, options, detection);
+  detection.fitted = second_fit_stood(with) && found.complete;
+  detection.taken = detection.fitted && found.significant;
   BatchSummary kept = keep_one_fit(std::move(without), std::move(with), detection.taken);
   kept.mounting_detection = detection;
+  return kept;
+}
+
+bool mounting_explained_by_latency(const BatchSummary& lagged, const BatchOptions& options) {
+  if (!lagged.mounting_detection || !lagged.mounting_detection->taken ||
+      !lagged.latency_detection || !lagged.latency_detection->taken)
+    return false;
+  BatchSummary::MountingDetection again = *lagged.mounting_detection;
+  const MountingFound found = fill_found(lagged, options, again);
+  return found.complete && !found.significant;
+}
+
+BatchSummary drop_mounting_explained_by_latency(BatchSummary lagged, BatchSummary lag_alone,
+                                                const BatchOptions& options) {
+  BatchSummary::MountingDetection mounting = *lagged.mounting_detection;
+  BatchSummary::LatencyDetection lag = *lagged.latency_detection;
+  // As the latency was taken: significant, and where the Doppler noise was the sign, explaining it.
+  const EstimatedParameter* latency = estimated_parameter(lag_alone, "latency_s");
+  const bool stands = second_fit_stood(lag_alone) && latency &&
+                      std::abs(latency->value - options.latency_s) >
+                          BatchOptions::kLatencySigmas * latency->sigma &&
+                      (!lag.by_doppler_noise || lag_alone.doppler_sigma_scale < kLagDopplerScale);
+  if (stands) {
+    mounting.taken = false;
+    mounting.explained_by_latency = true;
+    lag.latency_s = latency->value;
+    lag.sigma_s = latency->sigma;
+    lag.doppler_sigma_scale_with = lag_alone.doppler_sigma_scale;
+    lag.circumference_without_m = mounting.circumference_without_m;
+  }
+  BatchSummary kept = keep_one_fit(std::move(lagged), std::move(lag_alone), stands);
+  kept.mounting_detection = mounting;
+  kept.latency_detection = lag;
   return kept;
 }
 
@@ -128,6 +179,14 @@ std::string mounting_detection_report(const BatchSummary::MountingDetection& det
   if (!detection.fitted) {
     return fmt::format("{:<13}{}; with them estimated the fit did not stand: kept without\n",
                        "mounting", left);
+  }
+  if (detection.explained_by_latency) {
+    return fmt::format(
+        "{:<13}{}; estimated, {}; but with the latency (below) estimated beside it, that lies "
+        "within {:g} sigma (or {:g} m / {:.2f} deg) of what was held: the lag showed as it, kept "
+        "without\n",
+        "mounting", left, joined(found), BatchOptions::kMountingSigmas, kMinLeverArmM,
+        kMinHeadingBiasRad * 180.0 / 3.14159265358979323846);
   }
   if (!detection.taken) {
     return fmt::format(

@@ -197,6 +197,10 @@ void add_details(json& out, const BatchSummary& s) {
         {"latency_s", number_or_null(d.latency_s)},
         {"sigma_s", number_or_null(d.sigma_s)},
         {"taken", d.taken},
+        {"doppler_sigma_scale", d.doppler_sigma_scale},
+        {"by_doppler_noise", d.by_doppler_noise},
+        {"significant", d.significant},
+        {"doppler_sigma_scale_with", d.doppler_sigma_scale_with},
         {"circumference_without_m", {d.circumference_without_m[0], d.circumference_without_m[1]}}};
   }
   const auto mounting_json = [](const MountingResiduals& m) {
@@ -224,7 +228,8 @@ void add_details(json& out, const BatchSummary& s) {
         {"fitted", d.fitted},
         {"taken", d.taken},
         {"circumference_without_m", {d.circumference_without_m[0], d.circumference_without_m[1]}},
-        {"circumference_with_m", {d.circumference_with_m[0], d.circumference_with_m[1]}}};
+        {"circumference_with_m", {d.circumference_with_m[0], d.circumference_with_m[1]}},
+        {"explained_by_latency", d.explained_by_latency}};
     if (d.lever_arm) {
       j["lever_arm_m"] = {d.lever_arm_m[0], d.lever_arm_m[1]};
       j["lever_arm_sigma_m"] = {d.lever_arm_sigma_m[0], d.lever_arm_sigma_m[1]};

@@ -352,6 +352,13 @@ TEST(TyreModelBatch, RegressionTermsChosenByHandCarryTheirGapToThePhysicalOnes) 
   EXPECT_EQ(judged.tyre_selection.chosen_gap_to, "physical") << judged.full_report();
   EXPECT_GT(judged.tyre_selection.other_solves, 0);
   EXPECT_EQ(judged.estimate.circumference_rl_m, alone.estimate.circumference_rl_m);
+  // Their misfit widens the Doppler speed's noise 56 times; a latency takes some of it at 10
+  // sigma, but leaves the noise 14 times the configured: not a lag's.
+  ASSERT_TRUE(judged.latency_detection.has_value()) << judged.full_report();
+  EXPECT_TRUE(judged.latency_detection->by_doppler_noise);
+  EXPECT_FALSE(judged.latency_detection->taken) << judged.full_report();
+  EXPECT_NE(judged.full_report().find("not a lag's, kept without the latency"), std::string::npos)
+      << judged.full_report();
   EXPECT_GT(judged.model_spread_m[0], 0.5 * error_m) << judged.full_report();
   EXPECT_LT(error_m, 3.0 * judged.sigma_rl_m()) << judged.full_report();
   EXPECT_LT(std::abs(judged.estimate.circumference_rr_m - drive.true_params.circumference_rr_m),

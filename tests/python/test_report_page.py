@@ -73,6 +73,15 @@ def test_a_latency_found_is_shown_with_what_it_moved():
     assert "(rho = -0.89)" in text
     assert "the GNSS fixes lag the wheels by 101.8 ms (1-sigma 4.3 ms)" in text
     assert text.endswith("by +6.89 / +6.81 mm to these")
+    result["latency_detection"].update(by_doppler_noise=True, doppler_sigma_scale=5.52)
+    assert dict(summary_rows(result))["latency"].startswith(
+        "the fit without it left the Doppler speed's noise 5.5 times the configured; estimated")
+    result["latency_detection"].update(taken=False, significant=True,
+                                       doppler_sigma_scale_with=14.04)
+    assert dict(summary_rows(result))["latency"].endswith(
+        "but the Doppler speed's noise stays 14.0 times the configured with it: not a lag's, "
+        "kept without the latency")
+    result["latency_detection"].update(by_doppler_noise=False, significant=False)
     result["latency_detection"].update(taken=False, latency_s=-0.0012, sigma_s=0.001)
     assert dict(summary_rows(result))["latency"].endswith(
         "-1.2 ms (1-sigma 1.0 ms), not significant: kept without the latency")
@@ -97,6 +106,9 @@ def test_a_mounting_found_is_shown_with_what_it_moved():
     result["mounting_detection"]["circumference_with_m"] = [1.961226, 1.961220]
     assert dict(summary_rows(result))["mounting"].endswith("by +2 / +2 mm")
     del result["mounting_detection"]["circumference_with_m"]
+    result["mounting_detection"].update(taken=False, explained_by_latency=True)
+    assert dict(summary_rows(result))["mounting"].endswith("the lag showed as it, kept without")
+    result["mounting_detection"].update(taken=True, explained_by_latency=False)
     detection = result["mounting_detection"]
     detection.update(heading_bias_rad=0.0503, heading_bias_sigma_rad=0.0013, taken=False)
     detection["signature"]["heading_mean_rad"] = 0.0438

@@ -239,6 +239,14 @@ struct BatchSummary : CalibrationSummary {
   // the longitudinal acceleration, the latency estimated, and whether that fit stands.
   struct LatencyDetection {
     ResidualDependence signature;  // what the fit without the latency left
+    // That fit's Doppler noise over the configured; where the residuals showed no dependence on
+    // a_x (the regression terms took it), a scale beyond kLagDopplerScale was the sign looked at.
+    double doppler_sigma_scale{1.0};
+    bool by_doppler_noise{};
+    // The latency beyond kLatencySigmas of its sigma from the stated; looked for by the Doppler
+    // noise, taken only where the fit with it brings that noise under kLagDopplerScale.
+    bool significant{};
+    double doppler_sigma_scale_with{1.0};
     double latency_s{}, sigma_s{};
     bool taken{};  // the latency beyond kLatencySigmas of its sigma: this summary is that fit
     std::array<double, 2> circumference_without_m{};  // the fit without the latency's
@@ -256,6 +264,9 @@ struct BatchSummary : CalibrationSummary {
     bool taken{};   // one of them beyond kMountingSigmas of its sigma: this summary is that fit
                     // (or, where a latency was found after, the one it was fitted from)
     std::array<double, 2> circumference_without_m{}, circumference_with_m{};
+    // Taken, then found to be the lag's: with the latency estimated beside it, it was no longer
+    // significant, and the log was calibrated again with the latency alone (taken: false).
+    bool explained_by_latency{};
   };
   std::optional<MountingDetection> mounting_detection;
 

@@ -89,6 +89,9 @@ struct BatchOptions {
   // mounting the log shows").
   double lever_arm_x_m = 0.0;
   double lever_arm_y_m = 0.0;
+  // The GNSS fixes' latency behind the wheels (s; a fix stamped t reports the position at t minus
+  // it): held there, or where estimate_latency starts. A receiver's known latency is stated here.
+  double latency_s = 0.0;
   // Where the lever arm or heading.csv's bias is not estimated and the fit's residuals show it
   // (the GNSS fixes' mean error in the vehicle's frame, heading.csv's mean error against the
   // fitted heading, each beyond kMountingSigmas of its standard error and a size that matters),
