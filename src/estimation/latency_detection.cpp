@@ -26,6 +26,20 @@ std::optional<LagSignature> lag_signature(const BatchSummary& summary) {
       true};
 }
 
+LatencyFound latency_found(const BatchSummary& with, double stated_s, bool by_doppler_noise) {
+  LatencyFound found;
+  if (!second_fit_stood(with)) return found;
+  found.latency = estimated_parameter(with, "latency_s");
+  if (!found.latency) return found;
+  found.significant = std::abs(found.latency->value - stated_s) >
+                      BatchOptions::kLatencySigmas * found.latency->sigma;
+  // The realistic circuit, rear-driven, the regression terms chosen by hand: the Doppler noise
+  // 56 times the configured, a latency of 39 ms at 10 sigma, the noise 14 times with it.
+  found.taken =
+      found.significant && (!by_doppler_noise || with.doppler_sigma_scale < kLagDopplerScale);
+  return found;
+}
+
 BatchSummary take_latency_where_significant(BatchSummary without, BatchSummary with,
                                             const LagSignature& signature, double stated_s) {
   BatchSummary::LatencyDetection detection{signature.dependence};
@@ -34,19 +48,13 @@ BatchSummary take_latency_where_significant(BatchSummary without, BatchSummary w
   detection.latency_s = detection.sigma_s = std::numeric_limits<double>::quiet_NaN();
   detection.circumference_without_m = {without.estimate.circumference_rl_m,
                                        without.estimate.circumference_rr_m};
-  const EstimatedParameter* latency = estimated_parameter(with, "latency_s");
-  if (latency && second_fit_stood(with)) {
-    detection.latency_s = latency->value;
-    detection.sigma_s = latency->sigma;
-    detection.significant =
-        std::abs(latency->value - stated_s) > BatchOptions::kLatencySigmas * latency->sigma;
+  if (const LatencyFound found = latency_found(with, stated_s, signature.by_doppler_noise);
+      found.latency) {
+    detection.latency_s = found.latency->value;
+    detection.sigma_s = found.latency->sigma;
+    detection.significant = found.significant;
+    detection.taken = found.taken;
     detection.doppler_sigma_scale_with = with.doppler_sigma_scale;
-    // Looked for by the Doppler noise alone, a lag must be what widened it: a model that does not
-    // fit the log widens it too, and a latency then takes some of the misfit (the realistic
-    // circuit, rear-driven, the regression terms chosen by hand: the noise 56 times the
-    // configured, a latency of 39 ms at 10 sigma, the noise 14 times with it).
-    detection.taken = detection.significant &&
-                      (!detection.by_doppler_noise || with.doppler_sigma_scale < kLagDopplerScale);
   }
   BatchSummary kept = keep_one_fit(std::move(without), std::move(with), detection.taken);
   kept.latency_detection = detection;

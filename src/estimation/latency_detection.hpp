@@ -32,6 +32,17 @@ struct LagSignature {
 };
 std::optional<LagSignature> lag_signature(const BatchSummary& summary);
 
+// What a fit with the latency estimated found: the latency (null where the fit did not stand or
+// has none), whether it lies beyond BatchOptions::kLatencySigmas of its sigma from `stated_s`,
+// and whether it is taken: significant and, where the Doppler noise was the sign it was looked
+// for by, bringing that noise under kLagDopplerScale (a model that misfits the log widens the
+// noise too, and a latency takes some of any misfit).
+struct LatencyFound {
+  const EstimatedParameter* latency{};
+  bool significant{}, taken{};
+};
+LatencyFound latency_found(const BatchSummary& with, double stated_s, bool by_doppler_noise);
+
 // The fit with the latency estimated where the latency lies beyond
 // BatchOptions::kLatencySigmas of its sigma from the one stated (BatchOptions::latency_s), the fit
 // without it otherwise; either carries what was found (BatchSummary::latency_detection) and the

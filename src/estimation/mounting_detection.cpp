@@ -18,36 +18,6 @@ bool shows(double mean, double standard_error, double min_size) {
          std::abs(mean) >= BatchOptions::kMountingSigmas * standard_error;
 }
 
-}  // namespace
-
-std::optional<MountingSignature> mounting_signature(const MountingResiduals& residuals,
-                                                    const BatchOptions& options) {
-  MountingSignature signature;
-  if (!options.estimate_lever_arm && residuals.gnss) {
-    const double size = std::hypot(residuals.gnss_mean_m[0], residuals.gnss_mean_m[1]);
-    for (std::size_t a = 0; a < 2; ++a) {
-      signature.lever_arm =
-          signature.lever_arm ||
-          (size >= kMinLeverArmM && shows(residuals.gnss_mean_m[a],
-                                          residuals.gnss_standard_error_m[a], 0.5 * kMinLeverArmM));
-    }
-  }
-  // The poses take up most of an offset that the fixes show (the antenna 0.5 m left: 0.21 m
-  // left in the fixes' mean); the Doppler speed's residual shows it whole.
-  if (!options.estimate_lever_arm && residuals.doppler) {
-    signature.lever_arm =
-        signature.lever_arm ||
-        shows(residuals.doppler_left_m, residuals.doppler_left_standard_error_m, kMinLeverArmM);
-  }
-  signature.heading_bias =
-      !options.estimate_heading_bias && residuals.heading &&
-      shows(residuals.heading_mean_rad, residuals.heading_standard_error_rad, kMinHeadingBiasRad);
-  if (!signature.lever_arm && !signature.heading_bias) return std::nullopt;
-  return signature;
-}
-
-namespace {
-
 // What `with` found of what the signature shows: the detection's fields, whether each was
 // estimated (complete), and whether one lies beyond kMountingSigmas of its sigma and the sizes
 // that matter from where `stated` holds it.
@@ -87,6 +57,32 @@ MountingFound fill_found(const BatchSummary& with, const BatchOptions& stated,
 
 }  // namespace
 
+std::optional<MountingSignature> mounting_signature(const MountingResiduals& residuals,
+                                                    const BatchOptions& options) {
+  MountingSignature signature;
+  if (!options.estimate_lever_arm && residuals.gnss) {
+    const double size = std::hypot(residuals.gnss_mean_m[0], residuals.gnss_mean_m[1]);
+    for (std::size_t a = 0; a < 2; ++a) {
+      signature.lever_arm =
+          signature.lever_arm ||
+          (size >= kMinLeverArmM && shows(residuals.gnss_mean_m[a],
+                                          residuals.gnss_standard_error_m[a], 0.5 * kMinLeverArmM));
+    }
+  }
+  // The poses take up most of an offset that the fixes show (the antenna 0.5 m left: 0.21 m
+  // left in the fixes' mean); the Doppler speed's residual shows it whole.
+  if (!options.estimate_lever_arm && residuals.doppler) {
+    signature.lever_arm =
+        signature.lever_arm ||
+        shows(residuals.doppler_left_m, residuals.doppler_left_standard_error_m, kMinLeverArmM);
+  }
+  signature.heading_bias =
+      !options.estimate_heading_bias && residuals.heading &&
+      shows(residuals.heading_mean_rad, residuals.heading_standard_error_rad, kMinHeadingBiasRad);
+  if (!signature.lever_arm && !signature.heading_bias) return std::nullopt;
+  return signature;
+}
+
 BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary with,
                                              const MountingSignature& signature,
                                              const BatchOptions& options) {
@@ -119,21 +115,17 @@ BatchSummary drop_mounting_explained_by_latency(BatchSummary lagged, BatchSummar
                                                 const BatchOptions& options) {
   BatchSummary::MountingDetection mounting = *lagged.mounting_detection;
   BatchSummary::LatencyDetection lag = *lagged.latency_detection;
-  // As the latency was taken: significant, and where the Doppler noise was the sign, explaining it.
-  const EstimatedParameter* latency = estimated_parameter(lag_alone, "latency_s");
-  const bool stands = second_fit_stood(lag_alone) && latency &&
-                      std::abs(latency->value - options.latency_s) >
-                          BatchOptions::kLatencySigmas * latency->sigma &&
-                      (!lag.by_doppler_noise || lag_alone.doppler_sigma_scale < kLagDopplerScale);
-  if (stands) {
+  // Taken as the latency was.
+  const LatencyFound found = latency_found(lag_alone, options.latency_s, lag.by_doppler_noise);
+  if (found.taken) {
     mounting.taken = false;
     mounting.explained_by_latency = true;
-    lag.latency_s = latency->value;
-    lag.sigma_s = latency->sigma;
+    lag.latency_s = found.latency->value;
+    lag.sigma_s = found.latency->sigma;
     lag.doppler_sigma_scale_with = lag_alone.doppler_sigma_scale;
     lag.circumference_without_m = mounting.circumference_without_m;
   }
-  BatchSummary kept = keep_one_fit(std::move(lagged), std::move(lag_alone), stands);
+  BatchSummary kept = keep_one_fit(std::move(lagged), std::move(lag_alone), found.taken);
   kept.mounting_detection = mounting;
   kept.latency_detection = lag;
   return kept;
