@@ -148,8 +148,8 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
   // The fixes that report the interval's speeds: stamped the latency after it. Taken to first
   // order in the whole latency instead (the speed at each end times it), the urban drive with
   // the fixes 143 ms late and the latency stated put the regression terms' circumference at rest
-  // 2.5 mm from the same log's with the stamps put right, at an exact Doppler speed: the speed's
-  // change over the latency is not its value at one end.
+  // 4.7 mm from the same log's with the stamps put right, at an exact Doppler speed (seed 19): the
+  // speed's change over the latency is not its value at one end.
   const auto interval =
       batch::doppler_interval(log_.gnss, begin + latency_lin_, end + latency_lin_, speed_max_gap_s_,
                               std::max(kMinSpeedMps, 5.0 * doppler_sigma_mps_));

@@ -123,13 +123,13 @@ void simulate_wheels(const Scenario& scenario, const MotionTruth& truth, std::mt
   out.distance_m = path_length_m(out.truth.pose);
 }
 
-// The reference point's horizontal speed over ground at t (central difference of the truth).
 // Where the antenna at `lever` (ahead, left of the rear axle's centre) is at `pose`.
 Eigen::Vector2d antenna_at(const Pose2& pose, const Eigen::Vector2d& lever) {
   return pose.head<2>() + Eigen::Rotation2Dd(pose.z()) * lever;
 }
 
-// The antenna's speed over ground, its side slip and its turn about the axle's centre included.
+// The antenna's horizontal speed over ground at t (central difference of the truth), the side
+// slip and its turn about the axle's centre included.
 double ground_speed_mps(const MotionTruth& truth, double t_s, const Eigen::Vector2d& lever) {
   constexpr double kHalfStep = 1e-3;
   const double from = std::max(t_s - kHalfStep, 0.0);
