@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -18,22 +19,24 @@ bool shows(double mean, double standard_error, double min_size) {
          std::abs(mean) >= BatchOptions::kMountingSigmas * standard_error;
 }
 
-// What `with` found of what the signature shows: the detection's fields, whether each was
-// estimated (complete), and whether one lies beyond kMountingSigmas of its sigma and the sizes
-// that matter from where `stated` holds it.
+// What `with` found of what `shown` asks for: the values where estimated, whether each was
+// (complete), and whether one lies beyond kMountingSigmas of its sigma and the sizes that matter
+// from where `stated` holds it.
 struct MountingFound {
+  std::array<double, 2> lever_arm_m{}, lever_arm_sigma_m{};
+  double heading_bias_rad{}, heading_bias_sigma_rad{};
   bool complete = true, significant = false;
 };
-MountingFound fill_found(const BatchSummary& with, const BatchOptions& stated,
-                         BatchSummary::MountingDetection& detection) {
+MountingFound mounting_found(const BatchSummary& with, const MountingSignature& shown,
+                             const BatchOptions& stated) {
   MountingFound found;
-  if (detection.lever_arm) {
+  if (shown.lever_arm) {
     const EstimatedParameter* x = estimated_parameter(with, "lever_arm_x_m");
     const EstimatedParameter* y = estimated_parameter(with, "lever_arm_y_m");
     found.complete = found.complete && x && y;
     if (x && y) {
-      detection.lever_arm_m = {x->value, y->value};
-      detection.lever_arm_sigma_m = {x->sigma, y->sigma};
+      found.lever_arm_m = {x->value, y->value};
+      found.lever_arm_sigma_m = {x->sigma, y->sigma};
       const double dx = x->value - stated.lever_arm_x_m, dy = y->value - stated.lever_arm_y_m;
       found.significant =
           found.significant || (std::hypot(dx, dy) >= kMinLeverArmM &&
@@ -41,12 +44,12 @@ MountingFound fill_found(const BatchSummary& with, const BatchOptions& stated,
                                  std::abs(dy) > BatchOptions::kMountingSigmas * y->sigma));
     }
   }
-  if (detection.heading_bias) {
+  if (shown.heading_bias) {
     const EstimatedParameter* bias = estimated_parameter(with, "heading_bias_rad");
     found.complete = found.complete && bias;
     if (bias) {
-      detection.heading_bias_rad = bias->value;
-      detection.heading_bias_sigma_rad = bias->sigma;
+      found.heading_bias_rad = bias->value;
+      found.heading_bias_sigma_rad = bias->sigma;
       found.significant = found.significant ||
                           (std::abs(bias->value) >= kMinHeadingBiasRad &&
                            std::abs(bias->value) > BatchOptions::kMountingSigmas * bias->sigma);
@@ -94,7 +97,11 @@ BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary 
                                        without.estimate.circumference_rr_m};
   detection.circumference_with_m = {with.estimate.circumference_rl_m,
                                     with.estimate.circumference_rr_m};
-  const MountingFound found = fill_found(with, options, detection);
+  const MountingFound found = mounting_found(with, signature, options);
+  detection.lever_arm_m = found.lever_arm_m;
+  detection.lever_arm_sigma_m = found.lever_arm_sigma_m;
+  detection.heading_bias_rad = found.heading_bias_rad;
+  detection.heading_bias_sigma_rad = found.heading_bias_sigma_rad;
   detection.fitted = second_fit_stood(with) && found.complete;
   detection.taken = detection.fitted && found.significant;
   BatchSummary kept = keep_one_fit(std::move(without), std::move(with), detection.taken);
@@ -106,8 +113,9 @@ bool mounting_explained_by_latency(const BatchSummary& lagged, const BatchOption
   if (!lagged.mounting_detection || !lagged.mounting_detection->taken ||
       !lagged.latency_detection || !lagged.latency_detection->taken)
     return false;
-  BatchSummary::MountingDetection again = *lagged.mounting_detection;
-  const MountingFound found = fill_found(lagged, options, again);
+  const BatchSummary::MountingDetection& taken = *lagged.mounting_detection;
+  const MountingFound found =
+      mounting_found(lagged, {taken.lever_arm, taken.heading_bias}, options);
   return found.complete && !found.significant;
 }
 
