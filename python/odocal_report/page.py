@@ -53,6 +53,9 @@ def latency_detection_text(detection, result):
     if detection.get("by_doppler_noise"):
         text = (f"the fit without it left the Doppler speed's noise "
                 f"{detection['doppler_sigma_scale']:.1f} times the configured")
+    elif detection.get("by_gnss_noise"):
+        text = (f"the fit without it left the GNSS fixes' residuals "
+                f"{detection['gnss_sigma_scale']:.1f} times their configured noise")
     else:
         text = (f"the fit without it left the {detection['residual']} residual following the "
                 f"longitudinal acceleration (rho = {detection['correlation']:.2f})")
@@ -60,9 +63,12 @@ def latency_detection_text(detection, result):
     if latency is None or sigma is None:
         return text + "; with the latency estimated the fit did not stand: kept without"
     if detection.get("significant") and not detection["taken"]:
+        noise, scale = (("the fixes' residuals stay", detection.get("gnss_sigma_scale_with"))
+                        if detection.get("by_gnss_noise") else
+                        ("the Doppler speed's noise stays", detection.get("doppler_sigma_scale_with")))
         return (text + f"; estimated, {1000 * latency:.1f} ms (1-sigma {1000 * sigma:.1f} ms), but "
-                f"the Doppler speed's noise stays {detection['doppler_sigma_scale_with']:.1f} "
-                "times the configured with it: not a lag's, kept without the latency")
+                f"{noise} {scale:.1f} times the configured with it: not a lag's, kept without "
+                "the latency")
     if not detection["taken"]:
         return (text + f"; estimated, {1000 * latency:.1f} ms (1-sigma {1000 * sigma:.1f} ms), "
                 "not significant: kept without the latency")

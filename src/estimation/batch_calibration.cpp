@@ -190,11 +190,7 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
       if (summary.mounting_detection->taken) fitted = mounted;
     }
   }
-  // The plain model's residuals follow a_x where the wheels slip, the lag's signature too: only a
-  // fit whose tyre terms take the slip tells the two apart (the realistic urban drive, rear-driven,
-  // the plain model: the latency took the slip).
-  if (!options.detect_latency || options.estimate_latency || !common.judge_model_adequacy ||
-      summary.tyre_model.plain())
+  if (!options.detect_latency || options.estimate_latency || !common.judge_model_adequacy)
     return summary;
   const std::optional<batch::LagSignature> signature = batch::lag_signature(summary);
   if (!signature) return summary;

@@ -89,7 +89,8 @@ MountingResiduals BatchProblem::mounting_residuals() const {
         // The heading at the fix, between the keyframes' (a fix sees the vehicle turned by it).
         const double t0 = t[keyframes_[i]], t1 = t[keyframes_[i + 1]];
         const double share =
-            t1 > t0 ? std::clamp((log_.gnss.t_s[fix] - t0) / (t1 - t0), 0.0, 1.0) : 0.0;
+            t1 > t0 ? std::clamp((log_.gnss.t_s[fix] - fix_lag_s() - t0) / (t1 - t0), 0.0, 1.0)
+                    : 0.0;
         const double yaw = poses_[i][2] + share * (poses_[i + 1][2] - poses_[i][2]);
         const double c = std::cos(yaw), s = std::sin(yaw);
         ahead.add(i, c * error.x() + s * error.y());

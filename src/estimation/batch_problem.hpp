@@ -28,10 +28,14 @@
 
 namespace odocal::batch {
 
-// The index of the first of `times` (ascending) at or after t_s.
-inline std::size_t first_at_or_after(const std::vector<double>& times, double t_s) {
-  return static_cast<std::size_t>(std::lower_bound(times.begin(), times.end(), t_s) -
-                                  times.begin());
+// The index of the first of `times` (ascending) whose instant, time - lag_s, is at or after t_s
+// (as visit_fixes compares it, so that parts of a pass meet where one pass would be).
+inline std::size_t first_at_or_after(const std::vector<double>& times, double t_s,
+                                     double lag_s = 0.0) {
+  return static_cast<std::size_t>(
+      std::partition_point(times.begin(), times.end(),
+                           [&](double time) { return time - lag_s < t_s; }) -
+      times.begin());
 }
 
 // Keyframe intervals per thread whose measurements for_each_measurement whitens before visiting
@@ -188,8 +192,8 @@ class BatchProblem {
 
   // Largest relative change of the parameters since the last pre-integration (for the tyre
   // coefficients: of the circumference they make at the log's RMS driving state; for the latency,
-  // a millisecond counts as 1e-4: the Doppler speed's window is shifted by the latency it was
-  // built at, and the rest is taken to first order).
+  // a millisecond counts as 1e-4: the fixes' instants and the Doppler speed's window are shifted
+  // by the latency they were built at, and the rest is taken to first order).
   double relative_change() const {
     constexpr double kPerSecondOfLatency = 0.1;
     return std::max(change_from(params_lin_),
@@ -318,14 +322,20 @@ class BatchProblem {
   MotionAt motion_at(std::size_t i, const PreintegratedSegment& seg, double t_s) const;
 
   // Calls visit(k, motion) for every sample k of a stream's times `t_s` (GNSS fixes, heading
-  // samples) inside segment i, from `next` on (samples before the segment are skipped; `next`
-  // ends past it).
+  // samples) whose instant, t_s - lag_s, lies inside segment i, from `next` on (samples before the
+  // segment are skipped; `next` ends past it). The motion is that instant's, its position moved
+  // on by the velocity there times lag_s: a residual that subtracts velocity x latency then puts
+  // a fix stamped t at t - lag_s exactly and takes only latency - lag_s to first order.
   template <typename Visit>
   void visit_fixes(std::size_t i, const PreintegratedSegment& seg, const std::vector<double>& t_s,
-                   std::size_t& next, Visit&& visit) const {
+                   double lag_s, std::size_t& next, Visit&& visit) const {
     const double begin = log_.wheels.t_s[keyframes_[i]], end = log_.wheels.t_s[keyframes_[i + 1]];
-    while (next < t_s.size() && t_s[next] < begin) ++next;
-    for (; next < t_s.size() && t_s[next] < end; ++next) visit(next, motion_at(i, seg, t_s[next]));
+    while (next < t_s.size() && t_s[next] - lag_s < begin) ++next;
+    for (; next < t_s.size() && t_s[next] - lag_s < end; ++next) {
+      MotionAt at = motion_at(i, seg, t_s[next] - lag_s);
+      at.motion.delta.head<2>() += lag_s * at.velocity;
+      visit(next, at);
+    }
   }
 
   // Fix j's whitened residual at the current unknowns (robust loss not applied).
@@ -339,6 +349,9 @@ class BatchProblem {
   }
 
   bool use_heading() const { return batch_.use_heading && log_.heading; }
+  // How long before its stamp a GNSS fix is placed (visit_fixes): the latency the problem was
+  // linearised at.
+  double fix_lag_s() const { return latency_lin_; }
   // Where a pass over the intervals in time order stands at interval i's start, so that a part of
   // them can start there: its first GNSS fix and heading sample (0 without headings).
   struct MeasurementCursors {
@@ -346,7 +359,7 @@ class BatchProblem {
   };
   MeasurementCursors cursors_at(std::size_t interval) const {
     const double start_s = log_.wheels.t_s[keyframes_[interval]];
-    return {first_at_or_after(log_.gnss.t_s, start_s),
+    return {first_at_or_after(log_.gnss.t_s, start_s, fix_lag_s()),
             use_heading() ? first_at_or_after(log_.heading->t_s, start_s) : 0};
   }
 
@@ -393,11 +406,12 @@ class BatchProblem {
         if (i % interval_stride != 0 || gap_segment(i)) continue;
         const PreintegratedSegment seg = preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1],
                                                       at, noise_, tyre_fitted() ? &tyre : nullptr);
-        visit_fixes(i, seg, log_.gnss.t_s, next_fix, [&](std::size_t j, const MotionAt& motion) {
-          out.push_back({j, i, whitened_fix(j, i, motion), false});
-        });
+        visit_fixes(i, seg, log_.gnss.t_s, fix_lag_s(), next_fix,
+                    [&](std::size_t j, const MotionAt& motion) {
+                      out.push_back({j, i, whitened_fix(j, i, motion), false});
+                    });
         if (!headings) continue;
-        visit_fixes(i, seg, log_.heading->t_s, next_heading,
+        visit_fixes(i, seg, log_.heading->t_s, 0.0, next_heading,
                     [&](std::size_t j, const MotionAt& motion) {
                       const batch::HeadingResidual residual{
                           motion.motion, log_.heading->heading_rad[j], sensors_.heading_sigma_rad};
@@ -516,7 +530,7 @@ class BatchProblem {
   WheelNoise noise_;
   double quantisation_sigma_rev_ = 0.0;
   batch::ParamsVector params_lin_ = batch::ParamsVector::Zero();
-  double latency_lin_ = 0.0;          // the latency the Doppler speed's residuals were built at
+  double latency_lin_ = 0.0;  // the latency the fixes' and Doppler speed's residuals were built at
   std::vector<DrivingState> states_;  // per wheel sample; empty without tyre model and limits
   std::vector<std::uint8_t> rough_segment_;  // per interval: outside the gentle limits
   TyreModel::Vector regressor_rms_ = TyreModel::Vector::Zero();

@@ -263,7 +263,7 @@ void BatchProblem::fold_interval(std::size_t i, const PreintegratedSegment& seg,
                                  FoldTally& tally) {
   batch::RowFold<batch::kFoldedColumns> fold;
   const Eigen::Vector2d origin(poses_[i][0], poses_[i][1]);
-  visit_fixes(i, seg, log_.gnss.t_s, next_fix, [&](std::size_t j, const MotionAt& at) {
+  visit_fixes(i, seg, log_.gnss.t_s, fix_lag_s(), next_fix, [&](std::size_t j, const MotionAt& at) {
     const float weight = static_cast<float>(robust(whitened_fix(j, i, at).squaredNorm())[1]);
     tally.max_weight_change =
         std::max(tally.max_weight_change, std::abs(weight - gnss_weights_[j]));
@@ -275,7 +275,7 @@ void BatchProblem::fold_interval(std::size_t i, const PreintegratedSegment& seg,
   });
   if (use_heading()) {
     const HeadingStream& heading = *log_.heading;
-    visit_fixes(i, seg, heading.t_s, next_heading, [&](std::size_t j, const MotionAt& at) {
+    visit_fixes(i, seg, heading.t_s, 0.0, next_heading, [&](std::size_t j, const MotionAt& at) {
       const double predicted = poses_[i][2] + at.motion.delta(2) + heading_bias_;
       const double measured = predicted + batch::wrapped(heading.heading_rad[j] - predicted);
       ++tally.headings;

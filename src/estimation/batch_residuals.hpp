@@ -75,7 +75,10 @@ struct OdometryResidual {
   }
 };
 
-// One GNSS fix, at an instant between keyframe i (pose) and the next.
+// One GNSS fix, at an instant between keyframe i (pose) and the next. Its motion is that of the
+// instant the fix reports at the latency the problem was linearised at, moved on by the velocity
+// times that latency (BatchProblem::visit_fixes), so that subtracting the velocity times the
+// latency takes only the latency's change since to first order.
 struct GnssResidual {
   RelativeMotion motion;
   Eigen::Vector2d velocity_in_keyframe;  // of the reference point at the fix, keyframe frame

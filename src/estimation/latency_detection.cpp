@@ -10,23 +10,41 @@
 
 namespace odocal::batch {
 
+double gnss_sigma_scale(const BatchSummary& summary) {
+  const GnssNoiseReport& noise = summary.gnss_noise;
+  return noise.configured_sigma_m > 0.0 ? noise.residual_sigma_m / noise.configured_sigma_m : 1.0;
+}
+
 std::optional<LagSignature> lag_signature(const BatchSummary& summary) {
-  std::optional<ResidualDependence> strongest, doppler;
+  std::optional<ResidualDependence> strongest, doppler, along_track;
   for (const ResidualDependence& d : summary.model_adequacy.dependences) {
     const bool lag_shows_here = d.residual == "along-track" || d.residual == "Doppler speed";
     if (!lag_shows_here || d.quantity != "longitudinal acceleration") continue;
-    if (d.residual == "Doppler speed") doppler = d;
+    (d.residual == "Doppler speed" ? doppler : along_track) = d;
     if (!d.counts()) continue;
     if (!strongest || std::abs(d.correlation) > std::abs(strongest->correlation)) strongest = d;
   }
-  if (strongest) return LagSignature{*strongest, false};
-  if (summary.doppler_sigma_scale < kLagDopplerScale) return std::nullopt;
-  return LagSignature{
-      doppler.value_or(ResidualDependence{"Doppler speed", "longitudinal acceleration", 0.0, 0.0}),
-      true};
+  // The plain model's residuals follow a_x where the wheels slip, the lag's signature too, and
+  // its Doppler noise widens with the slip: only a fit whose tyre terms take the slip tells them
+  // apart by either (the realistic urban drive, rear-driven, the plain model: the latency took
+  // the slip). The fixes' noise is the poses' to follow, slip or none.
+  const bool tyre_terms = !summary.tyre_model.plain();
+  if (tyre_terms && strongest) return LagSignature{*strongest};
+  if (tyre_terms && summary.doppler_sigma_scale >= kLagDopplerScale) {
+    return LagSignature{doppler.value_or(ResidualDependence{"Doppler speed",
+                                                            "longitudinal acceleration", 0.0, 0.0}),
+                        true};
+  }
+  if (gnss_sigma_scale(summary) >= kLagGnssScale) {
+    return LagSignature{along_track.value_or(ResidualDependence{
+                            "along-track", "longitudinal acceleration", 0.0, 0.0}),
+                        false, true};
+  }
+  return std::nullopt;
 }
 
-LatencyFound latency_found(const BatchSummary& with, double stated_s, bool by_doppler_noise) {
+LatencyFound latency_found(const BatchSummary& with, double stated_s,
+                           const LagSignature& signature) {
   LatencyFound found;
   if (!second_fit_stood(with)) return found;
   found.latency = estimated_parameter(with, "latency_s");
@@ -35,8 +53,9 @@ LatencyFound latency_found(const BatchSummary& with, double stated_s, bool by_do
                       BatchOptions::kLatencySigmas * found.latency->sigma;
   // The realistic circuit, rear-driven, the regression terms chosen by hand: the Doppler noise
   // 56 times the configured, a latency of 39 ms at 10 sigma, the noise 14 times with it.
-  found.taken =
-      found.significant && (!by_doppler_noise || with.doppler_sigma_scale < kLagDopplerScale);
+  found.taken = found.significant &&
+                (!signature.by_doppler_noise || with.doppler_sigma_scale < kLagDopplerScale) &&
+                (!signature.by_gnss_noise || gnss_sigma_scale(with) < kLagGnssScale);
   return found;
 }
 
@@ -45,47 +64,66 @@ BatchSummary take_latency_where_significant(BatchSummary without, BatchSummary w
   BatchSummary::LatencyDetection detection{signature.dependence};
   detection.doppler_sigma_scale = without.doppler_sigma_scale;
   detection.by_doppler_noise = signature.by_doppler_noise;
+  detection.gnss_sigma_scale = gnss_sigma_scale(without);
+  detection.by_gnss_noise = signature.by_gnss_noise;
   detection.latency_s = detection.sigma_s = std::numeric_limits<double>::quiet_NaN();
   detection.circumference_without_m = {without.estimate.circumference_rl_m,
                                        without.estimate.circumference_rr_m};
-  if (const LatencyFound found = latency_found(with, stated_s, signature.by_doppler_noise);
-      found.latency) {
+  if (const LatencyFound found = latency_found(with, stated_s, signature); found.latency) {
     detection.latency_s = found.latency->value;
     detection.sigma_s = found.latency->sigma;
     detection.significant = found.significant;
     detection.taken = found.taken;
     detection.doppler_sigma_scale_with = with.doppler_sigma_scale;
+    detection.gnss_sigma_scale_with = gnss_sigma_scale(with);
   }
   BatchSummary kept = keep_one_fit(std::move(without), std::move(with), detection.taken);
   kept.latency_detection = detection;
   return kept;
 }
 
+namespace {
+
+std::string what_showed_it(const BatchSummary::LatencyDetection& detection) {
+  const ResidualDependence& s = detection.signature;
+  if (detection.by_doppler_noise) {
+    return fmt::format(
+        "the fit without it left the Doppler speed's noise {:.1f} times the configured (its "
+        "residual against the longitudinal acceleration: rho = {:.2f}), as a lag between the GNSS "
+        "and the wheels widens it",
+        detection.doppler_sigma_scale, s.correlation);
+  }
+  if (detection.by_gnss_noise) {
+    return fmt::format(
+        "the fit without it left the GNSS fixes' residuals {:.1f} times their configured noise, "
+        "as a lag between the GNSS and the wheels leaves fixes that are more precise than it "
+        "off the path",
+        detection.gnss_sigma_scale);
+  }
+  return fmt::format(
+      "the fit without it left the {} residual following the longitudinal acceleration (rho = "
+      "{:.2f}), as a lag between the GNSS and the wheels does",
+      s.residual, s.correlation);
+}
+
+}  // namespace
+
 std::string latency_detection_report(const BatchSummary::LatencyDetection& detection,
                                      const OdometryParams& estimate) {
-  const ResidualDependence& s = detection.signature;
-  const std::string seen =
-      detection.by_doppler_noise
-          ? fmt::format(
-                "the fit without it left the Doppler speed's noise {:.1f} times the configured "
-                "(its residual against the longitudinal acceleration: rho = {:.2f}), as a lag "
-                "between the GNSS and the wheels widens it",
-                detection.doppler_sigma_scale, s.correlation)
-          : fmt::format(
-                "the fit without it left the {} residual following the longitudinal acceleration "
-                "(rho = {:.2f}), as a lag between the GNSS and the wheels does",
-                s.residual, s.correlation);
+  const std::string seen = what_showed_it(detection);
   if (!std::isfinite(detection.latency_s)) {
     return fmt::format("{:<13}{}; with the latency estimated the fit did not stand: kept without\n",
                        "latency", seen);
   }
   const double sigmas = std::abs(detection.latency_s) / detection.sigma_s;
   if (detection.significant && !detection.taken) {
+    const bool fixes = detection.by_gnss_noise;
     return fmt::format(
-        "{:<13}{}; estimated, {:.1f} ms (1-sigma {:.1f} ms), but the Doppler speed's noise stays "
-        "{:.1f} times the configured with it: not a lag's, kept without the latency\n",
+        "{:<13}{}; estimated, {:.1f} ms (1-sigma {:.1f} ms), but {} {:.1f} times the configured "
+        "with it: not a lag's, kept without the latency\n",
         "latency", seen, 1e3 * detection.latency_s, 1e3 * detection.sigma_s,
-        detection.doppler_sigma_scale_with);
+        fixes ? "the fixes' residuals stay" : "the Doppler speed's noise stays",
+        fixes ? detection.gnss_sigma_scale_with : detection.doppler_sigma_scale_with);
   }
   if (!detection.taken) {
     return fmt::format(

@@ -22,26 +22,38 @@ namespace odocal::batch {
 // Doppler noise 5.5 times the configured, refused at a sigma of 19 mm), that is what is left.
 inline constexpr double kLagDopplerScale = 2.0;
 
+// Fixes more precise than the lag leaves them: RTK's 2 cm stamped 150 ms late are 0.95 m RMS off
+// the fitted path at the urban drive's speeds, which the noise adaptation took for a correlated
+// error of the receiver (sigma x35), the fit plain and no dependence counted. Where the fixes'
+// residuals are this many times the configured noise or more, a latency is looked for.
+inline constexpr double kLagGnssScale = 2.0;
+
+// The fixes' residual RMS over the configured noise, of the fit's first solve.
+double gnss_sigma_scale(const BatchSummary& summary);
+
 // The dependence a lag leaves in the fit's residuals: along-track or Doppler speed against the
-// longitudinal acceleration, as the model-adequacy judgement counts it; or, where none counts but
-// the Doppler speed's noise was widened kLagDopplerScale times or more, the Doppler speed's
-// dependence as it stands (`by_doppler_noise`). None: neither is there.
+// longitudinal acceleration, as the model-adequacy judgement counts it (only in a fit whose tyre
+// terms take the slip, which leaves the same signature); or, where none counts but the Doppler
+// speed's noise was widened kLagDopplerScale times or more, the Doppler speed's dependence as it
+// stands (`by_doppler_noise`); or, under any model, the fixes' residuals kLagGnssScale times
+// their configured noise or more (`by_gnss_noise`). None: neither is there.
 struct LagSignature {
   ResidualDependence dependence;
-  bool by_doppler_noise{};
+  bool by_doppler_noise{}, by_gnss_noise{};
 };
 std::optional<LagSignature> lag_signature(const BatchSummary& summary);
 
 // What a fit with the latency estimated found: the latency (null where the fit did not stand or
 // has none), whether it lies beyond BatchOptions::kLatencySigmas of its sigma from `stated_s`,
-// and whether it is taken: significant and, where the Doppler noise was the sign it was looked
-// for by, bringing that noise under kLagDopplerScale (a model that misfits the log widens the
-// noise too, and a latency takes some of any misfit).
+// and whether it is taken: significant and, where a noise was the sign it was looked for by,
+// bringing that noise under its scale (a model that misfits the log widens the noise too, and a
+// latency takes some of any misfit).
 struct LatencyFound {
   const EstimatedParameter* latency{};
   bool significant{}, taken{};
 };
-LatencyFound latency_found(const BatchSummary& with, double stated_s, bool by_doppler_noise);
+LatencyFound latency_found(const BatchSummary& with, double stated_s,
+                           const LagSignature& signature);
 
 // The fit with the latency estimated where the latency lies beyond
 // BatchOptions::kLatencySigmas of its sigma from the one stated (BatchOptions::latency_s), the fit

@@ -124,13 +124,15 @@ BatchSummary drop_mounting_explained_by_latency(BatchSummary lagged, BatchSummar
   BatchSummary::MountingDetection mounting = *lagged.mounting_detection;
   BatchSummary::LatencyDetection lag = *lagged.latency_detection;
   // Taken as the latency was.
-  const LatencyFound found = latency_found(lag_alone, options.latency_s, lag.by_doppler_noise);
+  const LatencyFound found = latency_found(
+      lag_alone, options.latency_s, {lag.signature, lag.by_doppler_noise, lag.by_gnss_noise});
   if (found.taken) {
     mounting.taken = false;
     mounting.explained_by_latency = true;
     lag.latency_s = found.latency->value;
     lag.sigma_s = found.latency->sigma;
     lag.doppler_sigma_scale_with = lag_alone.doppler_sigma_scale;
+    lag.gnss_sigma_scale_with = gnss_sigma_scale(lag_alone);
     lag.circumference_without_m = mounting.circumference_without_m;
   }
   BatchSummary kept = keep_one_fit(std::move(lagged), std::move(lag_alone), found.taken);

@@ -201,6 +201,9 @@ void add_details(json& out, const BatchSummary& s) {
         {"by_doppler_noise", d.by_doppler_noise},
         {"significant", d.significant},
         {"doppler_sigma_scale_with", d.doppler_sigma_scale_with},
+        {"gnss_sigma_scale", d.gnss_sigma_scale},
+        {"by_gnss_noise", d.by_gnss_noise},
+        {"gnss_sigma_scale_with", d.gnss_sigma_scale_with},
         {"circumference_without_m", {d.circumference_without_m[0], d.circumference_without_m[1]}}};
   }
   const auto mounting_json = [](const MountingResiduals& m) {

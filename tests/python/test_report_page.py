@@ -81,7 +81,14 @@ def test_a_latency_found_is_shown_with_what_it_moved():
     assert dict(summary_rows(result))["latency"].endswith(
         "but the Doppler speed's noise stays 14.0 times the configured with it: not a lag's, "
         "kept without the latency")
-    result["latency_detection"].update(by_doppler_noise=False, significant=False)
+    result["latency_detection"].update(by_doppler_noise=False, by_gnss_noise=True,
+                                       gnss_sigma_scale=47.6, gnss_sigma_scale_with=3.14)
+    text = dict(summary_rows(result))["latency"]
+    assert text.startswith("the fit without it left the GNSS fixes' residuals 47.6 times their "
+                           "configured noise; estimated")
+    assert text.endswith("but the fixes' residuals stay 3.1 times the configured with it: not a "
+                         "lag's, kept without the latency")
+    result["latency_detection"].update(by_gnss_noise=False, significant=False)
     result["latency_detection"].update(taken=False, latency_s=-0.0012, sigma_s=0.001)
     assert dict(summary_rows(result))["latency"].endswith(
         "-1.2 ms (1-sigma 1.0 ms), not significant: kept without the latency")

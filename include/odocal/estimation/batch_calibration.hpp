@@ -243,10 +243,15 @@ struct BatchSummary : CalibrationSummary {
     // a_x (the regression terms took it), a scale beyond kLagDopplerScale was the sign looked at.
     double doppler_sigma_scale{1.0};
     bool by_doppler_noise{};
-    // The latency beyond kLatencySigmas of its sigma from the stated; looked for by the Doppler
-    // noise, taken only where the fit with it brings that noise under kLagDopplerScale.
+    // That fit's GNSS fixes' residual RMS over their configured noise; a scale beyond
+    // kLagGnssScale was the sign looked at where neither of the above was.
+    double gnss_sigma_scale{1.0};
+    bool by_gnss_noise{};
+    // The latency beyond kLatencySigmas of its sigma from the stated; looked for by a noise,
+    // taken only where the fit with it brings that noise under its scale.
     bool significant{};
     double doppler_sigma_scale_with{1.0};
+    double gnss_sigma_scale_with{1.0};
     double latency_s{}, sigma_s{};
     bool taken{};  // the latency beyond kLatencySigmas of its sigma: this summary is that fit
     std::array<double, 2> circumference_without_m{};  // the fit without the latency's
