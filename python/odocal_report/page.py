@@ -63,11 +63,13 @@ def latency_detection_text(detection, result):
     if latency is None or sigma is None:
         return text + "; with the latency estimated the fit did not stand: kept without"
     if detection.get("significant") and not detection["taken"]:
-        noise, scale = (("the fixes' residuals stay", detection.get("gnss_sigma_scale_with"))
-                        if detection.get("by_gnss_noise") else
-                        ("the Doppler speed's noise stays", detection.get("doppler_sigma_scale_with")))
+        noise, scale, whose = (
+            ("the fixes' residuals stay", detection.get("gnss_sigma_scale_with"), "a lag's alone")
+            if detection.get("by_gnss_noise") else
+            ("the Doppler speed's noise stays", detection.get("doppler_sigma_scale_with"),
+             "a lag's"))
         return (text + f"; estimated, {1000 * latency:.1f} ms (1-sigma {1000 * sigma:.1f} ms), but "
-                f"{noise} {scale:.1f} times the configured with it: not a lag's, kept without "
+                f"{noise} {scale:.1f} times the configured with it: not {whose}, kept without "
                 "the latency")
     if not detection["taken"]:
         return (text + f"; estimated, {1000 * latency:.1f} ms (1-sigma {1000 * sigma:.1f} ms), "

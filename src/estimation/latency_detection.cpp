@@ -55,7 +55,7 @@ LatencyFound latency_found(const BatchSummary& with, double stated_s,
   // 56 times the configured, a latency of 39 ms at 10 sigma, the noise 14 times with it.
   found.taken = found.significant &&
                 (!signature.by_doppler_noise || with.doppler_sigma_scale < kLagDopplerScale) &&
-                (!signature.by_gnss_noise || gnss_sigma_scale(with) < kLagGnssScale);
+                (!signature.by_gnss_noise || gnss_sigma_scale(with) < kLagGnssExplained);
   return found;
 }
 
@@ -120,17 +120,20 @@ std::string latency_detection_report(const BatchSummary::LatencyDetection& detec
     const bool fixes = detection.by_gnss_noise;
     return fmt::format(
         "{:<13}{}; estimated, {:.1f} ms (1-sigma {:.1f} ms), but {} {:.1f} times the configured "
-        "with it: not a lag's, kept without the latency\n",
+        "with it: not {}, kept without the latency\n",
         "latency", seen, 1e3 * detection.latency_s, 1e3 * detection.sigma_s,
         fixes ? "the fixes' residuals stay" : "the Doppler speed's noise stays",
-        fixes ? detection.gnss_sigma_scale_with : detection.doppler_sigma_scale_with);
+        fixes ? detection.gnss_sigma_scale_with : detection.doppler_sigma_scale_with,
+        fixes ? "a lag's alone" : "a lag's");
   }
   if (!detection.taken) {
+    const bool by_noise = detection.by_doppler_noise || detection.by_gnss_noise;
     return fmt::format(
-        "{:<13}{}; estimated, {:.1f} ms (1-sigma {:.1f} ms) is within {:g} sigma of none: the "
-        "dependence is the model's, kept without the latency\n",
+        "{:<13}{}; estimated, {:.1f} ms (1-sigma {:.1f} ms) is within {:g} sigma of none: the {}, "
+        "kept without the latency\n",
         "latency", seen, 1e3 * detection.latency_s, 1e3 * detection.sigma_s,
-        BatchOptions::kLatencySigmas);
+        BatchOptions::kLatencySigmas,
+        by_noise ? "noise is not a lag's" : "dependence is the model's");
   }
   return fmt::format(
       "{:<13}{}; estimated: the GNSS fixes {} the wheels by {:.1f} ms (1-sigma {:.1f} ms, {:.0f} "

@@ -198,6 +198,8 @@ TEST(LatencyDetection, FixesNoisierThanStatedAreNoLag) {
   EXPECT_TRUE(s.latency_detection->by_gnss_noise);
   EXPECT_FALSE(s.latency_detection->taken) << report;
   EXPECT_FALSE(estimated(s, "latency_s"));
+  EXPECT_NE(report.find("the noise is not a lag's, kept without the latency"), std::string::npos)
+      << report;
   EXPECT_TRUE(s.gnss_noise.adapted);
 }
 

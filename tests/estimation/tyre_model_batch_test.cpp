@@ -132,7 +132,8 @@ TEST(TyreModelBatch, RecoversKnownCoefficientsWhereThePlainModelIsBiased) {
   // Biased beyond its sigma as it fits; judged against the physical terms, its sigma carries the
   // gap to their circumferences at rest.
   const BatchSummary bare = calibrate_batch(log, plain_options, testing::unjudged_options());
-  EXPECT_EQ(bare.estimate.circumference_rl_m, plain.estimate.circumference_rl_m);
+  EXPECT_EQ(bare.estimate.circumference_rl_m, plain.estimate.circumference_rl_m)
+      << plain.full_report();
   EXPECT_GT(plain_error, 3.0 * bare.sigma_rl_m());
   EXPECT_LT(plain_error, 3.0 * plain.sigma_rl_m()) << plain.full_report();
   EXPECT_LT(extended_error, plain_error);
@@ -398,7 +399,8 @@ TEST(TyreModelBatch, APlainFitThatANoTyreModelExplainsDecisivelyBetterCarriesIts
     EXPECT_LT(physical.bic, selection.plain_bic - batch::kDecisiveBic);
     // Under none the same plain fit (auto's stands with the track freed, 26 mm from it).
     if (choice == TyreModelChoice::kNone) {
-      EXPECT_EQ(judged.estimate.circumference_rl_m, bare.estimate.circumference_rl_m);
+      EXPECT_EQ(judged.estimate.circumference_rl_m, bare.estimate.circumference_rl_m)
+          << judged.full_report();
     }
     EXPECT_LT(std::abs(judged.estimate.circumference_rl_m - truth_m), 3.0 * judged.sigma_rl_m())
         << judged.full_report();

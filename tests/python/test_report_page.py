@@ -87,7 +87,7 @@ def test_a_latency_found_is_shown_with_what_it_moved():
     assert text.startswith("the fit without it left the GNSS fixes' residuals 47.6 times their "
                            "configured noise; estimated")
     assert text.endswith("but the fixes' residuals stay 3.1 times the configured with it: not a "
-                         "lag's, kept without the latency")
+                         "lag's alone, kept without the latency")
     result["latency_detection"].update(by_gnss_noise=False, significant=False)
     result["latency_detection"].update(taken=False, latency_s=-0.0012, sigma_s=0.001)
     assert dict(summary_rows(result))["latency"].endswith(
