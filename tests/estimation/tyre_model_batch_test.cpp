@@ -401,6 +401,13 @@ TEST(TyreModelBatch, APlainFitThatANoTyreModelExplainsDecisivelyBetterCarriesIts
     if (choice == TyreModelChoice::kNone) {
       EXPECT_EQ(judged.estimate.circumference_rl_m, bare.estimate.circumference_rl_m)
           << judged.full_report();
+      // The misfit widens the fixes (2.2 times), and a latency takes part of it (327 ms at 9
+      // sigma, leaving 1.56 times): not the whole, so not taken.
+      ASSERT_TRUE(judged.latency_detection.has_value()) << judged.full_report();
+      EXPECT_TRUE(judged.latency_detection->by_gnss_noise);
+      EXPECT_TRUE(judged.latency_detection->significant);
+      EXPECT_FALSE(judged.latency_detection->taken);
+      EXPECT_NE(judged.full_report().find("not a lag's alone"), std::string::npos);
     }
     EXPECT_LT(std::abs(judged.estimate.circumference_rl_m - truth_m), 3.0 * judged.sigma_rl_m())
         << judged.full_report();
