@@ -236,7 +236,8 @@ struct BatchSummary : CalibrationSummary {
   // log's result was not usable.
   std::optional<PartsConsistency> consistency;
   // BatchOptions::detect_latency: where the fit without the latency left its residual following
-  // the longitudinal acceleration, the latency estimated, and whether that fit stands.
+  // the longitudinal acceleration (or its Doppler or fixes' noise widened), the latency
+  // estimated, and whether that fit stands.
   struct LatencyDetection {
     ResidualDependence signature;  // what the fit without the latency left
     // That fit's Doppler noise over the configured; where the residuals showed no dependence on
@@ -248,7 +249,8 @@ struct BatchSummary : CalibrationSummary {
     double gnss_sigma_scale{1.0};
     bool by_gnss_noise{};
     // The latency beyond kLatencySigmas of its sigma from the stated; looked for by a noise,
-    // taken only where the fit with it brings that noise under its scale.
+    // taken only where the fit with it brings that noise under kLagDopplerScale (the fixes':
+    // kLagGnssExplained).
     bool significant{};
     double doppler_sigma_scale_with{1.0};
     double gnss_sigma_scale_with{1.0};
