@@ -89,17 +89,30 @@ def mounting_detection_text(detection, result):
         ahead, left = signature.get("gnss_mean_m", [0.0, 0.0])
         doppler = (f", the Doppler speed as from {signature['doppler_left_m']:+.2f} m left"
                    if "doppler_left_m" in signature else "")
-        seen.append(f"the GNSS fixes {ahead:+.2f} m ahead and {left:+.2f} m left of the fitted "
+        by_noise = detection.get("by_gnss_noise")
+        seen.append(f"the GNSS fixes' residuals {detection.get('gnss_sigma_scale_without', 0):.1f} "
+                    "times their configured noise (their means showed no antenna)" if by_noise else
+                    f"the GNSS fixes {ahead:+.2f} m ahead and {left:+.2f} m left of the fitted "
                     f"path{doppler}")
         (x, y), (sx, sy) = detection["lever_arm_m"], detection["lever_arm_sigma_m"]
+        then = (f", which leaves the fixes {detection.get('gnss_sigma_scale_with', 0):.1f} times"
+                if by_noise else "")
         found.append(f"the antenna {x:+.3f} m ahead (1-sigma {sx:.3f}) and {y:+.3f} m left "
-                     f"(1-sigma {sy:.3f}) of the rear axle's centre")
+                     f"(1-sigma {sy:.3f}) of the rear axle's centre{then}")
     if "heading_bias_rad" in detection:
         seen.append(f"heading.csv {math.degrees(signature.get('heading_mean_rad', 0.0)):+.2f} deg "
                     "off the fitted heading")
         found.append(f"heading.csv reading {math.degrees(detection['heading_bias_rad']):+.2f} deg "
                      f"(1-sigma {math.degrees(detection['heading_bias_sigma_rad']):.2f}) beyond "
                      "the heading")
+    if detection.get("found_beside_latency"):
+        without, with_it = detection["circumference_without_m"], detection["circumference_with_m"]
+        moved = [1000 * (with_it[i] - without[i]) for i in range(2)]
+        return (f"the latency's fit alone left the GNSS fixes' residuals "
+                f"{detection['gnss_sigma_scale_without']:.1f} times their configured noise; "
+                "estimated beside it: " + "; ".join(found) + f"; the two leave them "
+                f"{detection['gnss_sigma_scale_with']:.1f} times and move the circumferences by "
+                f"{moved[0]:+.3g} / {moved[1]:+.3g} mm")
     text = "the fit without them left " + "; ".join(seen)
     if not detection["fitted"]:
         return text + "; with them estimated the fit did not stand: kept without"

@@ -18,6 +18,7 @@
 #include "calibration_run.hpp"
 #include "doppler_scale.hpp"
 #include "latency_detection.hpp"
+#include "lever_arm_by_fixes.hpp"
 #include "mounting_detection.hpp"
 #include "odocal/error.hpp"
 
@@ -189,6 +190,16 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
           *signature, fitted);
       if (summary.mounting_detection->taken) fitted = mounted;
     }
+    // Precise fixes whose means the poses took: their noise shows an antenna off the centre.
+    if (batch::lever_arm_worth_fitting_by_fixes(summary, fitted)) {
+      BatchOptions with_lever_arm = fitted;
+      with_lever_arm.estimate_lever_arm = true;
+      summary = batch::take_lever_arm_by_fixes(
+          std::move(summary), calibrate_as_configured(log, run, with_lever_arm, common, unfitted),
+          fitted);
+      if (summary.mounting_detection && summary.mounting_detection->by_gnss_noise)
+        fitted = with_lever_arm;
+    }
   }
   if (!options.detect_latency || options.estimate_latency || !common.judge_model_adequacy)
     return summary;
@@ -202,6 +213,13 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
       std::move(summary), calibrate_as_configured(log, run, lagged, common, unfitted), *signature,
       options.latency_s);
   result.mounting_detection = std::move(mounting_detection);
+  // Precise fixes that a lag alone does not explain: an antenna off the centre beside it.
+  if (batch::lever_arm_worth_fitting_beside_latency(result, fitted)) {
+    BatchOptions both = lagged;
+    both.estimate_lever_arm = true;
+    return batch::take_lever_arm_beside_latency(
+        std::move(result), calibrate_as_configured(log, run, both, common, unfitted), options);
+  }
   // A lag shows in the fixes as an antenna behind the axle: where the mounting taken is no longer
   // significant beside the latency, the log is calibrated with the latency alone.
   if (!batch::mounting_explained_by_latency(result, options)) return result;

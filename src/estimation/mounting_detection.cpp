@@ -19,14 +19,8 @@ bool shows(double mean, double standard_error, double min_size) {
          std::abs(mean) >= BatchOptions::kMountingSigmas * standard_error;
 }
 
-// What `with` found of what `shown` asks for: the values where estimated, whether each was
-// (complete), and whether one lies beyond kMountingSigmas of its sigma and the sizes that matter
-// from where `stated` holds it.
-struct MountingFound {
-  std::array<double, 2> lever_arm_m{}, lever_arm_sigma_m{};
-  double heading_bias_rad{}, heading_bias_sigma_rad{};
-  bool complete = true, significant = false;
-};
+}  // namespace
+
 MountingFound mounting_found(const BatchSummary& with, const MountingSignature& shown,
                              const BatchOptions& stated) {
   MountingFound found;
@@ -57,8 +51,6 @@ MountingFound mounting_found(const BatchSummary& with, const MountingSignature& 
   }
   return found;
 }
-
-}  // namespace
 
 std::optional<MountingSignature> mounting_signature(const MountingResiduals& residuals,
                                                     const BatchOptions& options) {
@@ -151,16 +143,26 @@ std::string mounting_detection_report(const BatchSummary::MountingDetection& det
           fmt::format(" and the Doppler speed as from {:+.2f} m left (standard error {:.3f} m)",
                       s.doppler_left_m, s.doppler_left_standard_error_m);
     }
-    seen.push_back(fmt::format(
-        "the GNSS fixes {:+.2f} m ahead and {:+.2f} m left of the fitted path (standard error "
-        "{:.3f} / {:.3f} m){}, as an antenna off the rear axle's centre leaves them",
-        s.gnss_mean_m[0], s.gnss_mean_m[1], s.gnss_standard_error_m[0], s.gnss_standard_error_m[1],
-        doppler));
+    if (detection.by_gnss_noise) {
+      seen.push_back(fmt::format(
+          "the GNSS fixes' residuals {:.1f} times their configured noise, as an antenna off the "
+          "rear axle's centre leaves fixes more precise than it (their means showed none)",
+          detection.gnss_sigma_scale_without));
+    } else {
+      seen.push_back(fmt::format(
+          "the GNSS fixes {:+.2f} m ahead and {:+.2f} m left of the fitted path (standard error "
+          "{:.3f} / {:.3f} m){}, as an antenna off the rear axle's centre leaves them",
+          s.gnss_mean_m[0], s.gnss_mean_m[1], s.gnss_standard_error_m[0],
+          s.gnss_standard_error_m[1], doppler));
+    }
     found.push_back(fmt::format(
         "the antenna {:+.3f} m ahead (1-sigma {:.3f}) and {:+.3f} m left (1-sigma {:.3f}) of the "
-        "rear axle's centre",
+        "rear axle's centre{}",
         detection.lever_arm_m[0], detection.lever_arm_sigma_m[0], detection.lever_arm_m[1],
-        detection.lever_arm_sigma_m[1]));
+        detection.lever_arm_sigma_m[1],
+        detection.by_gnss_noise
+            ? fmt::format(", which leaves the fixes {:.1f} times", detection.gnss_sigma_scale_with)
+            : std::string()));
     fixes.push_back("lever_arm_x_m and lever_arm_y_m (or estimate_lever_arm: true)");
   }
   if (detection.heading_bias) {
@@ -177,6 +179,18 @@ std::string mounting_detection_report(const BatchSummary::MountingDetection& det
   const auto joined = [](const std::vector<std::string>& parts) {
     return fmt::format("{}", fmt::join(parts, "; "));
   };
+  if (detection.found_beside_latency) {
+    return fmt::format(
+        "{:<13}the latency's fit alone (below) left the GNSS fixes' residuals {:.1f} times their "
+        "configured noise, as an antenna off the rear axle's centre beside the lag leaves them; "
+        "estimated beside it: {}; the two leave them {:.1f} times and move the circumferences by "
+        "{:+.3g} / {:+.3g} mm; state it ({})\n",
+        "mounting", detection.gnss_sigma_scale_without, joined(found),
+        detection.gnss_sigma_scale_with,
+        1e3 * (detection.circumference_with_m[0] - detection.circumference_without_m[0]),
+        1e3 * (detection.circumference_with_m[1] - detection.circumference_without_m[1]),
+        joined(fixes));
+  }
   const std::string left = fmt::format("the fit without them left {}", joined(seen));
   if (!detection.fitted) {
     return fmt::format("{:<13}{}; with them estimated the fit did not stand: kept without\n",

@@ -9,6 +9,7 @@
 // where what it finds is significant.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -28,6 +29,17 @@ struct MountingSignature {
 };
 std::optional<MountingSignature> mounting_signature(const MountingResiduals& residuals,
                                                     const BatchOptions& options);
+
+// What `with` found of what `shown` asks for: the values where estimated, whether each was
+// (complete), and whether one lies beyond kMountingSigmas of its sigma and the sizes that matter
+// from where `stated` holds it.
+struct MountingFound {
+  std::array<double, 2> lever_arm_m{}, lever_arm_sigma_m{};
+  double heading_bias_rad{}, heading_bias_sigma_rad{};
+  bool complete = true, significant = false;
+};
+MountingFound mounting_found(const BatchSummary& with, const MountingSignature& shown,
+                             const BatchOptions& stated);
 
 // `with`: the log calibrated with what the signature shows estimated. It stands where one of them
 // lies beyond kMountingSigmas of its sigma (and the sizes above) from where `without` held it;

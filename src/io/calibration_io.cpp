@@ -232,7 +232,13 @@ void add_details(json& out, const BatchSummary& s) {
         {"taken", d.taken},
         {"circumference_without_m", {d.circumference_without_m[0], d.circumference_without_m[1]}},
         {"circumference_with_m", {d.circumference_with_m[0], d.circumference_with_m[1]}},
-        {"explained_by_latency", d.explained_by_latency}};
+        {"explained_by_latency", d.explained_by_latency},
+        {"by_gnss_noise", d.by_gnss_noise},
+        {"found_beside_latency", d.found_beside_latency}};
+    if (d.by_gnss_noise || d.found_beside_latency) {
+      j["gnss_sigma_scale_without"] = d.gnss_sigma_scale_without;
+      j["gnss_sigma_scale_with"] = d.gnss_sigma_scale_with;
+    }
     if (d.lever_arm) {
       j["lever_arm_m"] = {d.lever_arm_m[0], d.lever_arm_m[1]};
       j["lever_arm_sigma_m"] = {d.lever_arm_sigma_m[0], d.lever_arm_sigma_m[1]};

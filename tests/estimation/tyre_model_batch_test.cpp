@@ -219,7 +219,8 @@ TEST(TyreModelBatch, APlainFitJudgedByAWrongBodysPhysicalTermsCarriesTheirGap) {
   EXPECT_EQ(selection.candidates[0].model, "physical");
   EXPECT_TRUE(selection.candidates[0].tyre);
   EXPECT_LT(selection.candidates[0].bic, selection.plain_bic);
-  EXPECT_EQ(judged.estimate.circumference_rl_m, bare.estimate.circumference_rl_m);
+  EXPECT_EQ(judged.estimate.circumference_rl_m, bare.estimate.circumference_rl_m)
+      << judged.full_report();
   EXPECT_LT(std::abs(judged.estimate.circumference_rl_m - truth_m), 3.0 * judged.sigma_rl_m())
       << judged.full_report();
   EXPECT_EQ(judged.termination, Termination::kNotIdentifiable);

@@ -127,3 +127,28 @@ def test_a_mounting_found_is_shown_with_what_it_moved():
     assert dict(summary_rows(result))["mounting"].endswith("did not stand: kept without")
     del result["mounting_detection"]
     assert "mounting" not in dict(summary_rows(result))
+
+
+def test_a_lever_arm_found_by_the_fixes_noise_says_so():
+    result = {"method": "batch", "usable": True, "termination": "converged",
+              "circumference_rl_m": 1.964103, "circumference_rr_m": 1.964123,
+              "mounting_detection": {
+                  "signature": {"gnss_mean_m": [0.01, -0.02]},
+                  "lever_arm_m": [-0.232, -0.480], "lever_arm_sigma_m": [0.007, 0.001],
+                  "fitted": True, "taken": True, "by_gnss_noise": True,
+                  "gnss_sigma_scale_without": 1.38, "gnss_sigma_scale_with": 1.01,
+                  "circumference_without_m": [1.957477, 1.957489],
+                  "circumference_with_m": [1.964118, 1.964129]}}
+    text = dict(summary_rows(result))["mounting"]
+    assert text.startswith("the fit without them left the GNSS fixes' residuals 1.4 times their "
+                           "configured noise (their means showed no antenna)")
+    assert "of the rear axle's centre, which leaves the fixes 1.0 times" in text
+    assert text.endswith("by +6.64 / +6.64 mm")
+    # Beside a latency whose fit alone left the fixes wide: both found, the row says so.
+    detection = result["mounting_detection"]
+    detection.update(by_gnss_noise=False, found_beside_latency=True, gnss_sigma_scale_without=1.4)
+    text = dict(summary_rows(result))["mounting"]
+    assert text.startswith("the latency's fit alone left the GNSS fixes' residuals 1.4 times")
+    assert "estimated beside it: the antenna -0.232 m ahead" in text
+    assert text.endswith("the two leave them 1.0 times and move the circumferences by +6.64 / "
+                         "+6.64 mm")

@@ -274,6 +274,13 @@ struct BatchSummary : CalibrationSummary {
     // Taken, then found to be the lag's: with the latency estimated beside it, it was no longer
     // significant, and the log was calibrated again with the latency alone (taken: false).
     bool explained_by_latency{};
+    // The lever arm not shown by the residuals' means but by the fixes' noise: the fit without it
+    // left them kLagGnssExplained times their configured noise or more, and the one with it
+    // brought them under (by_gnss_noise); or a lag looked for by their noise left them so, and
+    // the lever arm estimated beside it brought them under (found_beside_latency; this summary is
+    // the fit of both). The fixes' scale without the lever arm (with the latency alone) and with.
+    bool by_gnss_noise{}, found_beside_latency{};
+    double gnss_sigma_scale_without{1.0}, gnss_sigma_scale_with{1.0};
   };
   std::optional<MountingDetection> mounting_detection;
 

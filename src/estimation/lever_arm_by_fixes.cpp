@@ -1,0 +1,101 @@
+#include "lever_arm_by_fixes.hpp"
+
+#include <array>
+#include <utility>
+
+#include "latency_detection.hpp"
+#include "mounting_detection.hpp"
+#include "second_fit.hpp"
+
+namespace odocal::batch {
+
+namespace {
+
+// The lever arm lies beyond kMountingSigmas of its sigma (and kMinLeverArmM) from the stated, its
+// fit leaves the fixes under kLagGnssExplained, and that fit's own residuals say its model explains
+// the log: a model that misfits hands its misfit to a lever arm as readily (a plain fit of the
+// circuit with a body lower and heavier than stated, a latency beside it: an antenna 3.4 m ahead
+// and 320 ms, the fixes as configured).
+bool lever_arm_explains_fixes(const BatchSummary& with, const MountingFound& found) {
+  return second_fit_stood(with) && found.complete && found.significant &&
+         gnss_sigma_scale(with) < kLagGnssExplained && with.model_adequacy.judged &&
+         with.model_adequacy.explains;
+}
+
+std::array<double, 2> circumferences(const BatchSummary& s) {
+  return {s.estimate.circumference_rl_m, s.estimate.circumference_rr_m};
+}
+
+}  // namespace
+
+bool lever_arm_worth_fitting_by_fixes(const BatchSummary& summary, const BatchOptions& fitted) {
+  const auto& mounting = summary.mounting_detection;
+  return !fitted.estimate_lever_arm && summary.mounting_residuals.gnss &&
+         gnss_sigma_scale(summary) >= kLagGnssExplained &&
+         !(mounting && mounting->lever_arm && mounting->fitted);
+}
+
+BatchSummary take_lever_arm_by_fixes(BatchSummary without, BatchSummary with,
+                                     const BatchOptions& options) {
+  const MountingFound found = mounting_found(with, {.lever_arm = true}, options);
+  if (!lever_arm_explains_fixes(with, found))
+    return keep_one_fit(std::move(without), std::move(with), false);
+  // A heading bias taken before stays in the detection, and its fit with neither the "without".
+  BatchSummary::MountingDetection detection;
+  if (without.mounting_detection && without.mounting_detection->taken) {
+    detection = *without.mounting_detection;
+  } else {
+    detection.signature = without.mounting_residuals;
+    detection.circumference_without_m = circumferences(without);
+    detection.fitted = detection.taken = true;
+  }
+  detection.lever_arm = detection.by_gnss_noise = true;
+  detection.lever_arm_m = found.lever_arm_m;
+  detection.lever_arm_sigma_m = found.lever_arm_sigma_m;
+  detection.gnss_sigma_scale_without = gnss_sigma_scale(without);
+  detection.gnss_sigma_scale_with = gnss_sigma_scale(with);
+  detection.circumference_with_m = circumferences(with);
+  BatchSummary kept = keep_one_fit(std::move(without), std::move(with), true);
+  kept.mounting_detection = detection;
+  return kept;
+}
+
+bool lever_arm_worth_fitting_beside_latency(const BatchSummary& lag_unexplained,
+                                            const BatchOptions& fitted) {
+  const auto& lag = lag_unexplained.latency_detection;
+  const auto& mounting = lag_unexplained.mounting_detection;
+  return lag && lag->by_gnss_noise && lag->significant && !lag->taken &&
+         !fitted.estimate_lever_arm && !(mounting && mounting->taken);
+}
+
+BatchSummary take_lever_arm_beside_latency(BatchSummary lag_unexplained, BatchSummary both,
+                                           const BatchOptions& options) {
+  BatchSummary::LatencyDetection lag = *lag_unexplained.latency_detection;
+  const LatencyFound latency =
+      latency_found(both, options.latency_s, {lag.signature, lag.by_doppler_noise, true});
+  const MountingFound found = mounting_found(both, {.lever_arm = true}, options);
+  if (!latency.taken || !lever_arm_explains_fixes(both, found))
+    return keep_one_fit(std::move(lag_unexplained), std::move(both), false);
+  BatchSummary::MountingDetection mounting;
+  mounting.signature = lag_unexplained.mounting_residuals;
+  mounting.lever_arm = true;
+  mounting.lever_arm_m = found.lever_arm_m;
+  mounting.lever_arm_sigma_m = found.lever_arm_sigma_m;
+  mounting.fitted = mounting.taken = true;
+  mounting.circumference_without_m = lag.circumference_without_m;
+  mounting.circumference_with_m = circumferences(both);
+  mounting.found_beside_latency = true;
+  mounting.gnss_sigma_scale_without = lag.gnss_sigma_scale_with;
+  mounting.gnss_sigma_scale_with = gnss_sigma_scale(both);
+  lag.latency_s = latency.latency->value;
+  lag.sigma_s = latency.latency->sigma;
+  lag.taken = true;
+  lag.doppler_sigma_scale_with = both.doppler_sigma_scale;
+  lag.gnss_sigma_scale_with = mounting.gnss_sigma_scale_with;
+  BatchSummary kept = keep_one_fit(std::move(lag_unexplained), std::move(both), true);
+  kept.mounting_detection = mounting;
+  kept.latency_detection = lag;
+  return kept;
+}
+
+}  // namespace odocal::batch
