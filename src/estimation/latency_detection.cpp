@@ -106,6 +106,19 @@ std::string what_showed_it(const BatchSummary::LatencyDetection& detection) {
       s.residual, s.correlation);
 }
 
+// The noise a latency taken by a widened noise must bring under its scale: how the report names
+// it, its scale with the latency, and what a latency that leaves it wide is not.
+struct WidenedNoise {
+  const char* stays;
+  double scale_with;
+  const char* not_whose;
+};
+WidenedNoise widened_noise(const BatchSummary::LatencyDetection& detection) {
+  if (detection.by_gnss_noise)
+    return {"the fixes' residuals stay", detection.gnss_sigma_scale_with, "a lag's alone"};
+  return {"the Doppler speed's noise stays", detection.doppler_sigma_scale_with, "a lag's"};
+}
+
 }  // namespace
 
 std::string latency_detection_report(const BatchSummary::LatencyDetection& detection,
@@ -117,14 +130,12 @@ std::string latency_detection_report(const BatchSummary::LatencyDetection& detec
   }
   const double sigmas = std::abs(detection.latency_s) / detection.sigma_s;
   if (detection.significant && !detection.taken) {
-    const bool fixes = detection.by_gnss_noise;
+    const WidenedNoise noise = widened_noise(detection);
     return fmt::format(
         "{:<13}{}; estimated, {:.1f} ms (1-sigma {:.1f} ms), but {} {:.1f} times the configured "
         "with it: not {}, kept without the latency\n",
-        "latency", seen, 1e3 * detection.latency_s, 1e3 * detection.sigma_s,
-        fixes ? "the fixes' residuals stay" : "the Doppler speed's noise stays",
-        fixes ? detection.gnss_sigma_scale_with : detection.doppler_sigma_scale_with,
-        fixes ? "a lag's alone" : "a lag's");
+        "latency", seen, 1e3 * detection.latency_s, 1e3 * detection.sigma_s, noise.stays,
+        noise.scale_with, noise.not_whose);
   }
   if (!detection.taken) {
     const bool by_noise = detection.by_doppler_noise || detection.by_gnss_noise;
