@@ -110,7 +110,7 @@ def mounting_detection_text(detection, result):
         moved = [1000 * (with_it[i] - without[i]) for i in range(2)]
         return (f"the latency's fit alone left the GNSS fixes' residuals "
                 f"{detection['gnss_sigma_scale_without']:.1f} times their configured noise; "
-                "estimated beside it: " + "; ".join(found) + f"; the two leave them "
+                "estimated beside it: " + "; ".join(found) + f"; with the latency these leave them "
                 f"{detection['gnss_sigma_scale_with']:.1f} times and move the circumferences by "
                 f"{moved[0]:+.3g} / {moved[1]:+.3g} mm")
     text = "the fit without them left " + "; ".join(seen)

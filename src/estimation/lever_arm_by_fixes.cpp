@@ -26,6 +26,29 @@ std::array<double, 2> circumferences(const BatchSummary& s) {
   return {s.estimate.circumference_rl_m, s.estimate.circumference_rr_m};
 }
 
+// The detection with the lever arm found in `with` added: to a heading bias taken before, whose
+// fit with neither stays the "without" and whose value is `with`'s; or anew, against `without`.
+BatchSummary::MountingDetection with_lever_arm(const BatchSummary& without,
+                                               const BatchSummary& with,
+                                               const MountingFound& found) {
+  BatchSummary::MountingDetection detection;
+  if (without.mounting_detection && without.mounting_detection->taken) {
+    detection = *without.mounting_detection;
+    if (const EstimatedParameter* bias = estimated_parameter(with, "heading_bias_rad")) {
+      detection.heading_bias_rad = bias->value;
+      detection.heading_bias_sigma_rad = bias->sigma;
+    }
+  } else {
+    detection.signature = without.mounting_residuals;
+    detection.circumference_without_m = circumferences(without);
+    detection.fitted = detection.taken = true;
+  }
+  detection.lever_arm = true;
+  detection.lever_arm_m = found.lever_arm_m;
+  detection.lever_arm_sigma_m = found.lever_arm_sigma_m;
+  return detection;
+}
+
 }  // namespace
 
 bool lever_arm_worth_fitting_by_fixes(const BatchSummary& summary, const BatchOptions& fitted) {
@@ -40,18 +63,8 @@ BatchSummary take_lever_arm_by_fixes(BatchSummary without, BatchSummary with,
   const MountingFound found = mounting_found(with, {.lever_arm = true}, options);
   if (!lever_arm_explains_fixes(with, found))
     return keep_one_fit(std::move(without), std::move(with), false);
-  // A heading bias taken before stays in the detection, and its fit with neither the "without".
-  BatchSummary::MountingDetection detection;
-  if (without.mounting_detection && without.mounting_detection->taken) {
-    detection = *without.mounting_detection;
-  } else {
-    detection.signature = without.mounting_residuals;
-    detection.circumference_without_m = circumferences(without);
-    detection.fitted = detection.taken = true;
-  }
-  detection.lever_arm = detection.by_gnss_noise = true;
-  detection.lever_arm_m = found.lever_arm_m;
-  detection.lever_arm_sigma_m = found.lever_arm_sigma_m;
+  BatchSummary::MountingDetection detection = with_lever_arm(without, with, found);
+  detection.by_gnss_noise = true;
   detection.gnss_sigma_scale_without = gnss_sigma_scale(without);
   detection.gnss_sigma_scale_with = gnss_sigma_scale(with);
   detection.circumference_with_m = circumferences(with);
@@ -65,7 +78,7 @@ bool lever_arm_worth_fitting_beside_latency(const BatchSummary& lag_unexplained,
   const auto& lag = lag_unexplained.latency_detection;
   const auto& mounting = lag_unexplained.mounting_detection;
   return lag && lag->by_gnss_noise && lag->significant && !lag->taken &&
-         !fitted.estimate_lever_arm && !(mounting && mounting->taken);
+         !fitted.estimate_lever_arm && !(mounting && mounting->taken && mounting->lever_arm);
 }
 
 BatchSummary take_lever_arm_beside_latency(BatchSummary lag_unexplained, BatchSummary both,
@@ -76,13 +89,7 @@ BatchSummary take_lever_arm_beside_latency(BatchSummary lag_unexplained, BatchSu
   const MountingFound found = mounting_found(both, {.lever_arm = true}, options);
   if (!latency.taken || !lever_arm_explains_fixes(both, found))
     return keep_one_fit(std::move(lag_unexplained), std::move(both), false);
-  BatchSummary::MountingDetection mounting;
-  mounting.signature = lag_unexplained.mounting_residuals;
-  mounting.lever_arm = true;
-  mounting.lever_arm_m = found.lever_arm_m;
-  mounting.lever_arm_sigma_m = found.lever_arm_sigma_m;
-  mounting.fitted = mounting.taken = true;
-  mounting.circumference_without_m = lag.circumference_without_m;
+  BatchSummary::MountingDetection mounting = with_lever_arm(lag_unexplained, both, found);
   mounting.circumference_with_m = circumferences(both);
   mounting.found_beside_latency = true;
   mounting.gnss_sigma_scale_without = lag.gnss_sigma_scale_with;

@@ -22,7 +22,8 @@ BatchSummary take_lever_arm_by_fixes(BatchSummary without, BatchSummary with,
                                      const BatchOptions& options);
 
 // A lag looked for by the fixes' noise whose fit left them beyond kLagGnssExplained (not a lag's
-// alone), with no lever arm estimated or taken (the urban drive with RTK fixes 132 ms late, the
+// alone), with no lever arm estimated or taken (a heading bias taken stays in both fits; the
+// urban drive with RTK fixes 132 ms late, the
 // antenna 0.27 m behind and 0.39 m right: the latency alone 173 ms leaving the fixes 1.4 times
 // their noise; with the lever arm beside it 132 ms, 1.0 times).
 bool lever_arm_worth_fitting_beside_latency(const BatchSummary& lag_unexplained,
@@ -30,7 +31,8 @@ bool lever_arm_worth_fitting_beside_latency(const BatchSummary& lag_unexplained,
 
 // `both`: the log calibrated with the latency and the lever arm estimated. It stands where the
 // latency is taken as a lag found by the fixes' noise is (latency_found) and the lever arm
-// explains the fixes; then it carries both as found (mounting_detection.found_beside_latency).
+// explains the fixes; then it carries both as found (mounting_detection.found_beside_latency,
+// beside a heading bias taken before).
 // Otherwise `lag_unexplained` stands.
 BatchSummary take_lever_arm_beside_latency(BatchSummary lag_unexplained, BatchSummary both,
                                            const BatchOptions& options);

@@ -183,8 +183,8 @@ std::string mounting_detection_report(const BatchSummary::MountingDetection& det
     return fmt::format(
         "{:<13}the latency's fit alone (below) left the GNSS fixes' residuals {:.1f} times their "
         "configured noise, as an antenna off the rear axle's centre beside the lag leaves them; "
-        "estimated beside it: {}; the two leave them {:.1f} times and move the circumferences by "
-        "{:+.3g} / {:+.3g} mm; state it ({})\n",
+        "estimated beside it: {}; with the latency these leave them {:.1f} times and move the "
+        "circumferences by {:+.3g} / {:+.3g} mm; state it ({})\n",
         "mounting", detection.gnss_sigma_scale_without, joined(found),
         detection.gnss_sigma_scale_with,
         1e3 * (detection.circumference_with_m[0] - detection.circumference_without_m[0]),

@@ -150,5 +150,5 @@ def test_a_lever_arm_found_by_the_fixes_noise_says_so():
     text = dict(summary_rows(result))["mounting"]
     assert text.startswith("the latency's fit alone left the GNSS fixes' residuals 1.4 times")
     assert "estimated beside it: the antenna -0.232 m ahead" in text
-    assert text.endswith("the two leave them 1.0 times and move the circumferences by +6.64 / "
-                         "+6.64 mm")
+    assert text.endswith("with the latency these leave them 1.0 times and move the "
+                         "circumferences by +6.64 / +6.64 mm")
