@@ -73,23 +73,28 @@ BatchSummary take_lever_arm_by_fixes(BatchSummary without, BatchSummary with,
   return kept;
 }
 
-bool lever_arm_worth_fitting_beside_latency(const BatchSummary& lag_unexplained,
+bool lever_arm_worth_fitting_beside_latency(const BatchSummary& lag_fit,
                                             const BatchOptions& fitted) {
-  const auto& lag = lag_unexplained.latency_detection;
-  const auto& mounting = lag_unexplained.mounting_detection;
-  return lag && lag->by_gnss_noise && lag->significant && !lag->taken &&
-         !fitted.estimate_lever_arm && !(mounting && mounting->taken && mounting->lever_arm);
+  const auto& lag = lag_fit.latency_detection;
+  const auto& mounting = lag_fit.mounting_detection;
+  if (!lag || !lag->significant || fitted.estimate_lever_arm ||
+      (mounting && mounting->taken && mounting->lever_arm))
+    return false;
+  // Not taken as the fixes' noise's alone, or taken by another sign and leaving them wide.
+  return lag->taken ? gnss_sigma_scale(lag_fit) >= kLagGnssExplained : lag->by_gnss_noise;
 }
 
-BatchSummary take_lever_arm_beside_latency(BatchSummary lag_unexplained, BatchSummary both,
+BatchSummary take_lever_arm_beside_latency(BatchSummary lag_fit, BatchSummary both,
                                            const BatchOptions& options) {
-  BatchSummary::LatencyDetection lag = *lag_unexplained.latency_detection;
-  const LatencyFound latency =
-      latency_found(both, options.latency_s, {lag.signature, lag.by_doppler_noise, true});
+  BatchSummary::LatencyDetection lag = *lag_fit.latency_detection;
+  const LatencyFound latency = latency_found(
+      both, options.latency_s, {lag.signature, lag.by_doppler_noise, lag.by_gnss_noise});
   const MountingFound found = mounting_found(both, {.lever_arm = true}, options);
   if (!latency.taken || !lever_arm_explains_fixes(both, found))
-    return keep_one_fit(std::move(lag_unexplained), std::move(both), false);
-  BatchSummary::MountingDetection mounting = with_lever_arm(lag_unexplained, both, found);
+    return keep_one_fit(std::move(lag_fit), std::move(both), false);
+  BatchSummary::MountingDetection mounting = with_lever_arm(lag_fit, both, found);
+  // Against the fit without the latency, as the latency is (a heading taken before: with neither).
+  if (!mounting.heading_bias) mounting.circumference_without_m = lag.circumference_without_m;
   mounting.circumference_with_m = circumferences(both);
   mounting.found_beside_latency = true;
   mounting.gnss_sigma_scale_without = lag.gnss_sigma_scale_with;
@@ -99,7 +104,7 @@ BatchSummary take_lever_arm_beside_latency(BatchSummary lag_unexplained, BatchSu
   lag.taken = true;
   lag.doppler_sigma_scale_with = both.doppler_sigma_scale;
   lag.gnss_sigma_scale_with = mounting.gnss_sigma_scale_with;
-  BatchSummary kept = keep_one_fit(std::move(lag_unexplained), std::move(both), true);
+  BatchSummary kept = keep_one_fit(std::move(lag_fit), std::move(both), true);
   kept.mounting_detection = mounting;
   kept.latency_detection = lag;
   return kept;

@@ -21,20 +21,22 @@ bool lever_arm_worth_fitting_by_fixes(const BatchSummary& summary, const BatchOp
 BatchSummary take_lever_arm_by_fixes(BatchSummary without, BatchSummary with,
                                      const BatchOptions& options);
 
-// A lag looked for by the fixes' noise whose fit left them beyond kLagGnssExplained (not a lag's
-// alone), with no lever arm estimated or taken (a heading bias taken stays in both fits; the
+// A significant lag whose fit left the fixes beyond kLagGnssExplained: looked for by their noise
+// and not taken (not a lag's alone), or taken by another sign (the Doppler speed's dependence:
+// an antenna 1.98 m ahead beside 65 ms, the latency found as 50 ms and the fixes 1.9 times their
+// noise); with no lever arm estimated or taken (a heading bias taken stays in both fits; the
 // urban drive with RTK fixes 132 ms late, the
 // antenna 0.27 m behind and 0.39 m right: the latency alone 173 ms leaving the fixes 1.4 times
 // their noise; with the lever arm beside it 132 ms, 1.0 times).
-bool lever_arm_worth_fitting_beside_latency(const BatchSummary& lag_unexplained,
+bool lever_arm_worth_fitting_beside_latency(const BatchSummary& lag_fit,
                                             const BatchOptions& fitted);
 
 // `both`: the log calibrated with the latency and the lever arm estimated. It stands where the
-// latency is taken as a lag found by the fixes' noise is (latency_found) and the lever arm
+// latency is taken as the lag's sign asks (latency_found) and the lever arm
 // explains the fixes; then it carries both as found (mounting_detection.found_beside_latency,
 // beside a heading bias taken before).
-// Otherwise `lag_unexplained` stands.
-BatchSummary take_lever_arm_beside_latency(BatchSummary lag_unexplained, BatchSummary both,
+// Otherwise `lag_fit` (the summary the latency detection returned) stands.
+BatchSummary take_lever_arm_beside_latency(BatchSummary lag_fit, BatchSummary both,
                                            const BatchOptions& options);
 
 }  // namespace odocal::batch
