@@ -190,6 +190,22 @@ TEST(LatencyDetection, ALagInPreciseFixesIsLookedForByTheirNoise) {
   expect_a_usable_answer_that_covers_the_truth(s, drive);
 }
 
+// The drive calibrated with the defaults, where a latency and a lever arm beside it are both
+// expected to be taken: the summary, its report, and the mounting detection checked present.
+struct BothFound {
+  BatchSummary summary;
+  std::string report;
+};
+BothFound calibrated_with_lag_and_mounting(const sim::SimulatedDrive& drive) {
+  BothFound found{calibrate_batch(simulated_log(drive)), {}};
+  found.report = found.summary.full_report();
+  EXPECT_TRUE(found.summary.latency_detection.has_value()) << found.report;
+  EXPECT_TRUE(found.summary.mounting_detection.has_value()) << found.report;
+  if (found.summary.latency_detection)
+    EXPECT_TRUE(found.summary.latency_detection->taken) << found.report;
+  return found;
+}
+
 // RTK fixes 130 ms late from an antenna 0.27 m behind and 0.39 m right of the axle's centre: the
 // noise adaptation hid the antenna from the residuals' means, and the latency alone (near 170 ms)
 // left the fixes 1.4 times their noise. With the lever arm estimated beside it, both are found
@@ -199,11 +215,8 @@ TEST(LatencyDetection, AnAntennaOffTheCentreBesideALagInPreciseFixesIsFoundWithI
   scenario.gnss.lever_arm_x_m = -0.27;
   scenario.gnss.lever_arm_y_m = -0.39;
   const sim::SimulatedDrive drive = sim::simulate(scenario);
-  const BatchSummary s = calibrate_batch(simulated_log(drive));
-  const std::string report = s.full_report();
-  ASSERT_TRUE(s.latency_detection.has_value()) << report;
-  ASSERT_TRUE(s.mounting_detection.has_value()) << report;
-  EXPECT_TRUE(s.latency_detection->taken) << report;
+  const auto [s, report] = calibrated_with_lag_and_mounting(drive);
+  ASSERT_TRUE(s.latency_detection && s.mounting_detection);
   EXPECT_NEAR(s.latency_detection->latency_s, 0.13, 3.0 * s.latency_detection->sigma_s + 0.001);
   const BatchSummary::MountingDetection& m = *s.mounting_detection;
   EXPECT_TRUE(m.found_beside_latency && m.taken) << report;
@@ -227,11 +240,8 @@ TEST(LatencyDetection, AnAntennaBesideALagIsFoundWithTheHeadingFoundBefore) {
   scenario.gnss.lever_arm_y_m = 0.05;
   scenario.heading.bias_rad = -0.041;
   const sim::SimulatedDrive drive = sim::simulate(scenario);
-  const BatchSummary s = calibrate_batch(simulated_log(drive));
-  const std::string report = s.full_report();
-  ASSERT_TRUE(s.latency_detection.has_value()) << report;
-  ASSERT_TRUE(s.mounting_detection.has_value()) << report;
-  EXPECT_TRUE(s.latency_detection->taken) << report;
+  const auto [s, report] = calibrated_with_lag_and_mounting(drive);
+  ASSERT_TRUE(s.latency_detection && s.mounting_detection);
   const BatchSummary::MountingDetection& m = *s.mounting_detection;
   EXPECT_TRUE(m.found_beside_latency && m.heading_bias) << report;
   EXPECT_NEAR(m.lever_arm_m[0], -0.81, 3.0 * m.lever_arm_sigma_m[0] + 0.01) << report;
@@ -252,12 +262,9 @@ TEST(LatencyDetection, AnAntennaAheadBesideALagTheDopplerSpeedShowsIsFoundWithIt
   scenario.gnss.lever_arm_x_m = 1.98;
   scenario.gnss.lever_arm_y_m = -0.07;
   const sim::SimulatedDrive drive = sim::simulate(scenario);
-  const BatchSummary s = calibrate_batch(simulated_log(drive));
-  const std::string report = s.full_report();
-  ASSERT_TRUE(s.latency_detection.has_value()) << report;
-  ASSERT_TRUE(s.mounting_detection.has_value()) << report;
+  const auto [s, report] = calibrated_with_lag_and_mounting(drive);
+  ASSERT_TRUE(s.latency_detection && s.mounting_detection);
   EXPECT_FALSE(s.latency_detection->by_gnss_noise) << report;
-  EXPECT_TRUE(s.latency_detection->taken) << report;
   EXPECT_NEAR(s.latency_detection->latency_s, 0.065, 3.0 * s.latency_detection->sigma_s + 0.002);
   const BatchSummary::MountingDetection& m = *s.mounting_detection;
   EXPECT_TRUE(m.found_beside_latency && m.taken) << report;

@@ -276,9 +276,9 @@ struct BatchSummary : CalibrationSummary {
     bool explained_by_latency{};
     // The lever arm not shown by the residuals' means but by the fixes' noise: the fit without it
     // left them kLagGnssExplained times their configured noise or more, and the one with it
-    // brought them under (by_gnss_noise); or a lag looked for by their noise left them so, and
-    // the lever arm estimated beside it brought them under (found_beside_latency; this summary is
-    // the fit of both). The fixes' scale without the lever arm (with the latency alone) and with.
+    // brought them under (by_gnss_noise); or a significant latency's fit left them so, and the
+    // lever arm estimated beside it brought them under (found_beside_latency; this summary is the
+    // fit of both). The fixes' scale without the lever arm (with the latency alone) and with.
     bool by_gnss_noise{}, found_beside_latency{};
     double gnss_sigma_scale_without{1.0}, gnss_sigma_scale_with{1.0};
   };
