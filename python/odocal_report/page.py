@@ -81,8 +81,34 @@ def latency_detection_text(detection, result):
             f"circumferences by {moved[0]:+.3g} / {moved[1]:+.3g} mm to these")
 
 
+def heading_after_text(detection):
+    """A heading bias found in the fit the others left (heading_after)."""
+    after = detection["heading_after"]
+    without, with_it = after["circumference_without_m"], after["circumference_with_m"]
+    moved = [1000 * (with_it[i] - without[i]) for i in range(2)]
+    antenna = "lever_arm_m" in detection and detection.get("taken")
+    found = (("the antenna and the latency" if antenna else "the latency")
+             if after.get("beside_latency") else "the antenna")
+    return (f"the fit with {found} left heading.csv {math.degrees(after['seen_rad']):+.2f} "
+            "deg off the fitted heading, which the fits before hid (their fixes far off the "
+            "path); "
+            f"estimated beside them: heading.csv reading "
+            f"{math.degrees(detection['heading_bias_rad']):+.2f} deg "
+            f"(1-sigma {math.degrees(detection['heading_bias_sigma_rad']):.2f}) beyond the "
+            f"heading, which moves the circumferences by {moved[0]:+.3g} / {moved[1]:+.3g} mm")
+
+
 def mounting_detection_text(detection, result):
     """What detect_mounting found (docs/batch-calibration.md, "The mounting the log shows")."""
+    if "heading_after" not in detection:
+        return first_look_text(detection, result)
+    if "lever_arm_m" not in detection:
+        return heading_after_text(detection)
+    return first_look_text(detection, result) + "; then " + heading_after_text(detection)
+
+
+def first_look_text(detection, result):
+    """The mounting found by the first fit's residuals (or the fixes' noise, or beside a lag)."""
     seen, found = [], []
     signature = detection["signature"]
     if "lever_arm_m" in detection:
@@ -99,7 +125,7 @@ def mounting_detection_text(detection, result):
                 if by_noise else "")
         found.append(f"the antenna {x:+.3f} m ahead (1-sigma {sx:.3f}) and {y:+.3f} m left "
                      f"(1-sigma {sy:.3f}) of the rear axle's centre{then}")
-    if "heading_bias_rad" in detection:
+    if "heading_bias_rad" in detection and "heading_after" not in detection:
         seen.append(f"heading.csv {math.degrees(signature.get('heading_mean_rad', 0.0)):+.2f} deg "
                     "off the fitted heading")
         found.append(f"heading.csv reading {math.degrees(detection['heading_bias_rad']):+.2f} deg "

@@ -12,14 +12,12 @@
 #include <optional>
 
 #include "batch_consistency.hpp"
+#include "batch_detections.hpp"
 #include "batch_fit.hpp"
 #include "batch_problem.hpp"
 #include "batch_solve_steps.hpp"
 #include "calibration_run.hpp"
 #include "doppler_scale.hpp"
-#include "latency_detection.hpp"
-#include "lever_arm_by_fixes.hpp"
-#include "mounting_detection.hpp"
 #include "odocal/error.hpp"
 
 namespace odocal {
@@ -172,61 +170,17 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   require_valid("batch", options.validate());
   BatchSummary unfitted;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, unfitted);
+  const batch::Calibrate calibrate = [&](const BatchOptions& with) {
+    return calibrate_as_configured(log, run, with, common, unfitted);
+  };
   // Unjudged, no mounting is looked for, and its residuals are not measured (a pass over the
   // fixes per fit).
-  BatchOptions fitted = options;
-  fitted.detect_mounting = options.detect_mounting && common.judge_model_adequacy;
-  BatchSummary summary = calibrate_as_configured(log, run, fitted, common, unfitted);
-  const BatchOptions unmounted = fitted;
-  // A mounting first: an antenna off the rear axle's centre is no lag, and a lag is looked for
-  // with it in place.
-  if (fitted.detect_mounting) {
-    if (const auto signature = batch::mounting_signature(summary.mounting_residuals, fitted)) {
-      BatchOptions mounted = fitted;
-      mounted.estimate_lever_arm = fitted.estimate_lever_arm || signature->lever_arm;
-      mounted.estimate_heading_bias = fitted.estimate_heading_bias || signature->heading_bias;
-      summary = batch::take_mounting_where_significant(
-          std::move(summary), calibrate_as_configured(log, run, mounted, common, unfitted),
-          *signature, fitted);
-      if (summary.mounting_detection->taken) fitted = mounted;
-    }
-    // Precise fixes whose means the poses took: their noise shows an antenna off the centre.
-    if (batch::lever_arm_worth_fitting_by_fixes(summary, fitted)) {
-      BatchOptions with_lever_arm = fitted;
-      with_lever_arm.estimate_lever_arm = true;
-      summary = batch::take_lever_arm_by_fixes(
-          std::move(summary), calibrate_as_configured(log, run, with_lever_arm, common, unfitted),
-          fitted);
-      if (summary.mounting_detection && summary.mounting_detection->by_gnss_noise)
-        fitted = with_lever_arm;
-    }
-  }
-  if (!options.detect_latency || options.estimate_latency || !common.judge_model_adequacy)
-    return summary;
-  const std::optional<batch::LagSignature> signature = batch::lag_signature(summary);
-  if (!signature) return summary;
-  BatchOptions lagged = fitted;
-  lagged.estimate_latency = true;
-  // The latency's fit holds the mounting found before it: what was found carries over.
-  auto mounting_detection = summary.mounting_detection;
-  BatchSummary result = batch::take_latency_where_significant(
-      std::move(summary), calibrate_as_configured(log, run, lagged, common, unfitted), *signature,
-      options.latency_s);
-  result.mounting_detection = std::move(mounting_detection);
-  // Precise fixes that a lag alone does not explain: an antenna off the centre beside it.
-  if (batch::lever_arm_worth_fitting_beside_latency(result, fitted)) {
-    BatchOptions both = lagged;
-    both.estimate_lever_arm = true;
-    return batch::take_lever_arm_beside_latency(
-        std::move(result), calibrate_as_configured(log, run, both, common, unfitted), options);
-  }
-  // A lag shows in the fixes as an antenna behind the axle: where the mounting taken is no longer
-  // significant beside the latency, the log is calibrated with the latency alone.
-  if (!batch::mounting_explained_by_latency(result, options)) return result;
-  BatchOptions lag_alone = unmounted;
-  lag_alone.estimate_latency = true;
-  return batch::drop_mounting_explained_by_latency(
-      std::move(result), calibrate_as_configured(log, run, lag_alone, common, unfitted), options);
+  BatchOptions first = options;
+  first.detect_mounting = options.detect_mounting && common.judge_model_adequacy;
+  batch::Calibrated mounted = batch::detect_mounting(calibrate, calibrate(first), first);
+  batch::Calibrated result = batch::detect_latency(calibrate, std::move(mounted), first, options,
+                                                   common.judge_model_adequacy);
+  return batch::detect_heading_after(calibrate, std::move(result), first);
 }
 
 }  // namespace odocal

@@ -133,8 +133,32 @@ BatchSummary drop_mounting_explained_by_latency(BatchSummary lagged, BatchSummar
   return kept;
 }
 
-std::string mounting_detection_report(const BatchSummary::MountingDetection& detection) {
+namespace {
+
+constexpr double kDeg = 180.0 / 3.14159265358979323846;
+
+std::string heading_after_report(const BatchSummary::MountingDetection& detection) {
+  const BatchSummary::MountingDetection::HeadingAfter& after = *detection.heading_after;
+  const bool antenna = detection.lever_arm && detection.taken;
+  const char* found = after.beside_latency ? (antenna ? "the antenna and the latency (below)"
+                                                      : "the latency (below)")
+                                           : "the antenna";
+  return fmt::format(
+      "the fit with {} left heading.csv {:+.2f} deg off the fitted heading (standard error {:.2f} "
+      "deg), as a mount's yaw offset leaves it, which the fits before hid (their fixes far off the "
+      "path, the poses followed heading.csv); estimated beside them: heading.csv reading {:+.2f} "
+      "deg (1-sigma {:.2f}) beyond the heading, which moves the circumferences by {:+.3g} / "
+      "{:+.3g} mm; state it (estimate_heading_bias: true)",
+      found, kDeg * after.seen_rad, kDeg * after.seen_standard_error_rad,
+      kDeg * detection.heading_bias_rad, kDeg * detection.heading_bias_sigma_rad,
+      1e3 * (after.circumference_with_m[0] - after.circumference_without_m[0]),
+      1e3 * (after.circumference_with_m[1] - after.circumference_without_m[1]));
+}
+
+// The line without a heading found after the others.
+std::string first_look_report(const BatchSummary::MountingDetection& detection) {
   const MountingResiduals& s = detection.signature;
+  const bool heading_first = detection.heading_bias && !detection.heading_after;
   std::vector<std::string> seen, found, fixes;
   if (detection.lever_arm) {
     std::string doppler;
@@ -165,8 +189,7 @@ std::string mounting_detection_report(const BatchSummary::MountingDetection& det
             : std::string()));
     fixes.push_back("lever_arm_x_m and lever_arm_y_m (or estimate_lever_arm: true)");
   }
-  if (detection.heading_bias) {
-    constexpr double kDeg = 180.0 / 3.14159265358979323846;
+  if (heading_first) {
     seen.push_back(fmt::format(
         "heading.csv {:+.2f} deg off the fitted heading (standard error {:.2f} deg), as a mount's "
         "yaw offset leaves it",
@@ -202,14 +225,14 @@ std::string mounting_detection_report(const BatchSummary::MountingDetection& det
         "within {:g} sigma (or {:g} m / {:.2f} deg) of what was held: the lag showed as it, kept "
         "without\n",
         "mounting", left, joined(found), BatchOptions::kMountingSigmas, kMinLeverArmM,
-        kMinHeadingBiasRad * 180.0 / 3.14159265358979323846);
+        kDeg * kMinHeadingBiasRad);
   }
   if (!detection.taken) {
     return fmt::format(
         "{:<13}{}; estimated, {} lies within {:g} sigma (or {:g} m / {:.2f} deg) of what was held: "
         "kept without\n",
         "mounting", left, joined(found), BatchOptions::kMountingSigmas, kMinLeverArmM,
-        kMinHeadingBiasRad * 180.0 / 3.14159265358979323846);
+        kDeg * kMinHeadingBiasRad);
   }
   return fmt::format(
       "{:<13}{}; estimated: {}, which moves the circumferences by {:+.3g} / {:+.3g} mm; state it "
@@ -218,6 +241,17 @@ std::string mounting_detection_report(const BatchSummary::MountingDetection& det
       1e3 * (detection.circumference_with_m[0] - detection.circumference_without_m[0]),
       1e3 * (detection.circumference_with_m[1] - detection.circumference_without_m[1]),
       joined(fixes));
+}
+
+}  // namespace
+
+std::string mounting_detection_report(const BatchSummary::MountingDetection& detection) {
+  if (!detection.heading_after) return first_look_report(detection);
+  if (!detection.lever_arm)
+    return fmt::format("{:<13}{}\n", "mounting", heading_after_report(detection));
+  std::string line = first_look_report(detection);
+  line.pop_back();  // its newline
+  return fmt::format("{}; then {}\n", line, heading_after_report(detection));
 }
 
 }  // namespace odocal::batch

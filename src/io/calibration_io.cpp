@@ -247,6 +247,16 @@ void add_details(json& out, const BatchSummary& s) {
       j["heading_bias_rad"] = d.heading_bias_rad;
       j["heading_bias_sigma_rad"] = d.heading_bias_sigma_rad;
     }
+    if (const auto& after = d.heading_after) {
+      j["heading_after"] = {
+          {"beside_latency", after->beside_latency},
+          {"seen_rad", after->seen_rad},
+          {"seen_standard_error_rad", after->seen_standard_error_rad},
+          {"circumference_without_m",
+           {after->circumference_without_m[0], after->circumference_without_m[1]}},
+          {"circumference_with_m",
+           {after->circumference_with_m[0], after->circumference_with_m[1]}}};
+    }
     out["mounting_detection"] = j;
   }
   if (s.body_sigma_m[0] > 0.0 || s.body_sigma_m[1] > 0.0) {

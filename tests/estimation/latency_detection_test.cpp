@@ -201,8 +201,9 @@ BothFound calibrated_with_lag_and_mounting(const sim::SimulatedDrive& drive) {
   found.report = found.summary.full_report();
   EXPECT_TRUE(found.summary.latency_detection.has_value()) << found.report;
   EXPECT_TRUE(found.summary.mounting_detection.has_value()) << found.report;
-  if (found.summary.latency_detection)
+  if (found.summary.latency_detection) {
     EXPECT_TRUE(found.summary.latency_detection->taken) << found.report;
+  }
   return found;
 }
 
@@ -246,8 +247,11 @@ TEST(LatencyDetection, AnAntennaBesideALagIsFoundWithTheHeadingFoundBefore) {
   EXPECT_TRUE(m.found_beside_latency && m.heading_bias) << report;
   EXPECT_NEAR(m.lever_arm_m[0], -0.81, 3.0 * m.lever_arm_sigma_m[0] + 0.01) << report;
   // The heading as the fit returned estimates it, not as the fit before found it.
-  for (const EstimatedParameter& p : s.parameters)
-    if (p.name == "heading_bias_rad") EXPECT_DOUBLE_EQ(m.heading_bias_rad, p.value);
+  for (const EstimatedParameter& p : s.parameters) {
+    if (p.name == "heading_bias_rad") {
+      EXPECT_DOUBLE_EQ(m.heading_bias_rad, p.value);
+    }
+  }
   EXPECT_NEAR(m.heading_bias_rad, -0.041, 3.0 * m.heading_bias_sigma_rad + 0.002) << report;
   expect_a_usable_answer_that_covers_the_truth(s, drive);
 }
@@ -272,6 +276,69 @@ TEST(LatencyDetection, AnAntennaAheadBesideALagTheDopplerSpeedShowsIsFoundWithIt
   EXPECT_NEAR(m.lever_arm_m[1], -0.07, 0.02) << report;
   // Both against the fit with neither.
   EXPECT_DOUBLE_EQ(m.circumference_without_m[0], s.latency_detection->circumference_without_m[0]);
+  expect_a_usable_answer_that_covers_the_truth(s, drive);
+}
+
+// heading.csv read 0.071 rad off beside RTK fixes 149 ms late from an antenna 2.91 m ahead and
+// 0.58 m left (the mounting bench's run 7): with the fixes far off the path the poses' heading
+// follows heading.csv and its residual shows nothing; the fit of the latency and the lever arm
+// holds them to the fixes again and shows it, and the heading is fitted beside them.
+TEST(LatencyDetection, AHeadingTheFirstFitsWideFixesHidIsFoundBesideTheLagAndTheAntenna) {
+  sim::Scenario scenario = urban_with_gnss_latency(0.149, 7, 0.071);
+  scenario.gnss.sigma_m = 0.02;
+  scenario.gnss.lever_arm_x_m = 2.91;
+  scenario.gnss.lever_arm_y_m = 0.58;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const auto [s, report] = calibrated_with_lag_and_mounting(drive);
+  ASSERT_TRUE(s.latency_detection && s.mounting_detection);
+  const BatchSummary::MountingDetection& m = *s.mounting_detection;
+  EXPECT_TRUE(m.found_beside_latency && m.taken && m.heading_bias) << report;
+  ASSERT_TRUE(m.heading_after.has_value()) << report;
+  // The fit before the lever arm did not show it; the one with it did.
+  EXPECT_LT(std::abs(m.signature.heading_mean_rad),
+            BatchOptions::kMountingSigmas * m.signature.heading_standard_error_rad);
+  EXPECT_GT(std::abs(m.heading_after->seen_rad),
+            BatchOptions::kMountingSigmas * m.heading_after->seen_standard_error_rad);
+  EXPECT_NEAR(m.heading_bias_rad, 0.071, 3.0 * m.heading_bias_sigma_rad + 0.002) << report;
+  EXPECT_TRUE(estimated(s, "heading_bias_rad") && estimated(s, "lever_arm_x_m") &&
+              estimated(s, "latency_s"));
+  // The others' values are those of the fit returned, beside the heading.
+  for (const EstimatedParameter& p : s.parameters) {
+    if (p.name == "lever_arm_y_m") {
+      EXPECT_DOUBLE_EQ(m.lever_arm_m[1], p.value);
+    }
+    if (p.name == "latency_s") {
+      EXPECT_DOUBLE_EQ(s.latency_detection->latency_s, p.value);
+    }
+  }
+  EXPECT_DOUBLE_EQ(m.heading_after->circumference_with_m[0], s.estimate.circumference_rl_m);
+  EXPECT_TRUE(m.heading_after->beside_latency);
+  EXPECT_NE(report.find("; then the fit with the antenna and the latency (below) left heading.csv"),
+            std::string::npos)
+      << report;
+  expect_a_usable_answer_that_covers_the_truth(s, drive);
+}
+
+// The same with a lag alone beside heading.csv read 1.1 degrees off (run 14): the heading
+// detection is a mounting of its own, found against the latency's fit.
+TEST(LatencyDetection, AHeadingBesideALagInPreciseFixesIsFoundAfterTheLatency) {
+  sim::Scenario scenario = urban_with_precise_fixes(0.02, 0.148);
+  scenario.seeds.noise = scenario.seeds.trajectory = 14;
+  scenario.heading.bias_rad = -0.019;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const auto [s, report] = calibrated_with_lag_and_mounting(drive);
+  ASSERT_TRUE(s.latency_detection && s.mounting_detection);
+  const BatchSummary::MountingDetection& m = *s.mounting_detection;
+  EXPECT_TRUE(m.taken && m.heading_bias && !m.lever_arm) << report;
+  ASSERT_TRUE(m.heading_after.has_value()) << report;
+  EXPECT_TRUE(m.heading_after->beside_latency);
+  // Against the latency's fit: the circumferences the latency line reports moved to.
+  EXPECT_DOUBLE_EQ(m.circumference_without_m[0], m.heading_after->circumference_without_m[0]);
+  EXPECT_NE(m.circumference_without_m[0], s.latency_detection->circumference_without_m[0]);
+  EXPECT_NEAR(m.heading_bias_rad, -0.019, 3.0 * m.heading_bias_sigma_rad + 0.002) << report;
+  EXPECT_NE(report.find("mounting     the fit with the latency (below) left heading.csv"),
+            std::string::npos)
+      << report;
   expect_a_usable_answer_that_covers_the_truth(s, drive);
 }
 

@@ -152,3 +152,30 @@ def test_a_lever_arm_found_by_the_fixes_noise_says_so():
     assert "estimated beside it: the antenna -0.232 m ahead" in text
     assert text.endswith("with the latency these leave them 1.0 times and move the "
                          "circumferences by +6.64 / +6.64 mm")
+
+
+def test_a_heading_found_after_the_others_says_so():
+    after = {"beside_latency": True, "seen_rad": 0.0673, "seen_standard_error_rad": 0.0013,
+             "circumference_without_m": [1.964038, 1.964104],
+             "circumference_with_m": [1.964048, 1.964110]}
+    result = {"method": "batch", "usable": True, "termination": "converged",
+              "circumference_rl_m": 1.964048, "circumference_rr_m": 1.964110,
+              "mounting_detection": {
+                  "signature": {"heading_mean_rad": 0.0056},
+                  "lever_arm_m": [2.807, 0.578], "lever_arm_sigma_m": [0.007, 0.002],
+                  "heading_bias_rad": 0.0711, "heading_bias_sigma_rad": 0.0012,
+                  "fitted": True, "taken": True, "found_beside_latency": True,
+                  "gnss_sigma_scale_without": 3.9, "gnss_sigma_scale_with": 1.1,
+                  "circumference_without_m": [1.954568, 1.954590],
+                  "circumference_with_m": [1.964038, 1.964104], "heading_after": after}}
+    text = dict(summary_rows(result))["mounting"]
+    # The antenna's part as found beside the lag, without the heading the first look did not show.
+    assert text.startswith("the latency's fit alone left the GNSS fixes' residuals 3.9 times")
+    assert "; then the fit with the antenna and the latency left heading.csv +3.86 deg off" in text
+    assert "heading.csv reading +4.07 deg (1-sigma 0.07)" in text
+    assert text.count("heading.csv reading") == 1
+    assert text.endswith("which moves the circumferences by +0.01 / +0.006 mm")
+    # Found after a latency alone: the row is the heading's only.
+    del result["mounting_detection"]["lever_arm_m"]
+    text = dict(summary_rows(result))["mounting"]
+    assert text.startswith("the fit with the latency left heading.csv +3.86 deg")

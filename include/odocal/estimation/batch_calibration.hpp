@@ -281,6 +281,16 @@ struct BatchSummary : CalibrationSummary {
     // fit of both). The fixes' scale without the lever arm (with the latency alone) and with.
     bool by_gnss_noise{}, found_beside_latency{};
     double gnss_sigma_scale_without{1.0}, gnss_sigma_scale_with{1.0};
+    // A heading bias the first fits' residuals did not show (their fixes far off the path, the
+    // poses followed heading.csv) and the fit that a latency or a lever arm found after left did:
+    // its heading mean and standard error there, and the circumferences without and with the bias
+    // estimated beside them. heading_bias and its value are then that fit's; this summary is it.
+    struct HeadingAfter {
+      bool beside_latency{};  // a latency taken (or only a lever arm)
+      double seen_rad{}, seen_standard_error_rad{};
+      std::array<double, 2> circumference_without_m{}, circumference_with_m{};
+    };
+    std::optional<HeadingAfter> heading_after;
   };
   std::optional<MountingDetection> mounting_detection;
 
