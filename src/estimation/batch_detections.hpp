@@ -1,9 +1,9 @@
 // The batch's detections in the order calibrate_batch runs them (docs/batch-calibration.md, "The
-// mounting the log shows", "A lag between the clocks"): a mounting first, as the first fit's
-// residuals (or its fixes' noise) show it; then a latency, with what was found in place, and an
-// antenna beside it; then a heading bias that the first fits hid and the last one shows. Each
-// fits the log again only where its sign shows, and takes that fit only where what it found
-// stands.
+// mounting the log shows", "A latency the log shows" and its sections): a mounting first, as the
+// first fit's residuals (or its fixes' noise) show it; then a latency, with what was found in
+// place, and an antenna beside it; then a heading bias that the first fits hid and the last one
+// shows. Each fits the log again only where its sign shows, and takes that fit only where what it
+// found stands.
 #pragma once
 
 #include <functional>
