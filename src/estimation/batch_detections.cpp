@@ -63,9 +63,7 @@ Calibrated detect_latency(const Calibrate& calibrate, Calibrated mounted,
   BatchOptions lag_alone = unmounted;
   lag_alone.estimate_latency = true;
   result = drop_mounting_explained_by_latency(std::move(result), calibrate(lag_alone), options);
-  const bool dropped = result.mounting_detection &&
-                       result.mounting_detection->explained_by_latency &&
-                       !result.mounting_detection->taken;
+  const bool dropped = result.mounting_detection && result.mounting_detection->explained_by_latency;
   return {std::move(result), dropped ? lag_alone : result_options};
 }
 

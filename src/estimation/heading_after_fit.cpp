@@ -10,10 +10,6 @@ namespace odocal::batch {
 
 namespace {
 
-std::array<double, 2> circumferences(const BatchSummary& s) {
-  return {s.estimate.circumference_rl_m, s.estimate.circumference_rr_m};
-}
-
 // What `without` found, its values those of `with` (fitted again beside the heading bias).
 void refresh_found_values(const BatchSummary& with, const BatchOptions& options,
                           BatchSummary::MountingDetection* mounting,

@@ -67,8 +67,7 @@ BatchSummary take_latency_where_significant(BatchSummary without, BatchSummary w
   detection.gnss_sigma_scale = gnss_sigma_scale(without);
   detection.by_gnss_noise = signature.by_gnss_noise;
   detection.latency_s = detection.sigma_s = std::numeric_limits<double>::quiet_NaN();
-  detection.circumference_without_m = {without.estimate.circumference_rl_m,
-                                       without.estimate.circumference_rr_m};
+  detection.circumference_without_m = circumferences(without);
   if (const LatencyFound found = latency_found(with, stated_s, signature); found.latency) {
     detection.latency_s = found.latency->value;
     detection.sigma_s = found.latency->sigma;

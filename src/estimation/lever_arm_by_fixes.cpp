@@ -22,10 +22,6 @@ bool lever_arm_explains_fixes(const BatchSummary& with, const MountingFound& fou
          with.model_adequacy.explains;
 }
 
-std::array<double, 2> circumferences(const BatchSummary& s) {
-  return {s.estimate.circumference_rl_m, s.estimate.circumference_rr_m};
-}
-
 // The detection with the lever arm found in `with` added: to a heading bias taken before, whose
 // fit with neither stays the "without" and whose value is `with`'s; or anew, against `without`.
 BatchSummary::MountingDetection with_lever_arm(const BatchSummary& without,

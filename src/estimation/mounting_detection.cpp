@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "latency_detection.hpp"
+#include "odocal/model/angle.hpp"
 #include "second_fit.hpp"
 
 namespace odocal::batch {
@@ -85,10 +86,8 @@ BatchSummary take_mounting_where_significant(BatchSummary without, BatchSummary 
   detection.signature = without.mounting_residuals;
   detection.lever_arm = signature.lever_arm;
   detection.heading_bias = signature.heading_bias;
-  detection.circumference_without_m = {without.estimate.circumference_rl_m,
-                                       without.estimate.circumference_rr_m};
-  detection.circumference_with_m = {with.estimate.circumference_rl_m,
-                                    with.estimate.circumference_rr_m};
+  detection.circumference_without_m = circumferences(without);
+  detection.circumference_with_m = circumferences(with);
   const MountingFound found = mounting_found(with, signature, options);
   detection.lever_arm_m = found.lever_arm_m;
   detection.lever_arm_sigma_m = found.lever_arm_sigma_m;
@@ -135,8 +134,6 @@ BatchSummary drop_mounting_explained_by_latency(BatchSummary lagged, BatchSummar
 
 namespace {
 
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
-
 std::string heading_after_report(const BatchSummary::MountingDetection& detection) {
   const BatchSummary::MountingDetection::HeadingAfter& after = *detection.heading_after;
   const bool antenna = detection.lever_arm && detection.taken;
@@ -149,8 +146,8 @@ std::string heading_after_report(const BatchSummary::MountingDetection& detectio
       "path, the poses followed heading.csv); estimated beside them: heading.csv reading {:+.2f} "
       "deg (1-sigma {:.2f}) beyond the heading, which moves the circumferences by {:+.3g} / "
       "{:+.3g} mm; state it (estimate_heading_bias: true)",
-      found, kDeg * after.seen_rad, kDeg * after.seen_standard_error_rad,
-      kDeg * detection.heading_bias_rad, kDeg * detection.heading_bias_sigma_rad,
+      found, deg_from_rad(after.seen_rad), deg_from_rad(after.seen_standard_error_rad),
+      deg_from_rad(detection.heading_bias_rad), deg_from_rad(detection.heading_bias_sigma_rad),
       1e3 * (after.circumference_with_m[0] - after.circumference_without_m[0]),
       1e3 * (after.circumference_with_m[1] - after.circumference_without_m[1]));
 }
@@ -193,10 +190,10 @@ std::string first_look_report(const BatchSummary::MountingDetection& detection) 
     seen.push_back(fmt::format(
         "heading.csv {:+.2f} deg off the fitted heading (standard error {:.2f} deg), as a mount's "
         "yaw offset leaves it",
-        kDeg * s.heading_mean_rad, kDeg * s.heading_standard_error_rad));
-    found.push_back(
-        fmt::format("heading.csv reading {:+.2f} deg (1-sigma {:.2f}) beyond the heading",
-                    kDeg * detection.heading_bias_rad, kDeg * detection.heading_bias_sigma_rad));
+        deg_from_rad(s.heading_mean_rad), deg_from_rad(s.heading_standard_error_rad)));
+    found.push_back(fmt::format(
+        "heading.csv reading {:+.2f} deg (1-sigma {:.2f}) beyond the heading",
+        deg_from_rad(detection.heading_bias_rad), deg_from_rad(detection.heading_bias_sigma_rad)));
     fixes.push_back("estimate_heading_bias: true");
   }
   const auto joined = [](const std::vector<std::string>& parts) {
@@ -225,14 +222,14 @@ std::string first_look_report(const BatchSummary::MountingDetection& detection) 
         "within {:g} sigma (or {:g} m / {:.2f} deg) of what was held: the lag showed as it, kept "
         "without\n",
         "mounting", left, joined(found), BatchOptions::kMountingSigmas, kMinLeverArmM,
-        kDeg * kMinHeadingBiasRad);
+        deg_from_rad(kMinHeadingBiasRad));
   }
   if (!detection.taken) {
     return fmt::format(
         "{:<13}{}; estimated, {} lies within {:g} sigma (or {:g} m / {:.2f} deg) of what was held: "
         "kept without\n",
         "mounting", left, joined(found), BatchOptions::kMountingSigmas, kMinLeverArmM,
-        kDeg * kMinHeadingBiasRad);
+        deg_from_rad(kMinHeadingBiasRad));
   }
   return fmt::format(
       "{:<13}{}; estimated: {}, which moves the circumferences by {:+.3g} / {:+.3g} mm; state it "

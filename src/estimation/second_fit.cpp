@@ -6,6 +6,10 @@
 
 namespace odocal::batch {
 
+std::array<double, 2> circumferences(const BatchSummary& summary) {
+  return {summary.estimate.circumference_rl_m, summary.estimate.circumference_rr_m};
+}
+
 bool second_fit_stood(const BatchSummary& with) {
   return with.termination == Termination::kConverged ||
          with.termination == Termination::kNotIdentifiable;
