@@ -27,7 +27,7 @@ using batch::BatchProblem;
 bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, std::optional<TyreTerms> terms,
                       BatchSummary& summary, const FitControls& controls) {
-  BatchProblem batch(run.log(), run.reference(), options, common, summary.nominal);
+  BatchProblem batch(run.batch_log(), run.reference(), options, common, summary.nominal);
   if (const std::optional<GnssNoiseModel>& noise = controls.noise) {
     batch.set_gnss_noise(noise->white_scale, noise->gauss_markov_sigma_m,
                          noise->gauss_markov_tau_s);
@@ -94,7 +94,7 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
   ModelJudgement judgement;
   double plain_bic = 0.0;
   {
-    BatchProblem batch(run.log(), run.reference(), options, common, start);
+    BatchProblem batch(run.batch_log(), run.reference(), options, common, start);
     ceres::Solver::Summary solver = solve_relinearised(batch, options, scratch);
     if (solver.IsSolutionUsable()) plain_bic = batch.information_criterion(solver);
     adapt_gnss_noise(batch, options, common, scratch, solver, SigmaInflation::kSkip);
@@ -170,6 +170,7 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   require_valid("batch", options.validate());
   BatchSummary unfitted;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, unfitted);
+  run.smooth_batch_heading(options.heading_tick_smoothing_s);
   const batch::Calibrate calibrate = [&](const BatchOptions& with) {
     return calibrate_as_configured(log, run, with, common, unfitted);
   };

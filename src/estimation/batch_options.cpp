@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 40> kFields{{
+  static const std::array<OptionField<O>, 41> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -14,6 +14,10 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"quantisation_sigma_rev", "rev", -1.0, 1.0,
        "encoder quantisation per count; negative: 1/sqrt(12) tick from ticks_per_rev; 0: exact",
        &O::quantisation_sigma_rev},
+      {"heading_tick_smoothing_s", "s", 0.0, 1.0,
+       "the rear wheels' tick difference (the heading) averaged over +-this before the fit, "
+       "their sum (the distance) as counted; 0: as counted",
+       &O::heading_tick_smoothing_s},
       {"lateral_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
        "side slip and model error across the course", &O::lateral_sigma_m_per_sqrt_m},
       {"gnss_gauss_markov_sigma_m", "m", 0.0, 1e3,

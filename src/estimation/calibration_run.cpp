@@ -12,6 +12,7 @@
 #include "odocal/error.hpp"
 #include "odocal/estimation/accelerometer_offset.hpp"
 #include "odocal/estimation/driving_state.hpp"
+#include "odocal/estimation/tick_dequantisation.hpp"
 #include "odocal/model/angle.hpp"
 
 namespace odocal {
@@ -235,6 +236,16 @@ void CalibrationRun::dead_reckon_with_walk(CalibrationSummary& summary) {
       accelerometer_heading_walk(prepared.wheels, *prepared.imu, states, model, body, e);
 }
 
+void CalibrationRun::smooth_batch_heading(double heading_tick_smoothing_s) {
+  if (heading_tick_smoothing_s == batch_heading_smoothing_s_) return;
+  batch_heading_smoothing_s_ = heading_tick_smoothing_s;
+  batch_log_.reset();
+  if (!(heading_tick_smoothing_s > 0.0) || log().wheels.unit_rear != WheelUnit::kTicks) return;
+  Log smoothed = log();
+  smoothed.wheels = heading_dequantised_ticks(std::move(smoothed.wheels), heading_tick_smoothing_s);
+  batch_log_ = std::move(smoothed);
+}
+
 void CalibrationRun::finish(CalibrationSummary& summary) {
   const OdometryParams& e = summary.estimate;
   dead_reckon_with_walk(summary);
@@ -250,6 +261,7 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
     std::array<double, 2> gap_m{};
     std::string gap_cannot_stand;
     try {
+      smooth_batch_heading(BatchOptions{}.heading_tick_smoothing_s);  // the batch's default
       const batch::ModelJudgement judged = batch::judge_model_adequacy(*this, e, options_);
       summary.model_adequacy = judged.adequacy;
       gap_m = judged.gap_m;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "odocal/estimation/wheel_gaps.hpp"
 
@@ -67,20 +68,47 @@ void smooth_wheel(std::vector<double>& increments, const WheelStream& wheels,
   }
 }
 
+// The samples that +-half_window_s spans, and the longest step that is not a gap; none where
+// the stream is not ticks or too short to smooth.
+struct SmoothingWindow {
+  std::size_t half_window = 0;
+  double max_gap_s = 0.0;
+};
+
+std::optional<SmoothingWindow> smoothing_window(const WheelStream& wheels, double half_window_s) {
+  if (wheels.unit_rear != WheelUnit::kTicks || !(half_window_s > 0.0) || wheels.size() < 3)
+    return std::nullopt;
+  const double period_s = median_sample_period_s(wheels);
+  if (!(period_s > 0.0)) return std::nullopt;
+  const auto half_window = static_cast<std::size_t>(std::lround(half_window_s / period_s));
+  if (half_window == 0) return std::nullopt;
+  return SmoothingWindow{half_window, kMaxWheelGapPeriods * period_s};
+}
+
 }  // namespace
 
 WheelStream dequantised_ticks(WheelStream wheels, double half_window_s) {
-  if (wheels.unit_rear != WheelUnit::kTicks || !(half_window_s > 0.0) || wheels.size() < 3)
-    return wheels;
-  const double period_s = median_sample_period_s(wheels);
-  if (!(period_s > 0.0)) return wheels;
-  const auto half_window = static_cast<std::size_t>(std::lround(half_window_s / period_s));
-  if (half_window == 0) return wheels;
-  const double max_gap_s = kMaxWheelGapPeriods * period_s;
+  const std::optional<SmoothingWindow> window = smoothing_window(wheels, half_window_s);
+  if (!window) return wheels;
   // Each wheel's increments in place; the times and breaks they are cut at are read alongside.
   for (std::vector<double>* wheel :
        {&wheels.rev_rl, &wheels.rev_rr, &wheels.rev_fl, &wheels.rev_fr})
-    smooth_wheel(*wheel, wheels, half_window, max_gap_s);
+    smooth_wheel(*wheel, wheels, window->half_window, window->max_gap_s);
+  return wheels;
+}
+
+WheelStream heading_dequantised_ticks(WheelStream wheels, double half_window_s) {
+  const std::optional<SmoothingWindow> window = smoothing_window(wheels, half_window_s);
+  if (!window) return wheels;
+  std::vector<double> difference(wheels.size());
+  for (std::size_t k = 0; k < wheels.size(); ++k)
+    difference[k] = wheels.rev_rr[k] - wheels.rev_rl[k];
+  smooth_wheel(difference, wheels, window->half_window, window->max_gap_s);
+  for (std::size_t k = 0; k < wheels.size(); ++k) {
+    const double sum = wheels.rev_rl[k] + wheels.rev_rr[k];
+    wheels.rev_rl[k] = 0.5 * (sum - difference[k]);
+    wheels.rev_rr[k] = 0.5 * (sum + difference[k]);
+  }
   return wheels;
 }
 
