@@ -34,7 +34,7 @@ namespace odocal::experiments {
 // experiment's fits are unjudged: nothing moved); 30: the accelerometer's forward offset taken
 // out at the stops, and what is left of it in the physical terms' sigma; 31: only where it
 // stands out of its sigma; 32: the mounting looked for in the residuals (detect_mounting).
-inline constexpr int kTyreModelExperimentVersion = 32;
+inline constexpr int kTyreModelExperimentVersion = 33;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_quiet_accelerometer: {rear: {auto},
