@@ -27,7 +27,8 @@ using batch::BatchProblem;
 bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, std::optional<TyreTerms> terms,
                       BatchSummary& summary, const FitControls& controls) {
-  BatchProblem batch(run.batch_log(), run.reference(), options, common, summary.nominal);
+  BatchProblem batch(run.log(), run.batch_wheels(), run.reference(), options, common,
+                     summary.nominal);
   if (const std::optional<GnssNoiseModel>& noise = controls.noise) {
     batch.set_gnss_noise(noise->white_scale, noise->gauss_markov_sigma_m,
                          noise->gauss_markov_tau_s);
@@ -94,7 +95,7 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
   ModelJudgement judgement;
   double plain_bic = 0.0;
   {
-    BatchProblem batch(run.batch_log(), run.reference(), options, common, start);
+    BatchProblem batch(run.log(), run.batch_wheels(), run.reference(), options, common, start);
     ceres::Solver::Summary solver = solve_relinearised(batch, options, scratch);
     if (solver.IsSolutionUsable()) plain_bic = batch.information_criterion(solver);
     adapt_gnss_noise(batch, options, common, scratch, solver, SigmaInflation::kSkip);

@@ -81,7 +81,7 @@ MeanWithError slope_over(const std::vector<double>& turn, const std::vector<doub
 MountingResiduals BatchProblem::mounting_residuals() const {
   const std::size_t intervals = keyframes_.size() > 1 ? keyframes_.size() - 1 : 0;
   IntervalSums ahead(intervals), left(intervals), heading(intervals);
-  const auto& t = log_.wheels.t_s;
+  const auto& t = wheels_.t_s;
   for_each_measurement(
       [&](std::size_t fix, std::size_t i, const Eigen::Vector2d& whitened) {
         Eigen::Vector2d error = -white_gnss_sigma(fix) * whitened;  // measured minus fitted

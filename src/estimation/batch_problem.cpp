@@ -43,17 +43,17 @@ double median_step_s(const std::vector<double>& t_s) {
 
 }  // namespace
 
-BatchProblem::BatchProblem(const Log& log, const ReferenceTrajectory& reference,
-                           const BatchOptions& options, const CalibrationOptions& common,
-                           const OdometryParams& nominal)
+BatchProblem::BatchProblem(const Log& log, const WheelStream& wheels,
+                           const ReferenceTrajectory& reference, const BatchOptions& options,
+                           const CalibrationOptions& common, const OdometryParams& nominal)
     : log_(log),
+      wheels_(wheels),
       sensors_(common.reference),
       batch_(options),
       body_(log.vehicle.body_geometry()),
       nominal_(nominal) {
   doppler_sigma_mps_ = options.doppler_sigma_mps(!log.gnss.speed_mps.empty());
-  keyframes_ =
-      keyframe_samples(log.wheels, reference.first_wheel_index, batch_.keyframe_interval_s);
+  keyframes_ = keyframe_samples(wheels, reference.first_wheel_index, batch_.keyframe_interval_s);
   if (keyframes_.size() < 3) {
     throw InsufficientDataError(
         "too short for the batch calibration: fewer than 3 keyframes under GNSS");
@@ -69,7 +69,7 @@ BatchProblem::BatchProblem(const Log& log, const ReferenceTrajectory& reference,
   if (batch_.tyre_model != TyreModelChoice::kNone || gentle_limits()) {
     // The driving state from the log at the nominal parameters: a per mille off in speed
     // moves a coefficient by as much, far inside its sigma.
-    states_ = driving_states(log, nominal);
+    states_ = driving_states(wheels, log.imu ? &*log.imu : nullptr, nominal);
     TyreModel::Vector sum = TyreModel::Vector::Zero();
     for (std::size_t k = reference.first_wheel_index; k < states_.size(); ++k) {
       TyreModel::Vector x = tyre_regressors(states_[k], RearWheel::kLeft, body_);
@@ -171,7 +171,8 @@ void BatchProblem::restart() {
   std::fill(gnss_bias_.begin(), gnss_bias_.end(), Block2{0.0, 0.0});
   std::fill(count_error_.begin(), count_error_.end(), Block2{0.0, 0.0});
   std::fill(gnss_weights_.begin(), gnss_weights_.end(), 1.0f);
-  if (!states_.empty()) states_ = driving_states(log_, nominal_);
+  if (!states_.empty())
+    states_ = driving_states(wheels_, log_.imu ? &*log_.imu : nullptr, nominal_);
 }
 
 int BatchProblem::free_tyre_coefficients() const {
@@ -373,7 +374,7 @@ void BatchProblem::add_gyro() {
   if (imu.size() < 2 || step_s <= 0.0) return;
   std::size_t j = 0;
   for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
-    const double begin = log_.wheels.t_s[keyframes_[i]], end = log_.wheels.t_s[keyframes_[i + 1]];
+    const double begin = wheels_.t_s[keyframes_[i]], end = wheels_.t_s[keyframes_[i + 1]];
     if (imu.t_s.front() > begin || imu.t_s.back() < end) continue;
     while (j + 1 < imu.size() && imu.t_s[j + 1] <= begin) ++j;
     double integrated = 0.0, largest_gap = 0.0;
@@ -399,7 +400,7 @@ void BatchProblem::add_gauss_markov() {
                                  new batch::GaussMarkovPrior{sigma}),
                              nullptr, gnss_bias_[0].data());
   for (std::size_t i = 0; i + 1 < keyframes_.size(); ++i) {
-    const double dt = log_.wheels.t_s[keyframes_[i + 1]] - log_.wheels.t_s[keyframes_[i]];
+    const double dt = wheels_.t_s[keyframes_[i + 1]] - wheels_.t_s[keyframes_[i]];
     const double phi = std::exp(-dt / gm_tau_s_);
     problem_->AddResidualBlock(
         new ceres::AutoDiffCostFunction<batch::GaussMarkovResidual, 2, 2, 2>(

@@ -53,8 +53,11 @@ inline constexpr int kTyreOffset = 3;
 // batch_considered_uncertainty.cpp moves what the log takes as known).
 class BatchProblem {
  public:
-  BatchProblem(const Log& log, const ReferenceTrajectory& reference, const BatchOptions& options,
-               const CalibrationOptions& common, const OdometryParams& nominal);
+  // `wheels`: the wheel stream it fits, log.wheels or a prepared copy of it
+  // (CalibrationRun::batch_wheels); every other stream is the log's.
+  BatchProblem(const Log& log, const WheelStream& wheels, const ReferenceTrajectory& reference,
+               const BatchOptions& options, const CalibrationOptions& common,
+               const OdometryParams& nominal);
   // The folds and the problem point into the object's own members: it stays where it was built.
   BatchProblem(const BatchProblem&) = delete;
   BatchProblem& operator=(const BatchProblem&) = delete;
@@ -281,7 +284,7 @@ class BatchProblem {
   double max_weight_change() const { return max_weight_change_; }
   std::size_t keyframes() const { return keyframes_.size(); }
   double duration_s() const {
-    return log_.wheels.t_s[keyframes_.back()] - log_.wheels.t_s[keyframes_.front()];
+    return wheels_.t_s[keyframes_.back()] - wheels_.t_s[keyframes_.front()];
   }
   std::size_t gnss_residuals() const { return gnss_residuals_; }
   // The Doppler residuals' noise from the next pre-integration on: the configured one times this.
@@ -329,7 +332,7 @@ class BatchProblem {
   template <typename Visit>
   void visit_fixes(std::size_t i, const PreintegratedSegment& seg, const std::vector<double>& t_s,
                    double lag_s, std::size_t& next, Visit&& visit) const {
-    const double begin = log_.wheels.t_s[keyframes_[i]], end = log_.wheels.t_s[keyframes_[i + 1]];
+    const double begin = wheels_.t_s[keyframes_[i]], end = wheels_.t_s[keyframes_[i + 1]];
     while (next < t_s.size() && t_s[next] - lag_s < begin) ++next;
     for (; next < t_s.size() && t_s[next] - lag_s < end; ++next) {
       MotionAt at = motion_at(i, seg, t_s[next] - lag_s);
@@ -358,7 +361,7 @@ class BatchProblem {
     std::size_t fix, heading;
   };
   MeasurementCursors cursors_at(std::size_t interval) const {
-    const double start_s = log_.wheels.t_s[keyframes_[interval]];
+    const double start_s = wheels_.t_s[keyframes_[interval]];
     return {first_at_or_after(log_.gnss.t_s, start_s, fix_lag_s()),
             use_heading() ? first_at_or_after(log_.heading->t_s, start_s) : 0};
   }
@@ -404,8 +407,8 @@ class BatchProblem {
       auto [next_fix, next_heading] = cursors_at(begin);
       for (std::size_t i = begin; i < end; ++i) {
         if (i % interval_stride != 0 || gap_segment(i)) continue;
-        const PreintegratedSegment seg = preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1],
-                                                      at, noise_, tyre_fitted() ? &tyre : nullptr);
+        const PreintegratedSegment seg = preintegrate(wheels_, keyframes_[i], keyframes_[i + 1], at,
+                                                      noise_, tyre_fitted() ? &tyre : nullptr);
         visit_fixes(i, seg, log_.gnss.t_s, fix_lag_s(), next_fix,
                     [&](std::size_t j, const MotionAt& motion) {
                       out.push_back({j, i, whitened_fix(j, i, motion), false});
@@ -447,7 +450,7 @@ class BatchProblem {
   }
 
   // A segment that is a wheel gap: no odometry links its keyframes (GNSS and the gyro do).
-  bool gap_segment(std::size_t i) const { return log_.wheels.breaks_at(keyframes_[i + 1]); }
+  bool gap_segment(std::size_t i) const { return wheels_.breaks_at(keyframes_[i + 1]); }
 
   // Whether parameter p is estimated in this solve (the rest are held where they are).
   bool param_free(int p) const;
@@ -507,6 +510,7 @@ class BatchProblem {
   void hold_unrequested();
 
   const Log& log_;
+  const WheelStream& wheels_;
   const ReferenceOptions& sensors_;  // the sensors' noise
   const BatchOptions& batch_;
   VehicleBody body_;  // what the tyre model's physical terms are computed with

@@ -49,15 +49,15 @@ std::vector<OdometryResidualSample> BatchProblem::odometry_errors() const {
     const std::size_t i = b.segment;
     const Eigen::Matrix3d& sqrt_covariance = odometry_[i].sqrt_covariance;
     OdometryResidualSample sample{
-        log_.wheels.t_s[keyframes_[i]],
-        log_.wheels.t_s[keyframes_[i + 1]],
+        wheels_.t_s[keyframes_[i]],
+        wheels_.t_s[keyframes_[i + 1]],
         Eigen::Vector3d(poses_[i][0], poses_[i][1], poses_[i][2]),
         Eigen::Vector3d(poses_[i + 1][0], poses_[i + 1][1], poses_[i + 1][2]),
         sqrt_covariance * whitened,
         whitened};
     // The grade the preparation projected with (none: not known, and not tested).
-    if (!log_.wheels.grade.empty())
-      sample.grade = interval_mean(log_.wheels.grade, keyframes_[i], keyframes_[i + 1]);
+    if (!wheels_.grade.empty())
+      sample.grade = interval_mean(wheels_.grade, keyframes_[i], keyframes_[i + 1]);
     if (i < speed_.size() && speed_[i])
       sample.doppler_error_m = -speed_whitened(i) * speed_[i]->sigma_m;  // Doppler - wheels
     if (i < gyro_turns_.size() && gyro_turns_[i]) {
@@ -82,8 +82,8 @@ void BatchProblem::preintegrate_all(double slip_floor, bool remeasure_states, Fo
   if (remeasure_states && tyre_fitted() && !tyre_model().plain()) {
     // The driving state from the wheels as the current model counts them: a slipping wheel
     // overstates speed and acceleration by its slip.
-    measure_driving_states_again(log_.wheels, log_.imu ? &*log_.imu : nullptr, at, tyre_model(),
-                                 body_, states_, kDrivingStateHalfWindowS, batch_.threads);
+    measure_driving_states_again(wheels_, log_.imu ? &*log_.imu : nullptr, at, tyre_model(), body_,
+                                 states_, kDrivingStateHalfWindowS, batch_.threads);
   }
   const TyreConditions tyre{states_, tyre_model(), body_};
   const WheelNoise noise{std::max(noise_.slip_sigma_m_per_sqrt_m, slip_floor),
@@ -107,9 +107,8 @@ void BatchProblem::preintegrate_all(double slip_floor, bool remeasure_states, Fo
     if (begin == end) return;
     auto [next_fix, next_heading] = cursors_at(begin);
     for (std::size_t i = begin; i < end; ++i) {
-      const PreintegratedSegment segment =
-          preintegrate(log_.wheels, keyframes_[i], keyframes_[i + 1], at, noise,
-                       tyre_fitted() ? &tyre : nullptr);
+      const PreintegratedSegment segment = preintegrate(wheels_, keyframes_[i], keyframes_[i + 1],
+                                                        at, noise, tyre_fitted() ? &tyre : nullptr);
       odometry_[i] = odometry_interval(segment);
       if (gap_segment(i)) continue;
       if (use_speed() && rough_segment_[i] == 0) speed_[i] = speed_residual(i, segment, at);
@@ -144,7 +143,7 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
                                                                  const OdometryParams& at) const {
   // Below this the speed's magnitude is biased by its own noise (and reversing would hide).
   constexpr double kMinSpeedMps = 1.0;
-  const double begin = log_.wheels.t_s[keyframes_[i]], end = log_.wheels.t_s[keyframes_[i + 1]];
+  const double begin = wheels_.t_s[keyframes_[i]], end = wheels_.t_s[keyframes_[i + 1]];
   // The fixes that report the interval's speeds: stamped the latency after it. Taken to first
   // order in the whole latency instead (the speed at each end times it), the urban drive with
   // the fixes 143 ms late and the latency stated put the regression terms' circumference at rest
@@ -166,7 +165,7 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
     r.half_tyre_revolutions.row(w) += half_rev * f.gradient.transpose();
   };
   for (std::size_t k = keyframes_[i] + 1; k <= keyframes_[i + 1]; ++k) {
-    const WheelIncrement n = log_.wheels.increment(k);
+    const WheelIncrement n = wheels_.increment(k);
     if (n.rev_rl < 0.0 || n.rev_rr < 0.0) return std::nullopt;
     r.half_revolutions[0] += 0.5 * n.rev_rl;
     r.half_revolutions[1] += 0.5 * n.rev_rr;
@@ -201,7 +200,7 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
   // second, and the speed is not linear in it (stated at 1.5 m ahead of the axle, the urban
   // drive's Doppler noise came out 1.4 times the configured and c_RL 1.6 sigma low).
   constexpr double kYawRateHalfWindowS = 0.25;
-  const auto time_of = [&](std::size_t k) { return log_.wheels.t_s[seg.first_sample + k]; };
+  const auto time_of = [&](std::size_t k) { return wheels_.t_s[seg.first_sample + k]; };
   const std::size_t last = seg.delta.size() - 1;
   for (std::size_t f = 0; f < interval->fixes.size(); ++f) {
     const std::size_t j = interval->fixes[f];
@@ -217,7 +216,7 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
 }
 
 std::size_t BatchProblem::segment_sample(const PreintegratedSegment& seg, double t_s) const {
-  const auto& t = log_.wheels.t_s;
+  const auto& t = wheels_.t_s;
   const auto first = t.begin() + static_cast<long>(seg.first_sample);
   const auto last = t.begin() + static_cast<long>(seg.last_sample);
   return static_cast<std::size_t>(std::upper_bound(first, last, t_s) - first) - 1;
@@ -225,7 +224,7 @@ std::size_t BatchProblem::segment_sample(const PreintegratedSegment& seg, double
 
 BatchProblem::MotionAt BatchProblem::motion_at(std::size_t i, const PreintegratedSegment& seg,
                                                double t_s) const {
-  const auto& t = log_.wheels.t_s;
+  const auto& t = wheels_.t_s;
   const std::size_t s = segment_sample(seg, t_s);
   const std::size_t k = seg.first_sample + s;
   const double dt = t[k + 1] - t[k];

@@ -239,11 +239,9 @@ void CalibrationRun::dead_reckon_with_walk(CalibrationSummary& summary) {
 void CalibrationRun::smooth_batch_heading(double heading_tick_smoothing_s) {
   if (heading_tick_smoothing_s == batch_heading_smoothing_s_) return;
   batch_heading_smoothing_s_ = heading_tick_smoothing_s;
-  batch_log_.reset();
+  batch_wheels_.reset();
   if (!(heading_tick_smoothing_s > 0.0) || log().wheels.unit_rear != WheelUnit::kTicks) return;
-  Log smoothed = log();
-  smoothed.wheels = heading_dequantised_ticks(std::move(smoothed.wheels), heading_tick_smoothing_s);
-  batch_log_ = std::move(smoothed);
+  batch_wheels_ = heading_dequantised_ticks(log().wheels, heading_tick_smoothing_s);
 }
 
 void CalibrationRun::finish(CalibrationSummary& summary) {

@@ -26,10 +26,11 @@ class CalibrationRun {
 
   // The log the estimators use: the input, with the odometry chain broken at wheel gaps.
   const Log& log() const { return prepared_ ? *prepared_ : log_; }
-  // The log the batch's pose graph reads: log() with the rear wheels' tick difference averaged
-  // over +-heading_tick_smoothing_s (BatchOptions), as set by smooth_batch_heading; log() itself
-  // before that or with 0. Dead reckoning and everything else read log().
-  const Log& batch_log() const { return batch_log_ ? *batch_log_ : log(); }
+  // The wheels the batch's pose graph fits: log()'s with the rear wheels' tick difference
+  // averaged over +-heading_tick_smoothing_s (BatchOptions), as set by smooth_batch_heading;
+  // log()'s own before that or with 0. Only the wheels are copied (a 10-hour log's other streams
+  // are hundreds of megabytes); dead reckoning and everything else read log().
+  const WheelStream& batch_wheels() const { return batch_wheels_ ? *batch_wheels_ : log().wheels; }
   void smooth_batch_heading(double heading_tick_smoothing_s);
   const ReferenceTrajectory& reference() const { return reference_; }
   WholeLogEvaluator& evaluator() { return evaluator_; }
@@ -54,7 +55,7 @@ class CalibrationRun {
   const Log& log_;
   const CalibrationOptions& options_;
   std::optional<Log> prepared_;  // only when preparing changed something
-  std::optional<Log> batch_log_;
+  std::optional<WheelStream> batch_wheels_;
   double batch_heading_smoothing_s_ = 0.0;
   ReferenceTrajectory reference_;
   WholeLogEvaluator evaluator_;

@@ -33,7 +33,8 @@ namespace odocal::experiments {
 // fit's answer stands; 29: the regression terms chosen by hand judged by the physical ones (the
 // experiment's fits are unjudged: nothing moved); 30: the accelerometer's forward offset taken
 // out at the stops, and what is left of it in the physical terms' sigma; 31: only where it
-// stands out of its sigma; 32: the mounting looked for in the residuals (detect_mounting).
+// stands out of its sigma; 32: the mounting looked for in the residuals (detect_mounting); 33:
+// the rear wheels' tick difference smoothed before the batch (heading_tick_smoothing_s).
 inline constexpr int kTyreModelExperimentVersion = 33;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
