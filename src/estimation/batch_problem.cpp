@@ -69,7 +69,7 @@ BatchProblem::BatchProblem(const Log& log, const WheelStream& wheels,
   if (batch_.tyre_model != TyreModelChoice::kNone || gentle_limits()) {
     // The driving state from the log at the nominal parameters: a per mille off in speed
     // moves a coefficient by as much, far inside its sigma.
-    states_ = driving_states(wheels, log.imu ? &*log.imu : nullptr, nominal);
+    states_ = driving_states(wheels, imu(), nominal);
     TyreModel::Vector sum = TyreModel::Vector::Zero();
     for (std::size_t k = reference.first_wheel_index; k < states_.size(); ++k) {
       TyreModel::Vector x = tyre_regressors(states_[k], RearWheel::kLeft, body_);
@@ -171,8 +171,7 @@ void BatchProblem::restart() {
   std::fill(gnss_bias_.begin(), gnss_bias_.end(), Block2{0.0, 0.0});
   std::fill(count_error_.begin(), count_error_.end(), Block2{0.0, 0.0});
   std::fill(gnss_weights_.begin(), gnss_weights_.end(), 1.0f);
-  if (!states_.empty())
-    states_ = driving_states(wheels_, log_.imu ? &*log_.imu : nullptr, nominal_);
+  if (!states_.empty()) states_ = driving_states(wheels_, imu(), nominal_);
 }
 
 int BatchProblem::free_tyre_coefficients() const {

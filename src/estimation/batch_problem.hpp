@@ -449,6 +449,8 @@ class BatchProblem {
     for_each_measurement(std::forward<Visit>(visit), nullptr);
   }
 
+  // The log's IMU stream; null without imu.csv.
+  const ImuStream* imu() const { return log_.imu ? &*log_.imu : nullptr; }
   // A segment that is a wheel gap: no odometry links its keyframes (GNSS and the gyro do).
   bool gap_segment(std::size_t i) const { return wheels_.breaks_at(keyframes_[i + 1]); }
 

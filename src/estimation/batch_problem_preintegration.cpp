@@ -82,8 +82,8 @@ void BatchProblem::preintegrate_all(double slip_floor, bool remeasure_states, Fo
   if (remeasure_states && tyre_fitted() && !tyre_model().plain()) {
     // The driving state from the wheels as the current model counts them: a slipping wheel
     // overstates speed and acceleration by its slip.
-    measure_driving_states_again(wheels_, log_.imu ? &*log_.imu : nullptr, at, tyre_model(), body_,
-                                 states_, kDrivingStateHalfWindowS, batch_.threads);
+    measure_driving_states_again(wheels_, imu(), at, tyre_model(), body_, states_,
+                                 kDrivingStateHalfWindowS, batch_.threads);
   }
   const TyreConditions tyre{states_, tyre_model(), body_};
   const WheelNoise noise{std::max(noise_.slip_sigma_m_per_sqrt_m, slip_floor),

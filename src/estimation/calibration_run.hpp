@@ -56,7 +56,6 @@ class CalibrationRun {
   const CalibrationOptions& options_;
   std::optional<Log> prepared_;  // only when preparing changed something
   std::optional<WheelStream> batch_wheels_;
-  double batch_heading_smoothing_s_ = 0.0;
   ReferenceTrajectory reference_;
   WholeLogEvaluator evaluator_;
   double forward_offset_sigma_mps2_{};
