@@ -15,7 +15,8 @@ OptionTable<BatchOptions> BatchOptions::fields() {
        "encoder quantisation per count; negative: 1/sqrt(12) tick from ticks_per_rev; 0: exact",
        &O::quantisation_sigma_rev},
       {"heading_tick_smoothing_s", "s", 0.0, 1.0,
-       "the rear wheels' tick difference (the heading) averaged over +-this before the fit, "
+       "the rear wheels' tick difference (the heading) fitted with a local quadratic over +-this "
+       "before the fit, "
        "their sum (the distance) as counted; 0: as counted",
        &O::heading_tick_smoothing_s},
       {"lateral_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,

@@ -34,8 +34,9 @@ namespace odocal::experiments {
 // experiment's fits are unjudged: nothing moved); 30: the accelerometer's forward offset taken
 // out at the stops, and what is left of it in the physical terms' sigma; 31: only where it
 // stands out of its sigma; 32: the mounting looked for in the residuals (detect_mounting); 33:
-// the rear wheels' tick difference smoothed before the batch (heading_tick_smoothing_s).
-inline constexpr int kTyreModelExperimentVersion = 33;
+// the rear wheels' tick difference smoothed before the batch (heading_tick_smoothing_s); 34: with
+// a local quadratic over +-0.25 s in place of the line over +-0.1 s.
+inline constexpr int kTyreModelExperimentVersion = 34;
 
 // {seed, realistic: {rear: {none, extended, physical, auto}, front: {...}}, ideal: {none, auto},
 // grip_sharing: {rear: {auto}, front: {auto}}, grip_sharing_quiet_accelerometer: {rear: {auto},

@@ -43,11 +43,12 @@ struct BatchOptions {
   // Encoder quantisation per count in revolutions; negative: 1/sqrt(12) tick from ticks_per_rev
   // (0 for wheel angles or speeds); 0: counts taken as exact.
   double quantisation_sigma_rev = -1.0;
-  // The rear wheels' tick difference averaged over +-this before the fit, their sum as counted
-  // (tick_dequantisation.hpp, heading_dequantised_ticks): the fixes between keyframes meet a
-  // heading without the encoders' cut, which otherwise shortens the antenna's fitted x by a few
-  // per cent (docs/batch-calibration.md, "The encoders' cut in the heading"). 0: as counted.
-  double heading_tick_smoothing_s = 0.1;
+  // The rear wheels' tick difference fitted with a local quadratic over +-this before the fit,
+  // their sum as counted (tick_dequantisation.hpp, heading_dequantised_ticks): the fixes between
+  // keyframes meet a heading without the encoders' cut, which otherwise shortens the antenna's
+  // fitted x by a few per cent (docs/batch-calibration.md, "The encoders' cut in the heading").
+  // 0: as counted.
+  double heading_tick_smoothing_s = 0.25;
   // Time-correlated GNSS error, a first-order Gauss-Markov process per axis (0: white only).
   // gnss.csv's sigma_m is then taken as the total and the white part is what remains.
   double gnss_gauss_markov_sigma_m = 0.0;
