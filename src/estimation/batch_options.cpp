@@ -16,8 +16,7 @@ OptionTable<BatchOptions> BatchOptions::fields() {
        &O::quantisation_sigma_rev},
       {"heading_tick_smoothing_s", "s", 0.0, 1.0,
        "the rear wheels' tick difference (the heading) fitted with a local quadratic over +-this "
-       "before the fit, "
-       "their sum (the distance) as counted; 0: as counted",
+       "before the fit, their sum (the distance) as counted; 0: as counted",
        &O::heading_tick_smoothing_s},
       {"lateral_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
        "side slip and model error across the course", &O::lateral_sigma_m_per_sqrt_m},
