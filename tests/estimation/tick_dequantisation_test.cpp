@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
+#include <vector>
 
 #include "odocal/estimation/batch_options.hpp"
 #include "odocal/estimation/dead_reckoning.hpp"
@@ -269,6 +271,45 @@ TEST(HeadingDequantisation, ExactCountsKeepTheirTurnsCurvature) {
     SCOPED_TRACE(testing::Message() << "from " << first);
     EXPECT_LT(rms_heading_error_rad(smoothed, drive.exact, first), 0.02 * kTickHeadingRad);
   }
+}
+
+// The spread of errors about their mean (a cut count's phase at the start is a constant).
+double spread(const std::vector<double>& errors) {
+  double mean = 0.0, square = 0.0;
+  for (const double e : errors) mean += e / static_cast<double>(errors.size());
+  for (const double e : errors) square += (e - mean) * (e - mean);
+  return square;
+}
+
+// Why the batch keeps the inner samples' cut whole in its segments' covariance: the smoothing
+// moves each count's error onto its neighbours without shrinking it, so the heading error summed
+// over a keyframe interval (what walks the path sideways) is the cut's, where the error at one
+// sample is a small share of it.
+TEST(HeadingDequantisation, TheSmoothingSpreadsTheCutWithoutShrinkingItsSum) {
+  const Slalom drive = slalom(0.05, 0.9, 30.0);
+  const WheelStream smoothed = heading_dequantised_ticks(drive.cut, kBatchHeadingSmoothingS);
+  std::vector<double> raw, left;
+  double cut_difference = 0.0, smoothed_difference = 0.0, exact_difference = 0.0;
+  for (std::size_t k = 1; k < smoothed.size(); ++k) {
+    cut_difference += drive.cut.rev_rr[k] - drive.cut.rev_rl[k];
+    smoothed_difference += smoothed.rev_rr[k] - smoothed.rev_rl[k];
+    exact_difference += drive.exact.rev_rr[k] - drive.exact.rev_rl[k];
+    raw.push_back(cut_difference - exact_difference);
+    left.push_back(smoothed_difference - exact_difference);
+  }
+  const auto interval_sums = [](const std::vector<double>& errors) {
+    const std::size_t interval = std::lround(kRateHz);  // the batch's 1 s keyframes
+    std::vector<double> sums;
+    for (std::size_t from = 100; from + interval + 100 <= errors.size(); from += interval) {
+      sums.push_back(std::accumulate(errors.begin() + from, errors.begin() + from + interval, 0.0));
+    }
+    return sums;
+  };
+  const double summed = std::sqrt(spread(interval_sums(left)) / spread(interval_sums(raw)));
+  const double at_a_sample = std::sqrt(spread(left) / spread(raw));
+  EXPECT_GT(summed, 0.7);
+  EXPECT_LT(summed, 1.3);
+  EXPECT_LT(at_a_sample, 0.5 * summed);
 }
 
 TEST(HeadingDequantisation, BreaksAnglesAndAZeroWindowAreKept) {
