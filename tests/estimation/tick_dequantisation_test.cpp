@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numeric>
 #include <vector>
 
 #include "odocal/estimation/batch_options.hpp"
@@ -273,8 +272,9 @@ TEST(HeadingDequantisation, ExactCountsKeepTheirTurnsCurvature) {
   }
 }
 
-// The spread of errors about their mean (a cut count's phase at the start is a constant).
-double spread(const std::vector<double>& errors) {
+// The errors' squared deviations from their mean, summed (a cut count's phase at the start is a
+// constant).
+double squared_deviations(const std::vector<double>& errors) {
   double mean = 0.0, square = 0.0;
   for (const double e : errors) mean += e / static_cast<double>(errors.size());
   for (const double e : errors) square += (e - mean) * (e - mean);
@@ -301,12 +301,13 @@ TEST(HeadingDequantisation, TheSmoothingSpreadsTheCutWithoutShrinkingItsSum) {
     const std::size_t interval = std::lround(kRateHz);  // the batch's 1 s keyframes
     std::vector<double> sums;
     for (std::size_t from = 100; from + interval + 100 <= errors.size(); from += interval) {
-      sums.push_back(std::accumulate(errors.begin() + from, errors.begin() + from + interval, 0.0));
+      sums.push_back(total(errors, from, from + interval));
     }
     return sums;
   };
-  const double summed = std::sqrt(spread(interval_sums(left)) / spread(interval_sums(raw)));
-  const double at_a_sample = std::sqrt(spread(left) / spread(raw));
+  const double summed =
+      std::sqrt(squared_deviations(interval_sums(left)) / squared_deviations(interval_sums(raw)));
+  const double at_a_sample = std::sqrt(squared_deviations(left) / squared_deviations(raw));
   EXPECT_GT(summed, 0.7);
   EXPECT_LT(summed, 1.3);
   EXPECT_LT(at_a_sample, 0.5 * summed);
