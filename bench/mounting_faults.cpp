@@ -5,19 +5,24 @@
 // mounted at a yaw (|bias| in [0.01, 0.08] rad) and a receiver latency ([0.03, 0.15] s). Each
 // log is calibrated by the batch as it ships (detect_mounting, detect_latency) and with both
 // detections off. Printed per variant: usable results, their errors beyond 3 reported sigma (the
-// confident wrong answers), the share of all errors inside 3 sigma, and what was found.
-// `--gnss-sigma` sets the fixes' white noise (the scenario's 3 m by default; 0.02 for RTK).
+// confident wrong answers), the share of all errors inside 3 sigma, and what was found; and the
+// logs `odocal doctor` blocks (a mis-mounted sensor is not an input mistake it should block: the
+// batch finds it). `--gnss-sigma` sets the fixes' white noise (the scenario's 3 m by default;
+// 0.02 for RTK); `--doctor-only` skips the calibrations.
 //
 //   build/bench/odocal_mounting_faults [--runs 40] [--only N] [--report] [--gnss-sigma S]
+//                                      [--doctor-only]
 
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <map>
 #include <random>
 #include <string>
 
 #include "odocal/estimation/batch_calibration.hpp"
+#include "odocal/estimation/log_diagnosis.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
@@ -108,12 +113,19 @@ struct Found {
   }
 };
 
+std::string blocking_checks(const Diagnosis& diagnosis) {
+  std::string checks;
+  for (const Finding& f : diagnosis.findings)
+    if (f.severity == FindingSeverity::kBlocking) checks += (checks.empty() ? "" : " ") + f.check;
+  return checks;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Mis-mounted sensors against the batch's detections (urban drive)"};
   int runs = 40, only = 0;
-  bool report = false;
+  bool report = false, doctor_only = false;
   double gnss_sigma_m = 0.0;
   app.add_option("--runs", runs)->check(CLI::PositiveNumber);
   app.add_option("--only", only, "Run only this run number (1-based)");
@@ -121,6 +133,7 @@ int main(int argc, char** argv) {
   app.add_option("--gnss-sigma", gnss_sigma_m,
                  "The fixes' white noise, m (default: the scenario's)")
       ->check(CLI::PositiveNumber);
+  app.add_flag("--doctor-only", doctor_only, "Only run odocal doctor's checks on each log");
   CLI11_PARSE(app, argc, argv);
 
   BatchOptions shipped, blind;
@@ -128,12 +141,22 @@ int main(int argc, char** argv) {
   Tally with_detection, without_detection;
   // What matters: an antenna 0.1 m or more to a side, a heading 0.01 rad off, any latency drawn.
   Found lever_found, heading_found, latency_found;
+  int diagnosed = 0;
+  std::map<std::string, int> blocked_by;  // the doctor's blocking checks, by logs
   for (int run = 1; run <= runs; ++run) {
     if (only > 0 && run != only) continue;
     const Faults faults = draw_faults(static_cast<std::uint64_t>(run));
     const sim::SimulatedDrive drive =
         sim::simulate(urban(static_cast<std::uint64_t>(run), faults, gnss_sigma_m));
     const Log log = simulated_log(drive);
+    const std::string blocks = blocking_checks(diagnose_log(log));
+    ++diagnosed;
+    ++blocked_by[blocks.empty() ? "nothing" : blocks];
+    if (doctor_only) {
+      fmt::print(stderr, "run {:>2}: {:<62} doctor blocks {}\n", run, describe(faults),
+                 blocks.empty() ? "nothing" : blocks);
+      continue;
+    }
     const BatchSummary s = calibrate_batch(log, shipped);
     const BatchSummary b = calibrate_batch(log, blind);
     with_detection.add(s, drive.true_params);
@@ -148,9 +171,13 @@ int main(int argc, char** argv) {
           1e3 * (x.estimate.circumference_rl_m - drive.true_params.circumference_rl_m),
           1e3 * x.sigma_rl_m(), x.usable() ? "usable" : "refused");
     };
-    fmt::print(stderr, "run {:>2}: {:<62} shipped {}; blind {}\n", run, describe(faults), line(s),
-               line(b));
+    fmt::print(stderr, "run {:>2}: {:<62} shipped {}; blind {}; doctor blocks {}\n", run,
+               describe(faults), line(s), line(b), blocks.empty() ? "nothing" : blocks);
   }
+  fmt::print("odocal doctor on the {} logs blocks:", diagnosed);
+  for (const auto& [checks, logs] : blocked_by) fmt::print(" {} {};", checks, logs);
+  fmt::print("\n");
+  if (doctor_only) return 0;
   fmt::print(
       "{} runs of the built-in urban drive (realistic, rear-driven), each fault drawn with "
       "probability 1/2: antenna x in [-1, 3] m, y in [-0.8, 0.8] m; heading bias 0.01-0.08 rad; "

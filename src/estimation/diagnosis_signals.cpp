@@ -184,20 +184,10 @@ double correlation(const std::vector<double>& x, const std::vector<double>& y,
   return vx > 0.0 && vy > 0.0 ? cov / std::sqrt(vx * vy) : kNaN;
 }
 
-Lag cross_correlation_lag(const std::vector<double>& x, const std::vector<double>& y, double step_s,
-                          double max_lag_s) {
-  const auto max_shift = static_cast<long>(std::lround(max_lag_s / step_s));
-  const auto n = static_cast<long>(std::min(x.size(), y.size()));
-  std::vector<double> values;
-  for (long shift = -max_shift; shift <= max_shift; ++shift) {
-    // y(t + shift) against x(t): positive shift = y trails x.
-    std::vector<double> xs, ys;
-    for (long k = std::max(0L, -shift); k < n && k + shift < n; ++k) {
-      xs.push_back(x[static_cast<std::size_t>(k)]);
-      ys.push_back(y[static_cast<std::size_t>(k + shift)]);
-    }
-    values.push_back(correlation(xs, ys, std::vector<bool>(xs.size(), true), 50));
-  }
+namespace {
+
+// The lag from the correlations at shifts -max_shift..max_shift: the peak, refined by a parabola.
+Lag lag_at_peak(const std::vector<double>& values, long max_shift, double step_s) {
   Lag lag{kNaN, kNaN, values[static_cast<std::size_t>(max_shift)], kNaN};
   std::size_t best = 0;
   bool found = false;
@@ -220,6 +210,49 @@ Lag cross_correlation_lag(const std::vector<double>& x, const std::vector<double
   lag.lag_s = (static_cast<double>(best) - static_cast<double>(max_shift) + offset) * step_s;
   lag.peak = values[best];
   return lag;
+}
+
+// Correlation of y(t + shift) with x(t) at each shift; with `beside`, the partial correlation
+// given beside(t).
+Lag lag_of(const std::vector<double>& x, const std::vector<double>& y,
+           const std::vector<double>* beside, double step_s, double max_lag_s) {
+  const auto max_shift = static_cast<long>(std::lround(max_lag_s / step_s));
+  const auto n = static_cast<long>(std::min(x.size(), y.size()));
+  std::vector<double> values;
+  for (long shift = -max_shift; shift <= max_shift; ++shift) {
+    std::vector<double> xs, ys, zs;
+    for (long k = std::max(0L, -shift); k < n && k + shift < n; ++k) {
+      const auto i = static_cast<std::size_t>(k), j = static_cast<std::size_t>(k + shift);
+      const double z = beside ? (*beside)[i] : 0.0;
+      if (!std::isfinite(x[i]) || !std::isfinite(y[j]) || !std::isfinite(z)) continue;
+      xs.push_back(x[i]);
+      ys.push_back(y[j]);
+      zs.push_back(z);
+    }
+    const std::vector<bool> use(xs.size(), true);
+    const double xy = correlation(xs, ys, use, 50);
+    if (!beside) {
+      values.push_back(xy);
+      continue;
+    }
+    const double xz = correlation(xs, zs, use, 50), yz = correlation(ys, zs, use, 50);
+    const double rest = (1.0 - xz * xz) * (1.0 - yz * yz);
+    values.push_back(rest > 0.0 ? (xy - xz * yz) / std::sqrt(rest) : kNaN);
+  }
+  return lag_at_peak(values, max_shift, step_s);
+}
+
+}  // namespace
+
+Lag cross_correlation_lag(const std::vector<double>& x, const std::vector<double>& y, double step_s,
+                          double max_lag_s) {
+  return lag_of(x, y, nullptr, step_s, max_lag_s);
+}
+
+Lag partial_cross_correlation_lag(const std::vector<double>& x, const std::vector<double>& y,
+                                  const std::vector<double>& beside, double step_s,
+                                  double max_lag_s) {
+  return lag_of(x, y, &beside, step_s, max_lag_s);
 }
 
 }  // namespace odocal::detail

@@ -72,4 +72,10 @@ struct Lag {
 Lag cross_correlation_lag(const std::vector<double>& x, const std::vector<double>& y, double step_s,
                           double max_lag_s);
 
+// The same with `beside` (a signal at x's times) taken out of both: the peak of their partial
+// correlation. For a lag that a third signal would otherwise lend its own delay to.
+Lag partial_cross_correlation_lag(const std::vector<double>& x, const std::vector<double>& y,
+                                  const std::vector<double>& beside, double step_s,
+                                  double max_lag_s);
+
 }  // namespace odocal::detail
