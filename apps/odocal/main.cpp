@@ -20,6 +20,7 @@
 
 int main(int argc, char** argv) {
   using namespace odocal::cli;
+  map_large_buffers_on_huge_pages(argv);
   return_large_buffers_to_the_system();
   CLI::App app{"odocal: off-line calibration of wheel odometry from logged drives"};
   app.require_subcommand(1);

@@ -103,3 +103,27 @@ def test_a_worker_calibrates_on_one_thread_unless_the_options_say_with_the_same_
     assert given == {"batch": {"tyre_model": "none"}}  # the caller's options left as they were
     for key in ("circumference_rl_m", "circumference_rr_m", "covariance_m2"):
         assert one[key] == own[key]
+
+
+def test_a_local_clusters_workers_start_with_huge_pages_asked_for():
+    from distributed import Client
+
+    from odocal_fleet.run import local_cluster, tunables_with_huge_pages
+
+    assert tunables_with_huge_pages("") == "glibc.malloc.hugetlb=1"
+    assert tunables_with_huge_pages("glibc.malloc.check=3") == \
+        "glibc.malloc.check=3:glibc.malloc.hugetlb=1"
+    assert tunables_with_huge_pages("glibc.malloc.hugetlb=0") is None
+
+    def environment_at_start():  # as the process was started, not as it is now
+        with open("/proc/self/environ", "rb") as f:
+            variables = f.read().split(b"\0")
+        return [v.decode() for v in variables if v.startswith(b"GLIBC_TUNABLES=")]
+
+    cluster = local_cluster(1)
+    try:
+        with Client(cluster) as client:
+            (at_start,) = client.run(environment_at_start).values()
+    finally:
+        cluster.close()
+    assert at_start and "glibc.malloc.hugetlb=1" in at_start[0]

@@ -1,0 +1,112 @@
+// The command line runs itself again with glibc's allocator asking for transparent huge pages
+// (apps/odocal/large_buffers.hpp). This executable does what the command line's main does before
+// its tests run, so the tests see the process as the command line would.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "large_buffers.hpp"
+
+// gcc says so with a macro, clang with a feature test.
+#if defined(__SANITIZE_ADDRESS__)
+#define ODOCAL_UNDER_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define ODOCAL_UNDER_ADDRESS_SANITIZER 1
+#endif
+#endif
+
+namespace {
+
+using odocal::cli::tunables_with_huge_pages;
+
+TEST(HugePages, TunablesAreAddedToWhatTheUserSet) {
+  EXPECT_EQ(tunables_with_huge_pages(nullptr), "glibc.malloc.hugetlb=1");
+  EXPECT_EQ(tunables_with_huge_pages(""), "glibc.malloc.hugetlb=1");
+  EXPECT_EQ(tunables_with_huge_pages("glibc.malloc.check=3"),
+            "glibc.malloc.check=3:glibc.malloc.hugetlb=1");
+}
+
+TEST(HugePages, AUsersOwnChoiceStands) {
+  EXPECT_FALSE(tunables_with_huge_pages("glibc.malloc.hugetlb=0"));
+  EXPECT_FALSE(tunables_with_huge_pages("glibc.malloc.check=3:glibc.malloc.hugetlb=2"));
+}
+
+TEST(HugePages, TheProgramRunsWithTheTunableSet) {
+#if !defined(__GLIBC__)
+  GTEST_SKIP() << "glibc only";
+#else
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  ASSERT_NE(tunables, nullptr);
+  EXPECT_NE(std::string(tunables).find("glibc.malloc.hugetlb"), std::string::npos);
+#endif
+}
+
+// The kernel's transparent huge page mode: "always", "madvise" or "never" (the bracketed one).
+std::string transparent_huge_pages_mode() {
+  std::ifstream file("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string line;
+  std::getline(file, line);
+  const auto open = line.find('['), close = line.find(']');
+  return open == std::string::npos || close == std::string::npos
+             ? ""
+             : line.substr(open + 1, close - open - 1);
+}
+
+// AnonHugePages of the mapping that holds `address`, in kB (-1: not found).
+long huge_pages_kb_at(const void* address) {
+  const auto at = reinterpret_cast<std::uintptr_t>(address);
+  std::ifstream smaps("/proc/self/smaps");
+  std::string line;
+  bool inside = false;
+  while (std::getline(smaps, line)) {
+    std::uintptr_t begin = 0, end = 0;
+    char dash = 0;
+    std::istringstream range(line);
+    if (range >> std::hex >> begin >> dash >> end && dash == '-') {
+      inside = begin <= at && at < end;
+      continue;
+    }
+    if (inside && line.rfind("AnonHugePages:", 0) == 0)
+      return std::stol(line.substr(std::strlen("AnonHugePages:")));
+  }
+  return -1;
+}
+
+void* volatile sink = nullptr;  // keeps the compiler from eliding the allocation
+
+TEST(HugePages, ALargeBufferIsBackedByHugePages) {
+#if !defined(__GLIBC__) || defined(ODOCAL_UNDER_ADDRESS_SANITIZER)
+  GTEST_SKIP() << "glibc's own allocator only";
+#else
+  const std::string mode = transparent_huge_pages_mode();
+  if (mode != "always" && mode != "madvise")
+    GTEST_SKIP() << "the kernel grants no transparent huge pages (mode '" << mode << "')";
+  if (const char* set = std::getenv("GLIBC_TUNABLES");
+      set != nullptr && std::string(set).find("glibc.malloc.hugetlb=0") != std::string::npos)
+    GTEST_SKIP() << "GLIBC_TUNABLES asks for none";
+  odocal::cli::return_large_buffers_to_the_system();
+  constexpr std::size_t kBytes = 64u << 20;
+  void* buffer = std::malloc(kBytes);
+  ASSERT_NE(buffer, nullptr);
+  std::memset(buffer, 1, kBytes);
+  sink = buffer;
+  const long huge_kb = huge_pages_kb_at(static_cast<char*>(buffer) + kBytes / 2);
+  std::free(buffer);
+  EXPECT_GT(huge_kb, 0) << "a 64 MiB buffer, mapped on its own, faulted in 4 KiB pages only";
+#endif
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  odocal::cli::map_large_buffers_on_huge_pages(argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
