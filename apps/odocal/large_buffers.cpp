@@ -28,8 +28,13 @@ std::optional<std::string> tunables_with_huge_pages(const char* existing) {
   return tunables;
 }
 
+bool preloaded_tool_watches(const char* ld_preload) {
+  return ld_preload != nullptr && *ld_preload != '\0';
+}
+
 void map_large_buffers_on_huge_pages(char** argv) {
 #if defined(__GLIBC__)
+  if (preloaded_tool_watches(std::getenv("LD_PRELOAD"))) return;
   const char* existing = std::getenv("GLIBC_TUNABLES");
   const std::optional<std::string> tunables = tunables_with_huge_pages(existing);
   if (!tunables || argv == nullptr || argv[0] == nullptr) return;

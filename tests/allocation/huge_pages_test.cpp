@@ -38,10 +38,19 @@ TEST(HugePages, AUsersOwnChoiceStands) {
   EXPECT_FALSE(tunables_with_huge_pages("glibc.malloc.check=3:glibc.malloc.hugetlb=2"));
 }
 
+TEST(HugePages, AProcessThatAPreloadedToolWatchesIsNotRunAgain) {
+  EXPECT_TRUE(odocal::cli::preloaded_tool_watches(
+      "/usr/libexec/valgrind/vgpreload_core-amd64-linux.so"));
+  EXPECT_FALSE(odocal::cli::preloaded_tool_watches(nullptr));
+  EXPECT_FALSE(odocal::cli::preloaded_tool_watches(""));
+}
+
 TEST(HugePages, TheProgramRunsWithTheTunableSet) {
 #if !defined(__GLIBC__)
   GTEST_SKIP() << "glibc only";
 #else
+  if (odocal::cli::preloaded_tool_watches(std::getenv("LD_PRELOAD")))
+    GTEST_SKIP() << "a preloaded tool watches this process: not run again";
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   ASSERT_NE(tunables, nullptr);
   EXPECT_NE(std::string(tunables).find("glibc.malloc.hugetlb"), std::string::npos);
