@@ -22,11 +22,11 @@ std::optional<std::string> tunables_with_huge_pages(const char* existing);
 bool preloaded_tool_watches(const char* ld_preload);
 
 // Runs this program again with those tunables where the environment does not yet say how, and no
-// preloaded tool watches it (glibc reads them only at start-up), so that each buffer mapped on its own is backed by huge
-// pages where the kernel grants them (transparent_hugepage: madvise or always): the batch maps
-// and frees its buffers of a few MiB at every solve, and faulting them in 4 KiB pages took a
-// quarter of the 10-hour drive's time (docs/batch-calibration.md, "Memory and time"). Returns
-// where it does not run again (not glibc, or the exec failed).
+// preloaded tool watches it (glibc reads them only at start-up), so that each buffer mapped on its
+// own is backed by huge pages where the kernel grants them (transparent_hugepage: madvise or
+// always): the batch maps and frees its buffers of a few MiB at every solve, and faulting them in 4
+// KiB pages took a quarter of the 10-hour drive's time (docs/batch-calibration.md, "Memory and
+// time"). Returns where it does not run again (not glibc, or the exec failed).
 void map_large_buffers_on_huge_pages(char** argv);
 
 }  // namespace odocal::cli

@@ -39,8 +39,8 @@ TEST(HugePages, AUsersOwnChoiceStands) {
 }
 
 TEST(HugePages, AProcessThatAPreloadedToolWatchesIsNotRunAgain) {
-  EXPECT_TRUE(odocal::cli::preloaded_tool_watches(
-      "/usr/libexec/valgrind/vgpreload_core-amd64-linux.so"));
+  EXPECT_TRUE(
+      odocal::cli::preloaded_tool_watches("/usr/libexec/valgrind/vgpreload_core-amd64-linux.so"));
   EXPECT_FALSE(odocal::cli::preloaded_tool_watches(nullptr));
   EXPECT_FALSE(odocal::cli::preloaded_tool_watches(""));
 }
