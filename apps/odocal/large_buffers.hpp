@@ -25,8 +25,8 @@ bool preloaded_tool_watches(const char* ld_preload);
 // preloaded tool watches it (glibc reads them only at start-up), so that each buffer mapped on its
 // own is backed by huge pages where the kernel grants them (transparent_hugepage: madvise or
 // always): the batch maps and frees its buffers of a few MiB at every solve, and faulting them in 4
-// KiB pages took a quarter of the 10-hour drive's time (docs/batch-calibration.md, "Memory and
-// time"). Returns where it does not run again (not glibc, or the exec failed).
+// KiB pages took a quarter of the 10-hour drive's processor time (docs/batch-calibration.md,
+// "Memory and time"). Returns where it does not run again (not glibc, or the exec failed).
 void map_large_buffers_on_huge_pages(char** argv);
 
 }  // namespace odocal::cli

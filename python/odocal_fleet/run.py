@@ -41,8 +41,8 @@ def tunables_with_huge_pages(existing):
 def local_cluster(workers):
     """A LocalCluster of single-threaded worker processes whose allocator backs its large buffers
     with huge pages: glibc reads the tunable only when a process starts, so it goes into the
-    nanny's environment before the spawn (the 10-hour drive: a quarter of its time was spent
-    faulting its buffers in 4 KiB pages; docs/fleet.md)."""
+    nanny's environment before the spawn (the 10-hour drive: a quarter of its processor time went
+    on faulting its buffers in 4 KiB pages; docs/fleet.md)."""
     import dask
     from distributed import LocalCluster
 

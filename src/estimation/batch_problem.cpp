@@ -227,7 +227,7 @@ ceres::Solver::Summary BatchProblem::solve(int max_iterations) {
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   // CHOLMOD (SuiteSparse) factors the normal equations without the permuted full copy that
-  // Eigen's simplicial LDLT makes of them, in half its time on the 10-hour drive
+  // Eigen's simplicial LDLT makes of them, in half its time per solve on the 2-hour urban drive
   // (docs/batch-calibration.md, "Memory and time").
   solver.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
   solver.max_num_iterations = max_iterations > 0 ? max_iterations : batch_.max_solver_iterations;

@@ -11,16 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "address_sanitizer.hpp"
 #include "large_buffers.hpp"
-
-// gcc says so with a macro, clang with a feature test.
-#if defined(__SANITIZE_ADDRESS__)
-#define ODOCAL_UNDER_ADDRESS_SANITIZER 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define ODOCAL_UNDER_ADDRESS_SANITIZER 1
-#endif
-#endif
 
 namespace {
 
@@ -58,7 +50,7 @@ TEST(HugePages, TheProgramRunsWithTheTunableSet) {
 }
 
 // The kernel's transparent huge page mode: "always", "madvise" or "never" (the bracketed one).
-std::string transparent_huge_pages_mode() {
+[[maybe_unused]] std::string transparent_huge_pages_mode() {  // unused where the test skips
   std::ifstream file("/sys/kernel/mm/transparent_hugepage/enabled");
   std::string line;
   std::getline(file, line);
@@ -69,7 +61,7 @@ std::string transparent_huge_pages_mode() {
 }
 
 // AnonHugePages of the mapping that holds `address`, in kB (-1: not found).
-long huge_pages_kb_at(const void* address) {
+[[maybe_unused]] long huge_pages_kb_at(const void* address) {
   const auto at = reinterpret_cast<std::uintptr_t>(address);
   std::ifstream smaps("/proc/self/smaps");
   std::string line;
@@ -88,7 +80,7 @@ long huge_pages_kb_at(const void* address) {
   return -1;
 }
 
-void* volatile sink = nullptr;  // keeps the compiler from eliding the allocation
+[[maybe_unused]] void* volatile sink = nullptr;  // keeps the compiler from eliding the allocation
 
 TEST(HugePages, ALargeBufferIsBackedByHugePages) {
 #if !defined(__GLIBC__) || defined(ODOCAL_UNDER_ADDRESS_SANITIZER)

@@ -9,17 +9,10 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "address_sanitizer.hpp"
+
 #if defined(__GLIBC__)
 #include <malloc.h>
-#endif
-
-// gcc says so with a macro, clang with a feature test.
-#if defined(__SANITIZE_ADDRESS__)
-#define ODOCAL_UNDER_ADDRESS_SANITIZER 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define ODOCAL_UNDER_ADDRESS_SANITIZER 1
-#endif
 #endif
 
 namespace {
