@@ -18,7 +18,7 @@ namespace {
 
 // Keyframes every interval_s, and on both sides of every break of the odometry chain (a wheel
 // gap), so that the gap is a segment of its own, without odometry.
-std::vector<std::size_t> keyframe_samples(const WheelStream& wheels, std::size_t first,
+std::vector<std::size_t> keyframe_samples(const FittedWheels& wheels, std::size_t first,
                                           double interval_s) {
   std::vector<std::size_t> samples{first};
   for (std::size_t k = first + 1; k < wheels.size(); ++k) {
@@ -43,7 +43,7 @@ double median_step_s(const std::vector<double>& t_s) {
 
 }  // namespace
 
-BatchProblem::BatchProblem(const Log& log, const WheelStream& wheels,
+BatchProblem::BatchProblem(const Log& log, FittedWheels wheels,
                            const ReferenceTrajectory& reference, const BatchOptions& options,
                            const CalibrationOptions& common, const OdometryParams& nominal)
     : log_(log),

@@ -53,9 +53,9 @@ inline constexpr int kTyreOffset = 3;
 // batch_considered_uncertainty.cpp moves what the log takes as known).
 class BatchProblem {
  public:
-  // `wheels`: the wheel stream it fits, log.wheels or a prepared copy of it
-  // (CalibrationRun::batch_wheels); every other stream is the log's.
-  BatchProblem(const Log& log, const WheelStream& wheels, const ReferenceTrajectory& reference,
+  // `wheels`: the wheel stream it fits, log.wheels as it is or with its heading smoothed
+  // (CalibrationRun::batch_wheels); it and every other stream are the log's.
+  BatchProblem(const Log& log, FittedWheels wheels, const ReferenceTrajectory& reference,
                const BatchOptions& options, const CalibrationOptions& common,
                const OdometryParams& nominal);
   // The folds and the problem point into the object's own members: it stays where it was built.
@@ -512,7 +512,7 @@ class BatchProblem {
   void hold_unrequested();
 
   const Log& log_;
-  const WheelStream& wheels_;
+  const FittedWheels wheels_;
   const ReferenceOptions& sensors_;  // the sensors' noise
   const BatchOptions& batch_;
   VehicleBody body_;  // what the tyre model's physical terms are computed with

@@ -237,9 +237,7 @@ void CalibrationRun::dead_reckon_with_walk(CalibrationSummary& summary) {
 }
 
 void CalibrationRun::smooth_batch_heading(double heading_tick_smoothing_s) {
-  batch_wheels_.reset();
-  if (!(heading_tick_smoothing_s > 0.0) || log().wheels.unit_rear != WheelUnit::kTicks) return;
-  batch_wheels_ = heading_dequantised_ticks(log().wheels, heading_tick_smoothing_s);
+  batch_heading_change_ = heading_tick_change(log().wheels, heading_tick_smoothing_s);
 }
 
 void CalibrationRun::finish(CalibrationSummary& summary) {

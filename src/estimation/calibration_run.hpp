@@ -6,6 +6,7 @@
 
 #include <optional>
 
+#include "odocal/data/fitted_wheels.hpp"
 #include "odocal/data/log.hpp"
 #include "odocal/estimation/calibration_options.hpp"
 #include "odocal/estimation/calibration_summary.hpp"
@@ -28,9 +29,10 @@ class CalibrationRun {
   const Log& log() const { return prepared_ ? *prepared_ : log_; }
   // The wheels the batch's pose graph fits: log()'s with the rear wheels' tick difference
   // averaged over +-heading_tick_smoothing_s (BatchOptions), as set by smooth_batch_heading;
-  // log()'s own before that or with 0. Only the wheels are copied (a 10-hour log's other streams
-  // are hundreds of megabytes); dead reckoning and everything else read log().
-  const WheelStream& batch_wheels() const { return batch_wheels_ ? *batch_wheels_ : log().wheels; }
+  // log()'s own before that or with 0. Only the change of each sample's difference is kept
+  // beside the log (a copy of the wheels was 79 MiB on a 10-hour drive); dead reckoning and
+  // everything else read log().
+  FittedWheels batch_wheels() const { return {log().wheels, batch_heading_change_}; }
   void smooth_batch_heading(double heading_tick_smoothing_s);
   const ReferenceTrajectory& reference() const { return reference_; }
   WholeLogEvaluator& evaluator() { return evaluator_; }
@@ -54,8 +56,8 @@ class CalibrationRun {
 
   const Log& log_;
   const CalibrationOptions& options_;
-  std::optional<Log> prepared_;  // only when preparing changed something
-  std::optional<WheelStream> batch_wheels_;
+  std::optional<Log> prepared_;               // only when preparing changed something
+  std::vector<double> batch_heading_change_;  // empty: none
   ReferenceTrajectory reference_;
   WholeLogEvaluator evaluator_;
   double forward_offset_sigma_mps2_{};

@@ -93,7 +93,7 @@ class RunningMean {
 // running sums are added up on the caller, and each part's running means start from the
 // stream's beginning.
 template <class Factor>
-void fill_states(const WheelStream& wheels, const ImuStream* imu, const OdometryParams& params,
+void fill_states(const FittedWheels& wheels, const ImuStream* imu, const OdometryParams& params,
                  double half_window_s, const Factor& factor, std::vector<DrivingState>& states,
                  int threads) {
   states.resize(wheels.size());
@@ -106,8 +106,9 @@ void fill_states(const WheelStream& wheels, const ImuStream* imu, const Odometry
   Cumulative wheel_turn{wheels.t_s, std::vector<double>(wheels.size(), 0.0)};
   batch::run_in_parts(wheels.size() - 1, threads, [&](std::size_t, std::size_t b, std::size_t e) {
     for (std::size_t k = b + 1; k <= e; ++k) {
-      const WheelIncrement counted{wheels.rev_rl[k] * factor(k, RearWheel::kLeft),
-                                   wheels.rev_rr[k] * factor(k, RearWheel::kRight)};
+      const WheelIncrement n = wheels.increment(k);
+      const WheelIncrement counted{n.rev_rl * factor(k, RearWheel::kLeft),
+                                   n.rev_rr * factor(k, RearWheel::kRight)};
       const BodyIncrement step = body_increment(counted, params);
       path.value[k] = step.distance_m;
       wheel_turn.value[k] = step.yaw_rad;
@@ -167,7 +168,7 @@ std::vector<DrivingState> driving_states(const Log& log, const OdometryParams& p
   return driving_states(log.wheels, log.imu ? &*log.imu : nullptr, params, half_window_s);
 }
 
-std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
+std::vector<DrivingState> driving_states(const FittedWheels& wheels, const ImuStream* imu,
                                          const OdometryParams& params, double half_window_s) {
   std::vector<DrivingState> states;
   fill_states(
@@ -175,7 +176,7 @@ std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStr
   return states;
 }
 
-std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
+std::vector<DrivingState> driving_states(const FittedWheels& wheels, const ImuStream* imu,
                                          const OdometryParams& params,
                                          const std::vector<DrivingState>& counted_at,
                                          const TyreModel& model, const VehicleBody& body,
@@ -185,7 +186,7 @@ std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStr
   return states;
 }
 
-void measure_driving_states_again(const WheelStream& wheels, const ImuStream* imu,
+void measure_driving_states_again(const FittedWheels& wheels, const ImuStream* imu,
                                   const OdometryParams& params, const TyreModel& model,
                                   const VehicleBody& body, std::vector<DrivingState>& states,
                                   double half_window_s, int threads) {

@@ -6,7 +6,7 @@
 
 namespace odocal {
 
-PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_sample,
+PreintegratedSegment preintegrate(const FittedWheels& wheels, std::size_t first_sample,
                                   std::size_t last_sample, const OdometryParams& params,
                                   const WheelNoise& noise, const TyreConditions* tyre) {
   PreintegratedSegment segment;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 
+#include "odocal/data/fitted_wheels.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
 
 namespace odocal {
@@ -131,17 +132,24 @@ WheelStream dequantised_ticks(WheelStream wheels, double half_window_s) {
   return wheels;
 }
 
-WheelStream heading_dequantised_ticks(WheelStream wheels, double half_window_s) {
+std::vector<double> heading_tick_change(const WheelStream& wheels, double half_window_s) {
   const std::optional<SmoothingWindow> window = smoothing_window(wheels, half_window_s);
-  if (!window) return wheels;
-  std::vector<double> difference(wheels.size());
-  for (std::size_t k = 0; k < wheels.size(); ++k)
-    difference[k] = wheels.rev_rr[k] - wheels.rev_rl[k];
-  smooth_wheel(difference, wheels, LocalFit::kQuadratic, window->half_window, window->max_gap_s);
+  if (!window) return {};
+  std::vector<double> change(wheels.size());
+  for (std::size_t k = 0; k < wheels.size(); ++k) change[k] = wheels.rev_rr[k] - wheels.rev_rl[k];
+  smooth_wheel(change, wheels, LocalFit::kQuadratic, window->half_window, window->max_gap_s);
+  for (std::size_t k = 0; k < wheels.size(); ++k) change[k] -= wheels.rev_rr[k] - wheels.rev_rl[k];
+  return change;
+}
+
+WheelStream heading_dequantised_ticks(WheelStream wheels, double half_window_s) {
+  const std::vector<double> change = heading_tick_change(wheels, half_window_s);
+  if (change.empty()) return wheels;
+  const FittedWheels fitted(wheels, change);
   for (std::size_t k = 0; k < wheels.size(); ++k) {
-    const double sum = wheels.rev_rl[k] + wheels.rev_rr[k];
-    wheels.rev_rl[k] = 0.5 * (sum - difference[k]);
-    wheels.rev_rr[k] = 0.5 * (sum + difference[k]);
+    const WheelIncrement n = fitted.increment(k);
+    wheels.rev_rl[k] = n.rev_rl;
+    wheels.rev_rr[k] = n.rev_rr;
   }
   return wheels;
 }

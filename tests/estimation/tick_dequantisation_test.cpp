@@ -12,6 +12,8 @@
 #include "odocal/estimation/batch_options.hpp"
 #include "odocal/estimation/dead_reckoning.hpp"
 #include "odocal/estimation/drift_validation.hpp"
+#include "odocal/estimation/driving_state.hpp"
+#include "odocal/estimation/odometry_preintegration.hpp"
 
 namespace odocal {
 namespace {
@@ -337,6 +339,35 @@ TEST(HeadingDequantisation, BreaksAnglesAndAZeroWindowAreKept) {
   EXPECT_EQ(heading_dequantised_ticks(raw, 0.0).rev_rl, raw.rev_rl);
   raw.unit_rear = WheelUnit::kRadians;
   EXPECT_EQ(heading_dequantised_ticks(raw, kBatchHeadingSmoothingS).rev_rr, raw.rev_rr);
+}
+
+// The batch fits the log's own stream with the change of each sample's difference beside it
+// (CalibrationRun::batch_wheels): read through FittedWheels it is the smoothed copy, in the
+// increments, the pre-integrated segments and the driving states, without copying the stream.
+TEST(HeadingDequantisation, TheStreamWithItsChangeReadsAsTheSmoothedCopy) {
+  const WheelStream raw = slalom(0.05, 0.9, 30.0).cut;
+  const WheelStream copy = heading_dequantised_ticks(raw, kBatchHeadingSmoothingS);
+  const std::vector<double> change = heading_tick_change(raw, kBatchHeadingSmoothingS);
+  ASSERT_EQ(change.size(), raw.size());
+  const FittedWheels fitted(raw, change);
+  EXPECT_EQ(&fitted.t_s, &raw.t_s);
+  double moved = 0.0;
+  for (std::size_t k = 0; k < raw.size(); ++k) {
+    ASSERT_EQ(fitted.increment(k).rev_rl, copy.rev_rl[k]) << "sample " << k;
+    ASSERT_EQ(fitted.increment(k).rev_rr, copy.rev_rr[k]) << "sample " << k;
+    moved = std::max(moved, std::abs(change[k]));
+  }
+  EXPECT_GT(moved, 0.1 / kTicksPerRev);  // it smooths something
+  const PreintegratedSegment from_view = preintegrate(fitted, 100, 150, kParams, WheelNoise{});
+  const PreintegratedSegment from_copy = preintegrate(copy, 100, 150, kParams, WheelNoise{});
+  EXPECT_EQ(from_view.delta.back(), from_copy.delta.back());
+  EXPECT_EQ(from_view.covariance, from_copy.covariance);
+  const std::vector<DrivingState> states_view = driving_states(fitted, nullptr, kParams);
+  const std::vector<DrivingState> states_copy = driving_states(copy, nullptr, kParams);
+  ASSERT_EQ(states_view.size(), states_copy.size());
+  for (std::size_t k = 0; k < states_view.size(); ++k)
+    ASSERT_EQ(states_view[k].yaw_rate_radps, states_copy[k].yaw_rate_radps) << "sample " << k;
+  EXPECT_TRUE(heading_tick_change(raw, 0.0).empty());
 }
 
 // `validate` dead-reckons the smoothed counts unless told not to.

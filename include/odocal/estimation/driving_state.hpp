@@ -9,6 +9,7 @@
 
 #include <vector>
 
+#include "odocal/data/fitted_wheels.hpp"
 #include "odocal/data/log.hpp"
 #include "odocal/model/tyre_model.hpp"
 
@@ -23,13 +24,13 @@ inline constexpr double kDrivingStateHalfWindowS = 0.25;
 std::vector<DrivingState> driving_states(const Log& log, const OdometryParams& params,
                                          double half_window_s = kDrivingStateHalfWindowS);
 // The same from a wheel stream and the gyro (null: none).
-std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
+std::vector<DrivingState> driving_states(const FittedWheels& wheels, const ImuStream* imu,
                                          const OdometryParams& params,
                                          double half_window_s = kDrivingStateHalfWindowS);
 // The same from the wheels as `model` counts them at the states `counted_at` (one per wheel
 // sample): driving_states(with_tyre_model(wheels, counted_at, model), ...) without the copy of
 // the stream (a slipping wheel overstates its speed by its slip).
-std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStream* imu,
+std::vector<DrivingState> driving_states(const FittedWheels& wheels, const ImuStream* imu,
                                          const OdometryParams& params,
                                          const std::vector<DrivingState>& counted_at,
                                          const TyreModel& model, const VehicleBody& body,
@@ -38,7 +39,7 @@ std::vector<DrivingState> driving_states(const WheelStream& wheels, const ImuStr
 // The same in place: `states` (one per wheel sample, as the model counted them) become the
 // states of the wheels as `model` counts them there, without a second copy of the states. On
 // `threads` threads (0: one per core), with the same result as on one.
-void measure_driving_states_again(const WheelStream& wheels, const ImuStream* imu,
+void measure_driving_states_again(const FittedWheels& wheels, const ImuStream* imu,
                                   const OdometryParams& params, const TyreModel& model,
                                   const VehicleBody& body, std::vector<DrivingState>& states,
                                   double half_window_s = kDrivingStateHalfWindowS, int threads = 1);

@@ -9,6 +9,7 @@
 #include <array>
 #include <vector>
 
+#include "odocal/data/fitted_wheels.hpp"
 #include "odocal/data/log.hpp"
 #include "odocal/model/tyre_model.hpp"
 
@@ -57,7 +58,7 @@ struct TyreConditions {
 
 // Requires first_sample < last_sample < wheels.size(). With a tyre model, every increment
 // carries its factors (c_i,eff / c_i) and J_delta_tyre is filled.
-PreintegratedSegment preintegrate(const WheelStream& wheels, std::size_t first_sample,
+PreintegratedSegment preintegrate(const FittedWheels& wheels, std::size_t first_sample,
                                   std::size_t last_sample, const OdometryParams& params,
                                   const WheelNoise& noise, const TyreConditions* tyre = nullptr);
 

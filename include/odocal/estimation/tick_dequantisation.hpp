@@ -7,6 +7,8 @@
 // (docs/batch-calibration.md, "Encoder ticks in dead reckoning"). The centred mean of the
 // cumulative count over a short window averages the cut over the ticks that pass within it.
 
+#include <vector>
+
 #include "odocal/data/log.hpp"
 
 namespace odocal {
@@ -36,5 +38,10 @@ WheelStream dequantised_ticks(WheelStream wheels, double half_window_s);
 // as slip (docs/batch-calibration.md, "The encoders' cut in the heading"). The front wheels, angles
 // and speeds, and half_window_s <= 0 return unchanged.
 WheelStream heading_dequantised_ticks(WheelStream wheels, double half_window_s);
+
+// What heading_dequantised_ticks does to each sample, as the change of its right-minus-left rear
+// increment (rev; the right wheel gains half of it, the left loses as much): a FittedWheels of the
+// stream and this is that stream without a copy. Empty where it changes nothing.
+std::vector<double> heading_tick_change(const WheelStream& wheels, double half_window_s);
 
 }  // namespace odocal
