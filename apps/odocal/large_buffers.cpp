@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <cstdlib>  // defines __GLIBC__ where it is glibc
+#include <fstream>
+#include <iterator>
 #include <string_view>
 
 #if defined(__GLIBC__)
@@ -28,13 +30,23 @@ std::optional<std::string> tunables_with_huge_pages(const char* existing) {
   return tunables;
 }
 
-bool preloaded_tool_watches(const char* ld_preload) {
-  return ld_preload != nullptr && *ld_preload != '\0';
+bool preloaded_tool_watches(const char* ld_preload, std::string_view mapped_files) {
+  if (ld_preload != nullptr && *ld_preload != '\0') return true;
+  for (const std::string_view library : {"/libheaptrack_preload.so", "/vgpreload_"})
+    if (mapped_files.find(library) != std::string_view::npos) return true;
+  return false;
+}
+
+bool preloaded_tool_watches() {
+  std::ifstream maps("/proc/self/maps");
+  const std::string mapped_files{std::istreambuf_iterator<char>(maps),
+                                 std::istreambuf_iterator<char>()};
+  return preloaded_tool_watches(std::getenv("LD_PRELOAD"), mapped_files);
 }
 
 void map_large_buffers_on_huge_pages(char** argv) {
 #if defined(__GLIBC__)
-  if (preloaded_tool_watches(std::getenv("LD_PRELOAD"))) return;
+  if (preloaded_tool_watches()) return;
   const char* existing = std::getenv("GLIBC_TUNABLES");
   const std::optional<std::string> tunables = tunables_with_huge_pages(existing);
   if (!tunables || argv == nullptr || argv[0] == nullptr) return;

@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace odocal::cli {
 
@@ -17,9 +18,13 @@ void return_large_buffers_to_the_system();
 // glibc.malloc.hugetlb=0 stands).
 std::optional<std::string> tunables_with_huge_pages(const char* existing);
 
-// Whether a tool watches this process through a preloaded library (LD_PRELOAD: valgrind,
-// heaptrack): run again, the program would leave the tool (valgrind cannot even start it so).
-bool preloaded_tool_watches(const char* ld_preload);
+// Whether a tool watches this process through a preloaded library: run again, the program would
+// leave the tool (valgrind cannot even start it so). valgrind leaves its library in LD_PRELOAD;
+// heaptrack takes its own out of the environment once loaded, and only the files mapped into the
+// process (`mapped_files`, as /proc/self/maps lists them) still show it.
+bool preloaded_tool_watches(const char* ld_preload, std::string_view mapped_files);
+// The same for this process.
+bool preloaded_tool_watches();
 
 // Runs this program again with those tunables where the environment does not yet say how, and no
 // preloaded tool watches it (glibc reads them only at start-up), so that each buffer mapped on its
