@@ -46,10 +46,11 @@ bool preloaded_tool_watches() {
 
 void map_large_buffers_on_huge_pages(char** argv) {
 #if defined(__GLIBC__)
-  if (preloaded_tool_watches()) return;
   const char* existing = std::getenv("GLIBC_TUNABLES");
   const std::optional<std::string> tunables = tunables_with_huge_pages(existing);
   if (!tunables || argv == nullptr || argv[0] == nullptr) return;
+  // Read only where it would run again: the process it starts has the tunable set and stops above.
+  if (preloaded_tool_watches()) return;
   const std::optional<std::string> before =
       existing != nullptr ? std::optional<std::string>(existing) : std::nullopt;
   if (setenv("GLIBC_TUNABLES", tunables->c_str(), 1) != 0) return;
