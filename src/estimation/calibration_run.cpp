@@ -175,11 +175,15 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
       evaluator_(this->log().wheels, reference_, options) {
   summary.method = method;
   if (this->log().imu) {
-    // Measured at 3 stops or more; otherwise the unmeasured sigma, no narrower than what the
-    // accelerometer reads beyond the wheels while driving (a phone pitched by 4 deg: comma2k19).
-    const auto& offset = summary.preparation.accelerometer_offset;
+    // Measured at 3 stops or more, else over the drive where it can tell the slope; otherwise the
+    // unmeasured sigma, no narrower than what the accelerometer reads beyond the wheels while
+    // driving straight.
+    const LogPreparation& prepared = summary.preparation;
+    const auto& offset = prepared.accelerometer_offset;
     if (offset && offset->stops >= kMinStopsForOffset) {
       forward_offset_sigma_mps2_ = offset->left_sigma_mps2();
+    } else if (prepared.drive_forward_offset) {
+      forward_offset_sigma_mps2_ = prepared.drive_forward_offset->left_sigma_mps2();
     } else {
       forward_offset_sigma_mps2_ = kUnmeasuredForwardOffsetSigmaMps2;
       const auto driving = driving_forward_offset(this->log(), log.vehicle.nominal_params());
@@ -187,6 +191,8 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
       if (driving)
         forward_offset_sigma_mps2_ = std::max(forward_offset_sigma_mps2_, std::abs(*driving));
     }
+    forward_offset_sigma_mps2_ =
+        std::hypot(forward_offset_sigma_mps2_, prepared.unevenly_removed_forward_mps2);
   }
   summary.nominal = log.vehicle.nominal_params();
   summary.estimate = summary.nominal;

@@ -49,7 +49,13 @@ std::string LogPreparation::describe() const {
           wheel_rate_bias_per_block.size(), rl.first, rl.second, rr.first, rr.second);
     }
   }
-  if (const auto& offset = accelerometer_offset) {
+  if (const auto& drive = drive_forward_offset) {
+    text += fmt::format(
+        "; accelerometer's forward offset {} over {:.0f} s of driving (too few stops): {:+.3f} "
+        "m/s^2 (1-sigma {:.3f})",
+        drive->removed ? "removed" : "within its noise, left in", drive->duration_s,
+        drive->forward_mps2, drive->sigma_mps2);
+  } else if (const auto& offset = accelerometer_offset) {
     text += fmt::format(
         "; accelerometer's forward offset {}: {:+.3f} m/s^2 (1-sigma {:.3f}) at {} stop(s)",
         offset->removed ? "removed" : "within its noise, left in", offset->forward_mps2,

@@ -7,6 +7,7 @@
 
 #include "odocal/data/stream_columns.hpp"
 #include "odocal/estimation/accelerometer_offset.hpp"
+#include "odocal/estimation/drive_forward_offset.hpp"
 #include "odocal/estimation/log_window.hpp"
 #include "odocal/estimation/road_grade.hpp"
 #include "odocal/estimation/standstill.hpp"
@@ -20,6 +21,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Only a real standing start is cut (a second or two is harmless), keeping a little of it for
 // the filters to settle.
 constexpr double kMinStandingStartS = 5.0, kLeadS = 1.0;
+// A drive that ends within this of where it began climbed nothing net.
+constexpr double kClosedLoopGapM = 50.0;
 
 bool rate_sensor(const WheelStream& wheels) {
   return wheels.unit_rear == WheelUnit::kRadiansPerSecond ||
@@ -77,6 +80,7 @@ BlockPreparation::BlockPreparation(LogBlockSource& source, const CalibrationOpti
       options_(options),
       done_(done),
       nominal_(source.vehicle().nominal_params()),
+      body_(source.vehicle().body_geometry()),
       log_start_s_(source.first_wheel_time_s()) {
   // The first block looks back over a standing start for its standstills (and their bias).
   source_.keep_back(options_.prepare_block_s);
@@ -171,6 +175,7 @@ void BlockPreparation::prepare(PreparedBlock& block) {
     }
   }
 
+  bool projected = false;
   if (options_.use_gnss_altitude) {
     if (const auto profile = grade_from_gnss_altitude(log, nominal_, options_.grade_window_m)) {
       const auto [first, last] = core_rows(block, log.wheels.t_s);
@@ -191,23 +196,14 @@ void BlockPreparation::prepare(PreparedBlock& block) {
         done_.grade_scale_variance = profile->scale_variance();
       }
       project_to_horizontal(log, *profile);
+      projected = true;
       changed_ = true;
     }
   }
 
   // After the grade's projection: on a hill with altitude, a stop's reading is the offset alone.
-  if (options_.remove_accelerometer_offset && log.imu) {
-    std::vector<Standstill> own_stops;
-    std::copy_if(standing.begin(), standing.end(), std::back_inserter(own_stops),
-                 [&](const Standstill& still) { return own(still.start_s); });
-    const std::vector<StopReading> readings = standing_forward_readings(*log.imu, own_stops);
-    done_.forward_readings.insert(done_.forward_readings.end(), readings.begin(), readings.end());
-    done_.accelerometer_offset = accelerometer_offset(done_.forward_readings);
-    if (done_.accelerometer_offset && done_.accelerometer_offset->removed) {
-      remove_accelerometer_offset(*log.imu, done_.accelerometer_offset->forward_mps2);
-      changed_ = true;
-    }
-  }
+  if (options_.remove_accelerometer_offset && log.imu)
+    remove_forward_offset(block, standing, own, projected);
 
   const double max_gap_s = options_.max_wheel_gap_s > 0.0 ? options_.max_wheel_gap_s
                                                           : default_max_wheel_gap_s(log.wheels);
@@ -219,6 +215,68 @@ void BlockPreparation::prepare(PreparedBlock& block) {
   for (const WheelGap& gap : gaps) {
     if (own(log.wheels.t_s[gap.sample])) done_.wheel_gaps.push_back(gap);
   }
+}
+
+void BlockPreparation::remove_forward_offset(PreparedBlock& block,
+                                             const std::vector<Standstill>& standing,
+                                             const std::function<bool(double)>& own,
+                                             bool projected) {
+  Log& log = block.context;
+  std::vector<Standstill> own_stops;
+  std::copy_if(standing.begin(), standing.end(), std::back_inserter(own_stops),
+               [&](const Standstill& still) { return own(still.start_s); });
+  const std::vector<StopReading> readings = standing_forward_readings(*log.imu, own_stops);
+  done_.forward_readings.insert(done_.forward_readings.end(), readings.begin(), readings.end());
+  done_.accelerometer_offset = accelerometer_offset(done_.forward_readings);
+
+  // The drive's own measure, where the stops so far are too few (drive_forward_offset.hpp).
+  const double own_from = block.first ? log.wheels.t_s.front() : block.core_from_s;
+  drive_sums_.add(drive_forward_sums(log, nominal_, own_from, block.core_to_s));
+  all_projected_ = all_projected_ && projected;
+  any_projected_ = any_projected_ || projected;
+  const auto [fix_first, fix_last] =
+      std::make_pair(std::lower_bound(log.gnss.t_s.begin(), log.gnss.t_s.end(), own_from),
+                     std::lower_bound(log.gnss.t_s.begin(), log.gnss.t_s.end(), block.core_to_s));
+  if (fix_first != fix_last) {
+    const auto row = [&](auto it) { return static_cast<std::size_t>(it - log.gnss.t_s.begin()); };
+    if (!drive_start_xy_)
+      drive_start_xy_ = {log.gnss.x_m[row(fix_first)], log.gnss.y_m[row(fix_first)]};
+    drive_end_xy_ = {log.gnss.x_m[row(fix_last - 1)], log.gnss.y_m[row(fix_last - 1)]};
+  }
+  std::optional<DriveSlope> slope;
+  if (all_projected_) {
+    slope = DriveSlope::kProjected;
+  } else if (!any_projected_ && drive_start_xy_ && drive_end_xy_ &&
+             std::hypot(drive_end_xy_->first - drive_start_xy_->first,
+                        drive_end_xy_->second - drive_start_xy_->second) <= kClosedLoopGapM) {
+    slope = DriveSlope::kClosedLoop;
+  }
+  const auto& stops = done_.accelerometer_offset;
+  const bool stops_measure = stops && stops->stops >= kMinStopsForOffset;
+  done_.drive_forward_offset.reset();
+  if (!stops_measure) done_.drive_forward_offset = drive_forward_offset(drive_sums_, body_, slope);
+
+  double removed = 0.0;
+  if (const auto& drive = done_.drive_forward_offset) {
+    if (drive->removed) removed = drive->forward_mps2;
+  } else if (stops && stops->removed) {
+    removed = stops->forward_mps2;
+  }
+  if (removed != 0.0) {
+    remove_accelerometer_offset(*log.imu, removed);
+    changed_ = true;
+  }
+  // What each block removed against what the whole drive says now: a long log's early blocks
+  // took the running estimate of their time.
+  const auto [imu_first, imu_last] = core_rows(block, log.imu->t_s);
+  if (imu_last > imu_first)
+    removed_per_block_.push_back({log.imu->t_s[imu_last - 1] - log.imu->t_s[imu_first], removed});
+  double weights = 0.0, squares = 0.0;
+  for (const auto& [duration_s, each] : removed_per_block_) {
+    weights += duration_s;
+    squares += duration_s * (each - removed) * (each - removed);
+  }
+  done_.unevenly_removed_forward_mps2 = weights > 0.0 ? std::sqrt(squares / weights) : 0.0;
 }
 
 }  // namespace odocal

@@ -4,7 +4,8 @@ python3-rosbag), in the layout examples/bag-joint-states/topics.yaml maps:
 
   /joint_states  sensor_msgs/JointState  rear_left_wheel, rear_right_wheel positions (rad)
   /imu/data      sensor_msgs/Imu         gyro z, accelerations x/y, and the heading as orientation
-  /fix           sensor_msgs/NavSatFix   lat/lon, diagonal covariance from sigma_m
+  /fix           sensor_msgs/NavSatFix   lat/lon (altitude NaN without an alt column), diagonal
+                                         covariance from sigma_m
 
 The log must have wheels in rad, GNSS in lat/lon, and heading.csv on imu.csv's time stamps (as
 `odocal simulate --wheel-output rad --gnss-output latlon` writes them).
@@ -100,6 +101,8 @@ def main():
             fix = NavSatFix()
             fix.header.stamp = stamp(r["t"])
             fix.latitude, fix.longitude = float(r["lat"]), float(r["lon"])
+            # NavSatFix's convention for an altitude not known; 0 would state a flat road.
+            fix.altitude = float(r["alt"]) if "alt" in r else float("nan")
             variance = float(r.get("sigma_m", 1.0)) ** 2
             fix.position_covariance = [variance, 0, 0, 0, variance, 0, 0, 0, 4 * variance]
             fix.position_covariance_type = NavSatFix.COVARIANCE_TYPE_DIAGONAL_KNOWN

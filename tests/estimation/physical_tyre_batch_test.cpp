@@ -522,12 +522,38 @@ TEST(PhysicalTyreBatch, TheAccelerometersForwardOffsetIsTakenOutAtTheStopsAndIts
             std::string::npos);
 }
 
+TEST(PhysicalTyreBatch, AnOffsetTheDriveMeasuresIsTakenOutWithoutStops) {
+  // The built-in circuit (3 laps, one standing second) with its accelerometer reading 0.7 m/s^2
+  // low: no 3 stops measure it, but the drive ends where it began, so the drive's own measure
+  // does (drive_forward_offset.hpp); the estimate is the clean log's, and the offset's share of
+  // the sigma is what that measure leaves, not the unmeasured 0.1 m/s^2.
+  sim::Scenario scenario = load_scenario("circuit");
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const Log clean = simulated_log(drive);
+  Log pitched = clean;
+  for (double& ax : pitched.imu->ax_mps2) ax -= 0.7;
+  const BatchSummary before = calibrate(clean, TyreModelChoice::kPhysical);
+  const BatchSummary after = calibrate(pitched, TyreModelChoice::kPhysical);
+  ASSERT_TRUE(after.preparation.drive_forward_offset.has_value());
+  const DriveForwardOffset& offset = *after.preparation.drive_forward_offset;
+  EXPECT_TRUE(offset.removed);
+  EXPECT_NEAR(offset.forward_mps2, -0.7, 3.0 * offset.sigma_mps2);
+  EXPECT_EQ(after.forward_offset_sigma_mps2, offset.sigma_mps2);
+  EXPECT_LT(after.forward_offset_sigma_mps2, 0.6 * kUnmeasuredForwardOffsetSigmaMps2);
+  EXPECT_NEAR(after.estimate.circumference_rl_m, before.estimate.circumference_rl_m,
+              0.2 * before.sigma_rl_m());
+  const double error_m = after.estimate.circumference_rl_m - drive.true_params.circumference_rl_m;
+  EXPECT_LT(std::abs(error_m), 3.0 * after.sigma_rl_m()) << after.full_report();
+  EXPECT_NE(after.full_report().find("removed over"), std::string::npos);
+}
+
 TEST(PhysicalTyreBatch, AnOffsetNoStopMeasuredWidensTheSigmaToWhatDrivingReads) {
   // The urban drive with a Doppler column, its stops not taken for stops (a standstill must last
   // 10 minutes), its accelerometer reading 0.7 m/s^2 low (a phone pitched by 4 deg, as
-  // comma2k19's). Nothing removes it, and the physical terms take it for braking force: at the
-  // unmeasured 0.1 m/s^2 the sigma would not cover the error; at what driving straight reads, it
-  // does.
+  // comma2k19's). It ends 0.5 km from its start without an altitude column, so the drive cannot
+  // tell the slope from the offset either: nothing removes it, and the physical terms take it
+  // for braking force. At the unmeasured 0.1 m/s^2 the sigma would not cover the error; at what
+  // driving straight reads, it does.
   sim::Scenario scenario = load_scenario("urban");
   scenario.gnss.speed_sigma_mps = 0.05;
   const sim::SimulatedDrive drive = sim::simulate(scenario);
@@ -537,6 +563,7 @@ TEST(PhysicalTyreBatch, AnOffsetNoStopMeasuredWidensTheSigmaToWhatDrivingReads) 
   no_stops.standstill.min_duration_s = 600.0;
   const BatchSummary pitched = calibrate(log, TyreModelChoice::kPhysical, no_stops);
   EXPECT_FALSE(pitched.preparation.accelerometer_offset.has_value());
+  EXPECT_FALSE(pitched.preparation.drive_forward_offset.has_value());
   ASSERT_TRUE(pitched.preparation.driving_forward_offset_mps2.has_value());
   const double driving = *pitched.preparation.driving_forward_offset_mps2;
   EXPECT_NEAR(driving, -0.7, 0.1);

@@ -13,6 +13,7 @@
 #include "odocal/data/log.hpp"
 #include "odocal/estimation/accelerometer_offset.hpp"
 #include "odocal/estimation/calibration_options.hpp"
+#include "odocal/estimation/drive_forward_offset.hpp"
 #include "odocal/estimation/road_grade.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
@@ -37,9 +38,15 @@ struct LogPreparation {
   // sigma (AccelerometerOffset::removed).
   std::vector<StopReading> forward_readings;
   std::optional<AccelerometerOffset> accelerometer_offset;
-  // Where fewer than 3 stops measured it: the forward reading while driving straight less the
-  // wheels' acceleration (driving_forward_offset; a calibration's, not removed).
+  // Where fewer than 3 stops measured it: the drive's own measure (drive_forward_offset.hpp),
+  // removed where it stands out of its sigma, or where the drive cannot tell the slope from it,
+  // the forward reading while driving straight less the wheels' acceleration
+  // (driving_forward_offset; a calibration's, not removed).
+  std::optional<DriveForwardOffset> drive_forward_offset;
   std::optional<double> driving_forward_offset_mps2;
+  // A long log's blocks each removed the estimate of their time: the time-weighted RMS of what
+  // they removed less what the last one did.
+  double unevenly_removed_forward_mps2{};
   std::optional<double> started_at_s;  // used from here on (first motion)
   std::vector<WheelGap> wheel_gaps;    // where the odometry chain breaks
   // Hills: the grade 95 % of the road stays within, and how much longer the 3-D path was

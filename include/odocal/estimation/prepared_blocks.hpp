@@ -7,12 +7,14 @@
 // blocks is prepared whole. A block without a standstill keeps the previous block's bias: a
 // sensor's bias drifts with temperature over hours, and each block measures its own.
 
+#include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
 
 #include "odocal/data/log_source.hpp"
 #include "odocal/estimation/calibration_options.hpp"
+#include "odocal/estimation/drive_forward_offset.hpp"
 #include "odocal/estimation/log_preparation.hpp"
 
 namespace odocal {
@@ -80,16 +82,24 @@ class BlockPreparation {
  private:
   double find_start();
   void prepare(PreparedBlock& block);
+  // The accelerometer's forward offset: the stops' readings, or the drive's, and its removal.
+  void remove_forward_offset(PreparedBlock& block, const std::vector<Standstill>& standing,
+                             const std::function<bool(double)>& own, bool projected);
 
   LogBlockSource& source_;
   CalibrationOptions options_;  // a copy: a temporary may be passed
   LogPreparation& done_;
   OdometryParams nominal_;
+  VehicleBody body_;
   double log_start_s_{}, start_s_{};
   std::optional<LogBlocks> blocks_;
   bool changed_{};
   std::optional<WheelRateBias> bias_;  // the last block's, for blocks without a standstill
   double grade_distance_m_{}, grade_excess_m_{}, grade_scale_variance_m2_{};
+  DriveForwardSums drive_sums_;
+  bool all_projected_ = true, any_projected_ = false;
+  std::optional<std::pair<double, double>> drive_start_xy_, drive_end_xy_;  // GNSS, m
+  std::vector<std::pair<double, double>> removed_per_block_;  // IMU time s, removed m/s^2
 };
 
 }  // namespace odocal

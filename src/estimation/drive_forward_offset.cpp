@@ -1,0 +1,135 @@
+#include "odocal/estimation/drive_forward_offset.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include "odocal/estimation/accelerometer_walk.hpp"
+#include "odocal/estimation/interpolation.hpp"
+#include "odocal/model/gravity.hpp"
+#include "odocal/model/tyre_car_prior.hpp"
+
+namespace odocal {
+namespace {
+
+// An IMU stretch ends at a gap longer than this (a 10 Hz accelerometer's period with margin).
+constexpr double kMaxImuGapS = 0.25;
+constexpr double kMinStretchS = 5.0, kSpeedWindowS = 1.0;
+constexpr double kMinDurationS = 30.0, kMinDistanceM = 200.0;
+// What the drive's terms are known to (the header's list).
+constexpr double kPlaceSigmaM = 0.5, kYawSigmaRad = 0.01745;
+constexpr double kAltitudeSigmaM = 3.0, kClosedLoopSlopeSigmaMps2 = 0.03;
+constexpr double kSignificantSigmas = 3.0, kMinRemovedOffsetMps2 = 0.02;
+
+}  // namespace
+
+void DriveForwardSums::add(const DriveForwardSums& other) {
+  duration_s += other.duration_s;
+  squared_steps_s2 += other.squared_steps_s2;
+  forward_less_gain += other.forward_less_gain;
+  lateral += other.lateral;
+  lateral_squared += other.lateral_squared;
+  turn_squared += other.turn_squared;
+  distance_m += other.distance_m;
+  accelerometer_noise_mps2 = std::max(accelerometer_noise_mps2, other.accelerometer_noise_mps2);
+}
+
+DriveForwardSums drive_forward_sums(const Log& log, const OdometryParams& nominal, double from_s,
+                                    double to_s) {
+  DriveForwardSums sums;
+  const WheelStream& wheels = log.wheels;
+  if (!log.imu || wheels.size() < 3) return sums;
+  const ImuStream& imu = *log.imu;
+  // The wheels' signed distance and chain breaks summed from the start, for speeds.
+  std::vector<double> distance(wheels.size()), breaks(wheels.size());
+  for (std::size_t k = 1; k < wheels.size(); ++k) {
+    distance[k] = distance[k - 1] + body_increment(wheels.increment(k), nominal).distance_m;
+    breaks[k] = breaks[k - 1] + (wheels.breaks_at(k) ? 1.0 : 0.0);
+  }
+  const auto speed = [&](double t_s) -> std::optional<double> {
+    const double behind = t_s - 0.5 * kSpeedWindowS, ahead = t_s + 0.5 * kSpeedWindowS;
+    const auto d0 = interpolate_linear(wheels.t_s, distance, behind);
+    const auto d1 = interpolate_linear(wheels.t_s, distance, ahead);
+    const auto b0 = interpolate_linear(wheels.t_s, breaks, behind);
+    const auto b1 = interpolate_linear(wheels.t_s, breaks, ahead);
+    if (!d0 || !d1 || !b0 || !b1 || *b1 != *b0) return std::nullopt;
+    return (*d1 - *d0) / kSpeedWindowS;
+  };
+  // Within the wheels' span, so that a stretch's ends have their speed.
+  from_s = std::max(from_s, wheels.t_s.front() + 0.5 * kSpeedWindowS);
+  to_s = std::min(to_s, wheels.t_s.back() - 0.5 * kSpeedWindowS);
+  if (!(to_s > from_s)) return sums;
+  const auto first = std::lower_bound(imu.t_s.begin(), imu.t_s.end(), from_s) - imu.t_s.begin();
+  const auto last = std::lower_bound(imu.t_s.begin(), imu.t_s.end(), to_s) - imu.t_s.begin();
+  const auto begin = static_cast<std::size_t>(first), end = static_cast<std::size_t>(last);
+  // One stretch [start, k]: its trapezoid integrals, kept where both ends have a speed.
+  const auto add_stretch = [&](std::size_t start, std::size_t stop) {
+    const double t0 = imu.t_s[start], t1 = imu.t_s[stop];
+    if (t1 - t0 < kMinStretchS) return;
+    const auto v0 = speed(t0), v1 = speed(t1);
+    if (!v0 || !v1) return;
+    DriveForwardSums stretch;
+    for (std::size_t k = start; k < stop; ++k) {
+      const double dt = imu.t_s[k + 1] - imu.t_s[k];
+      const auto mean = [&](const std::vector<double>& column, auto f) {
+        return 0.5 * (f(column[k]) + f(column[k + 1])) * dt;
+      };
+      const auto same = [](double x) { return x; };
+      const auto squared = [](double x) { return x * x; };
+      stretch.duration_s += dt;
+      stretch.squared_steps_s2 += dt * dt;
+      stretch.forward_less_gain += mean(imu.ax_mps2, same);
+      stretch.lateral += mean(imu.ay_mps2, same);
+      stretch.lateral_squared += mean(imu.ay_mps2, squared);
+      stretch.turn_squared += mean(imu.wz_radps, squared);
+    }
+    stretch.forward_less_gain -= *v1 - *v0;
+    const auto d0 = interpolate_linear(wheels.t_s, distance, t0);
+    const auto d1 = interpolate_linear(wheels.t_s, distance, t1);
+    if (d0 && d1) stretch.distance_m = std::abs(*d1 - *d0);
+    sums.add(stretch);
+  };
+  if (end <= begin + 1) return sums;
+  std::size_t start = begin;
+  for (std::size_t k = begin + 1; k < end; ++k) {
+    if (imu.t_s[k] - imu.t_s[k - 1] > kMaxImuGapS) {
+      add_stretch(start, k - 1);
+      start = k;
+    }
+  }
+  add_stretch(start, end - 1);
+  if (sums.duration_s > 0.0) {
+    sums.accelerometer_noise_mps2 = white_noise_sigma(
+        std::vector<double>(imu.ax_mps2.begin() + first, imu.ax_mps2.begin() + last));
+  }
+  return sums;
+}
+
+std::optional<DriveForwardOffset> drive_forward_offset(const DriveForwardSums& sums,
+                                                       const VehicleBody& body,
+                                                       std::optional<DriveSlope> slope) {
+  if (!slope || sums.duration_s < kMinDurationS || sums.distance_m < kMinDistanceM)
+    return std::nullopt;
+  const double T = sums.duration_s;
+  // ax = dv/dt - w (vy_rear + w b) + offset, with vy_rear = k ay v and v w = ay.
+  const double b = (1.0 - body.rear_axle_load_share) * body.wheelbase_m;
+  // A car's rear side slip per lateral acceleration, known to its own size (tyre_car_prior.hpp).
+  const double side_slip = -1.0 / (kGravityMps2 * kCarCorneringStiffnessPerLoad);
+  const double turn_squared = sums.turn_squared / T, lateral_squared = sums.lateral_squared / T;
+  DriveForwardOffset offset;
+  offset.duration_s = T;
+  offset.distance_m = sums.distance_m;
+  offset.forward_mps2 = sums.forward_less_gain / T + side_slip * lateral_squared + b * turn_squared;
+  const double noise = sums.accelerometer_noise_mps2 * std::sqrt(sums.squared_steps_s2) / T;
+  const double slope_sigma = *slope == DriveSlope::kProjected
+                                 ? kGravityMps2 * std::sqrt(2.0) * kAltitudeSigmaM / sums.distance_m
+                                 : kClosedLoopSlopeSigmaMps2;
+  offset.sigma_mps2 =
+      std::sqrt(noise * noise + std::pow(side_slip * lateral_squared, 2) +
+                std::pow(kPlaceSigmaM * turn_squared, 2) +
+                std::pow(kYawSigmaRad * sums.lateral / T, 2) + slope_sigma * slope_sigma);
+  offset.removed = std::abs(offset.forward_mps2) >
+                   std::max(kSignificantSigmas * offset.sigma_mps2, kMinRemovedOffsetMps2);
+  return offset;
+}
+
+}  // namespace odocal

@@ -1,0 +1,132 @@
+// The accelerometer's forward offset measured over the drive (drive_forward_offset.hpp): the
+// speed gained cancels the driver's acceleration and the wheels' slip, an offset shifts the
+// measure by itself, an IMU gap splits the drive, and a slope the drive cannot know leaves it
+// unmeasured. Checked against the simulator's accelerometer, which has no offset.
+
+#include "odocal/estimation/drive_forward_offset.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "odocal/estimation/accelerometer_offset.hpp"
+#include "odocal/estimation/log_preparation.hpp"
+#include "odocal/estimation/log_window.hpp"
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/io/simulation_writer.hpp"
+#include "odocal/sim/simulator.hpp"
+
+namespace odocal {
+namespace {
+
+constexpr double kWhole = 1e12;
+
+// One lap of a built-in scenario, realistic, its accelerometer reading `offset` more forward.
+Log lap(const char* scenario_name, double offset, unsigned seed = 1) {
+  sim::Scenario scenario = load_scenario(scenario_name);
+  scenario.route.laps = 1;
+  scenario.seeds.noise = scenario.seeds.trajectory = seed;
+  Log log = simulated_log(sim::simulate(scenario));
+  for (double& ax : log.imu->ax_mps2) ax += offset;
+  return log;
+}
+
+DriveForwardOffset measured(const Log& log, DriveSlope slope) {
+  const DriveForwardSums sums =
+      drive_forward_sums(log, log.vehicle.nominal_params(), -kWhole, kWhole);
+  const auto offset = drive_forward_offset(sums, log.vehicle.body_geometry(), slope);
+  EXPECT_TRUE(offset.has_value());
+  return offset.value_or(DriveForwardOffset{});
+}
+
+TEST(DriveForwardOffset, ALapOfTheRealisticCircuitReadsNoOffsetWithinItsSigma) {
+  // The rear-driven car's slip, which driving straight reads as -0.1 m/s^2 (the driver's
+  // acceleration less the wheels'), cancels over the lap; the turns' w^2 b and side slip do not
+  // and are accounted for. Three seeds of driver and noise.
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const Log clean = lap("circuit", 0.0, seed);
+    const DriveForwardOffset offset = measured(clean, DriveSlope::kClosedLoop);
+    EXPECT_LT(std::abs(offset.forward_mps2), offset.sigma_mps2) << "seed " << seed;
+    EXPECT_LT(offset.sigma_mps2, 0.6 * kUnmeasuredForwardOffsetSigmaMps2);
+    EXPECT_FALSE(offset.removed);
+    EXPECT_GT(offset.distance_m, 4000.0);
+  }
+}
+
+TEST(DriveForwardOffset, AnOffsetShiftsTheMeasureByItselfAndIsRemovedBeyondItsSigma) {
+  const Log clean = lap("circuit", 0.0);
+  const Log pitched = lap("circuit", -0.3);
+  const DriveForwardOffset before = measured(clean, DriveSlope::kClosedLoop);
+  const DriveForwardOffset after = measured(pitched, DriveSlope::kClosedLoop);
+  EXPECT_NEAR(after.forward_mps2 - before.forward_mps2, -0.3, 1e-9);
+  EXPECT_NEAR(after.sigma_mps2, before.sigma_mps2, 1e-9);  // the white noise's is the same
+  EXPECT_TRUE(after.removed);
+  EXPECT_EQ(after.left_sigma_mps2(), after.sigma_mps2);
+  EXPECT_NEAR(before.left_sigma_mps2(), std::hypot(before.forward_mps2, before.sigma_mps2), 1e-15);
+}
+
+TEST(DriveForwardOffset, AnImuGapSplitsTheDriveAndEachStretchCountsItsOwnSpeedGain) {
+  const Log whole = lap("circuit", 0.2);
+  Log gapped = whole;
+  ImuStream& imu = *gapped.imu;
+  // 20 s taken out in full acceleration: without the split the gap's speed gain would be read
+  // as offset.
+  const auto from = std::lower_bound(imu.t_s.begin(), imu.t_s.end(), 100.0) - imu.t_s.begin();
+  const auto to = std::lower_bound(imu.t_s.begin(), imu.t_s.end(), 120.0) - imu.t_s.begin();
+  for (auto* column : {&imu.t_s, &imu.ax_mps2, &imu.ay_mps2, &imu.wz_radps})
+    column->erase(column->begin() + from, column->begin() + to);
+  const DriveForwardOffset full = measured(whole, DriveSlope::kClosedLoop);
+  const DriveForwardOffset split = measured(gapped, DriveSlope::kClosedLoop);
+  EXPECT_NEAR(split.duration_s, full.duration_s - 20.0, 0.1);
+  EXPECT_NEAR(split.forward_mps2, 0.2, split.sigma_mps2);
+  EXPECT_NEAR(split.forward_mps2, full.forward_mps2, 0.2 * full.sigma_mps2);
+}
+
+TEST(DriveForwardOffset, WithoutTheSlopeOrEnoughDrivingItSaysNothing) {
+  const Log log = lap("circuit", 0.0);
+  const DriveForwardSums sums =
+      drive_forward_sums(log, log.vehicle.nominal_params(), -kWhole, kWhole);
+  EXPECT_FALSE(drive_forward_offset(sums, log.vehicle.body_geometry(), std::nullopt));
+  const DriveForwardSums short_drive =
+      drive_forward_sums(log, log.vehicle.nominal_params(), 40.0, 65.0);
+  EXPECT_FALSE(
+      drive_forward_offset(short_drive, log.vehicle.body_geometry(), DriveSlope::kClosedLoop));
+  Log no_imu = log;
+  no_imu.imu.reset();
+  EXPECT_EQ(drive_forward_sums(no_imu, log.vehicle.nominal_params(), -kWhole, kWhole).duration_s,
+            0.0);
+}
+
+TEST(DriveForwardOffset, WherePreparedALogWithTooFewStopsHasItRemovedAndReported) {
+  // A lap of the circuit, which stops once at its end: the drive measures the offset, which the
+  // preparation takes out of ax.
+  CalibrationOptions no_stops;
+  const Log log = lap("circuit", -0.7);
+  LogPreparation done;
+  const std::optional<Log> prepared = prepare_log(log, no_stops, done);
+  ASSERT_TRUE(prepared.has_value()) << done.describe();
+  ASSERT_TRUE(done.drive_forward_offset.has_value()) << done.describe();
+  const DriveForwardOffset& offset = *done.drive_forward_offset;
+  EXPECT_TRUE(offset.removed);
+  EXPECT_NEAR(offset.forward_mps2, -0.7, 3.0 * offset.sigma_mps2);
+  EXPECT_LT(offset.sigma_mps2, 0.06);
+  EXPECT_EQ(done.unevenly_removed_forward_mps2, 0.0);  // one block
+  EXPECT_NE(done.describe().find("accelerometer's forward offset removed over"), std::string::npos)
+      << done.describe();
+  const ImuStream& in = *log.imu;
+  const ImuStream& out = *prepared->imu;
+  const auto first = static_cast<std::size_t>(
+      std::lower_bound(in.t_s.begin(), in.t_s.end(), out.t_s.front()) - in.t_s.begin());
+  for (std::size_t k = 0; k < out.size(); k += 97)
+    EXPECT_NEAR(out.ax_mps2[k], in.ax_mps2[first + k] - offset.forward_mps2, 1e-12);
+
+  // Cut open (the first half of the lap, no altitude): the slope is not known, nothing removed.
+  LogPreparation open;
+  const double half_s = 0.5 * (log.wheels.t_s.front() + log.wheels.t_s.back());
+  prepare_log(slice_log(log, log.wheels.t_s.front(), half_s), no_stops, open);
+  EXPECT_FALSE(open.drive_forward_offset.has_value()) << open.describe();
+}
+
+}  // namespace
+}  // namespace odocal
