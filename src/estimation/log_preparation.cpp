@@ -61,6 +61,12 @@ std::string LogPreparation::describe() const {
         offset->removed ? "removed" : "within its noise, left in", offset->forward_mps2,
         offset->sigma_mps2, offset->stops);
   }
+  if (unevenly_removed_forward_mps2 > 0.0) {
+    text += fmt::format(
+        " (the log's blocks each removed the estimate of their time: {:.3f} m/s^2 RMS from the "
+        "last, in the sigma)",
+        unevenly_removed_forward_mps2);
+  }
   if (driving_forward_offset_mps2) {
     text += fmt::format(
         "; the accelerometer reads {:+.3f} m/s^2 forward beyond the wheels' acceleration while "

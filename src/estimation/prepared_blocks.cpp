@@ -9,6 +9,7 @@
 #include "odocal/estimation/accelerometer_offset.hpp"
 #include "odocal/estimation/drive_forward_offset.hpp"
 #include "odocal/estimation/log_window.hpp"
+#include "odocal/estimation/median.hpp"
 #include "odocal/estimation/road_grade.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
@@ -229,32 +230,12 @@ void BlockPreparation::remove_forward_offset(PreparedBlock& block,
   done_.forward_readings.insert(done_.forward_readings.end(), readings.begin(), readings.end());
   done_.accelerometer_offset = accelerometer_offset(done_.forward_readings);
 
-  // The drive's own measure, where the stops so far are too few (drive_forward_offset.hpp).
-  const double own_from = block.first ? log.wheels.t_s.front() : block.core_from_s;
-  drive_sums_.add(drive_forward_sums(log, nominal_, own_from, block.core_to_s));
-  all_projected_ = all_projected_ && projected;
-  any_projected_ = any_projected_ || projected;
-  const auto [fix_first, fix_last] =
-      std::make_pair(std::lower_bound(log.gnss.t_s.begin(), log.gnss.t_s.end(), own_from),
-                     std::lower_bound(log.gnss.t_s.begin(), log.gnss.t_s.end(), block.core_to_s));
-  if (fix_first != fix_last) {
-    const auto row = [&](auto it) { return static_cast<std::size_t>(it - log.gnss.t_s.begin()); };
-    if (!drive_start_xy_)
-      drive_start_xy_ = {log.gnss.x_m[row(fix_first)], log.gnss.y_m[row(fix_first)]};
-    drive_end_xy_ = {log.gnss.x_m[row(fix_last - 1)], log.gnss.y_m[row(fix_last - 1)]};
-  }
-  std::optional<DriveSlope> slope;
-  if (all_projected_) {
-    slope = DriveSlope::kProjected;
-  } else if (!any_projected_ && drive_start_xy_ && drive_end_xy_ &&
-             std::hypot(drive_end_xy_->first - drive_start_xy_->first,
-                        drive_end_xy_->second - drive_start_xy_->second) <= kClosedLoopGapM) {
-    slope = DriveSlope::kClosedLoop;
-  }
+  // The drive's own measure, where the stops so far are too few (drive_forward_offset.hpp); once
+  // 3 stops measure it, they do for the rest of the log.
   const auto& stops = done_.accelerometer_offset;
-  const bool stops_measure = stops && stops->stops >= kMinStopsForOffset;
   done_.drive_forward_offset.reset();
-  if (!stops_measure) done_.drive_forward_offset = drive_forward_offset(drive_sums_, body_, slope);
+  if (!stops || stops->stops < kMinStopsForOffset)
+    done_.drive_forward_offset = measure_over_drive(block, projected);
 
   double removed = 0.0;
   if (const auto& drive = done_.drive_forward_offset) {
@@ -277,6 +258,44 @@ void BlockPreparation::remove_forward_offset(PreparedBlock& block,
     squares += duration_s * (each - removed) * (each - removed);
   }
   done_.unevenly_removed_forward_mps2 = weights > 0.0 ? std::sqrt(squares / weights) : 0.0;
+}
+
+std::optional<DriveForwardOffset> BlockPreparation::measure_over_drive(const PreparedBlock& block,
+                                                                       bool projected) {
+  const Log& log = block.context;
+  const double own_from = block.first ? log.wheels.t_s.front() : block.core_from_s;
+  drive_sums_.add(drive_forward_sums(log, nominal_, own_from, block.core_to_s));
+  all_projected_ = all_projected_ && projected;
+  any_projected_ = any_projected_ || projected;
+  // Where the drive began and where it is now: the median of 10 fixes, so that one outlier
+  // neither opens nor closes the loop.
+  const auto begin = static_cast<std::size_t>(
+      std::lower_bound(log.gnss.t_s.begin(), log.gnss.t_s.end(), own_from) - log.gnss.t_s.begin());
+  const auto end = static_cast<std::size_t>(
+      std::lower_bound(log.gnss.t_s.begin() + static_cast<std::ptrdiff_t>(begin),
+                       log.gnss.t_s.end(), block.core_to_s) -
+      log.gnss.t_s.begin());
+  const auto place = [&](std::size_t from, std::size_t to) {
+    return std::make_pair(
+        median(std::vector<double>(log.gnss.x_m.begin() + static_cast<std::ptrdiff_t>(from),
+                                   log.gnss.x_m.begin() + static_cast<std::ptrdiff_t>(to))),
+        median(std::vector<double>(log.gnss.y_m.begin() + static_cast<std::ptrdiff_t>(from),
+                                   log.gnss.y_m.begin() + static_cast<std::ptrdiff_t>(to))));
+  };
+  constexpr std::size_t kPlaceFixes = 10;
+  if (end > begin) {
+    if (!drive_start_xy_) drive_start_xy_ = place(begin, std::min(end, begin + kPlaceFixes));
+    drive_end_xy_ = place(end - std::min(end - begin, kPlaceFixes), end);
+  }
+  std::optional<DriveSlope> slope;
+  if (all_projected_) {
+    slope = DriveSlope::kProjected;
+  } else if (!any_projected_ && drive_start_xy_ && drive_end_xy_ &&
+             std::hypot(drive_end_xy_->first - drive_start_xy_->first,
+                        drive_end_xy_->second - drive_start_xy_->second) <= kClosedLoopGapM) {
+    slope = DriveSlope::kClosedLoop;
+  }
+  return drive_forward_offset(drive_sums_, body_, slope);
 }
 
 }  // namespace odocal

@@ -121,11 +121,48 @@ TEST(DriveForwardOffset, WherePreparedALogWithTooFewStopsHasItRemovedAndReported
   for (std::size_t k = 0; k < out.size(); k += 97)
     EXPECT_NEAR(out.ax_mps2[k], in.ax_mps2[first + k] - offset.forward_mps2, 1e-12);
 
+  // One fix 400 m off at either end neither opens the loop nor closes an open one.
+  Log outliers = log;
+  outliers.gnss.x_m.front() += 400.0;
+  outliers.gnss.y_m.back() -= 400.0;
+  LogPreparation despite;
+  prepare_log(outliers, no_stops, despite);
+  ASSERT_TRUE(despite.drive_forward_offset.has_value()) << despite.describe();
+  EXPECT_EQ(despite.drive_forward_offset->forward_mps2, offset.forward_mps2);
+
   // Cut open (the first half of the lap, no altitude): the slope is not known, nothing removed.
   LogPreparation open;
   const double half_s = 0.5 * (log.wheels.t_s.front() + log.wheels.t_s.back());
   prepare_log(slice_log(log, log.wheels.t_s.front(), half_s), no_stops, open);
   EXPECT_FALSE(open.drive_forward_offset.has_value()) << open.describe();
+}
+
+TEST(DriveForwardOffset, BlocksThatRemovedAnotherEstimateThanTheDriveSaysWidenTheSigma) {
+  // The lap prepared in blocks of 60 s, as a long log is: it closes only in its last block, so
+  // the blocks before it knew no slope and left the 0.2 m/s^2 in (their one stop's reading at the
+  // unmeasured sigma of 0.1 could not remove it), while the last removed what the whole drive
+  // says. What they removed differs by 0.2 m/s^2 over two thirds of the time.
+  const Log log = lap("circuit", -0.2);
+  CalibrationOptions blocks;
+  blocks.prepare_block_s = 60.0;
+  LogPreparation done;
+  const std::optional<Log> prepared = prepare_log(log, blocks, done);
+  ASSERT_TRUE(prepared.has_value());
+  ASSERT_TRUE(done.drive_forward_offset.has_value()) << done.describe();
+  EXPECT_TRUE(done.drive_forward_offset->removed);
+  EXPECT_NEAR(done.drive_forward_offset->forward_mps2, -0.2,
+              3.0 * done.drive_forward_offset->sigma_mps2);
+  EXPECT_GT(done.unevenly_removed_forward_mps2, 0.1);
+  EXPECT_LT(done.unevenly_removed_forward_mps2, 0.2);
+  EXPECT_NE(done.describe().find("each removed the estimate of their time"), std::string::npos)
+      << done.describe();
+  // In one block the same lap removes it evenly; the blocks' sums (split at their borders) add up
+  // to the same measure.
+  LogPreparation whole;
+  prepare_log(log, CalibrationOptions{}, whole);
+  EXPECT_EQ(whole.unevenly_removed_forward_mps2, 0.0);
+  EXPECT_NEAR(whole.drive_forward_offset->forward_mps2, done.drive_forward_offset->forward_mps2,
+              0.002);
 }
 
 }  // namespace

@@ -85,6 +85,9 @@ class BlockPreparation {
   // The accelerometer's forward offset: the stops' readings, or the drive's, and its removal.
   void remove_forward_offset(PreparedBlock& block, const std::vector<Standstill>& standing,
                              const std::function<bool(double)>& own, bool projected);
+  // The running measure over the drive so far, where the slope is known (all blocks projected,
+  // or none and the drive back within 50 m of its start).
+  std::optional<DriveForwardOffset> measure_over_drive(const PreparedBlock& block, bool projected);
 
   LogBlockSource& source_;
   CalibrationOptions options_;  // a copy: a temporary may be passed
