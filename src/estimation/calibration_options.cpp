@@ -74,7 +74,8 @@ OptionTable<CalibrationOptions> CalibrationOptions::fields() {
        "estimate the zero-rate bias of angular-rate wheel sensors at standstill and remove it",
        &O::remove_wheel_rate_bias},
       {"remove_accelerometer_offset", "", 0, 0,
-       "measure imu.csv's forward reading at standstill (a mount's pitch) and remove it from ax",
+       "measure imu.csv's forward offset (a mount's pitch) at standstill, or over the drive where "
+       "too few stops show it, and remove it from ax",
        &O::remove_accelerometer_offset},
       {"start_at_first_motion", "", 0, 0, "use the log from its first motion on",
        &O::start_at_first_motion},
