@@ -156,6 +156,38 @@ def first_look_text(detection, result):
             f", which moves the circumferences by {moved[0]:+.3g} / {moved[1]:+.3g} mm")
 
 
+def accelerometer_offset_text(result):
+    """What the log's preparation measured of the accelerometer's forward offset, and its share
+    of the circumferences' sigma; None where the log has no accelerometer or nothing was read."""
+    preparation = result.get("preparation", {})
+    drive = preparation.get("accelerometer_drive_offset")
+    stops = preparation.get("accelerometer_offset")
+    if drive:
+        where = f"over {drive['duration_s']:.0f} s of driving (too few stops)"
+        measured = drive
+    elif stops:
+        where = f"at {stops['stops']} stop(s)"
+        measured = stops
+    else:
+        measured = None
+    parts = []
+    if measured:
+        done = "removed" if measured["removed"] else "within its noise, left in"
+        parts.append(f"{measured['forward_mps2']:+.3f} m/s² {where}, 1-sigma "
+                     f"{measured['sigma_mps2']:.3f}: {done}")
+    elif "accelerometer_driving_offset_mps2" in preparation:
+        parts.append(f"not measured: it reads {preparation['accelerometer_driving_offset_mps2']:+.3f}"
+                     " m/s² beyond the wheels' acceleration driving straight")
+    uneven = preparation.get("accelerometer_offset_unevenly_removed_mps2")
+    if uneven:
+        parts.append(f"the log's blocks removed it unevenly by {uneven:.3f} m/s²")
+    share = result.get("forward_offset_sigma_m")
+    if share:
+        parts.append(f"{1000 * share[0]:.3g} / {1000 * share[1]:.3g} mm of the circumferences' "
+                     f"sigma (known to ±{result['forward_offset_sigma_mps2']:.3g} m/s²)")
+    return "; ".join(parts) if parts else None
+
+
 def summary_rows(result):
     def mm(value):
         return f"{1000 * value:.3f} mm" if isinstance(value, (int, float)) else "–"
@@ -195,6 +227,9 @@ def summary_rows(result):
                      f"{walk['noise_y_mps2']:.3g} m/s² forward / left per sample: through the "
                      f"tyre model it alone walks the dead-reckoned heading by "
                      f"{walk['heading_deg']:.3g} deg (1-sigma at the log's end)"))
+    offset = accelerometer_offset_text(result)
+    if offset:
+        rows.append(("accelerometer offset", offset))
     for parameter in result.get("parameters", []):
         if parameter.get("estimated") and not parameter["name"].startswith("circumference"):
             rows.append((parameter["name"], f"{parameter['value']:.6g} (1-sigma "

@@ -27,6 +27,30 @@ def test_the_accelerometer_walk_is_shown_where_a_tyre_model_has_one():
     assert "accelerometer noise" not in dict(summary_rows(result))
 
 
+def test_the_accelerometers_forward_offset_is_shown_as_measured_at_stops_or_over_the_drive():
+    result = {"method": "batch", "usable": True, "termination": "converged",
+              "circumference_rl_m": 2.299, "circumference_rr_m": 2.300,
+              "forward_offset_sigma_m": [0.000194, 0.000198], "forward_offset_sigma_mps2": 0.0425,
+              "preparation": {"accelerometer_drive_offset": {
+                  "forward_mps2": -0.702, "sigma_mps2": 0.0425, "duration_s": 59.0,
+                  "distance_m": 1000.0, "removed": True}}}
+    text = dict(summary_rows(result))["accelerometer offset"]
+    assert text.startswith("-0.702 m/s² over 59 s of driving (too few stops), 1-sigma 0.043: removed")
+    assert "0.194 / 0.198 mm of the circumferences' sigma" in text
+    result["preparation"] = {"accelerometer_offset": {"forward_mps2": 0.002, "sigma_mps2": 0.0068,
+                                                      "stops": 6, "standing_s": 38.7,
+                                                      "removed": False},
+                             "accelerometer_offset_unevenly_removed_mps2": 0.177}
+    text = dict(summary_rows(result))["accelerometer offset"]
+    assert text.startswith("+0.002 m/s² at 6 stop(s), 1-sigma 0.007: within its noise, left in")
+    assert "unevenly by 0.177 m/s²" in text
+    result["preparation"] = {"accelerometer_driving_offset_mps2": -0.105}
+    assert "not measured: it reads -0.105" in dict(summary_rows(result))["accelerometer offset"]
+    del result["forward_offset_sigma_m"]
+    result["preparation"] = {}
+    assert "accelerometer offset" not in dict(summary_rows(result))
+
+
 def test_the_tyre_models_compared_are_shown_with_whose_gap_the_plain_fit_carries():
     selection = {"plain_bic": 35476.7, "free_track_bic": 35457.4, "plain_track_free": True,
                  "chosen": "none", "judges_plain": False, "plain_gap_to": "physical",
