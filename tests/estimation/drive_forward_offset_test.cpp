@@ -137,6 +137,29 @@ TEST(DriveForwardOffset, WherePreparedALogWithTooFewStopsHasItRemovedAndReported
   EXPECT_FALSE(open.drive_forward_offset.has_value()) << open.describe();
 }
 
+TEST(DriveForwardOffset, OnRampsWithAltitudeTheGradesGravityIsOutAndTheOpenDriveMeasuresIt) {
+  // The parking drive climbs its ramps and ends away from its start: with the GNSS altitude the
+  // preparation projects the grade (its gravity out of ax), and the drive measures the offset.
+  sim::Scenario scenario = load_scenario("parking");
+  scenario.gnss.altitude = sim::GnssSimConfig::Altitude::kAlways;
+  Log log = simulated_log(sim::simulate(scenario));
+  ASSERT_FALSE(log.gnss.altitude_m.empty());
+  for (double& ax : log.imu->ax_mps2) ax -= 0.3;
+  CalibrationOptions no_stops;
+  no_stops.standstill.min_duration_s = 600.0;
+  LogPreparation done;
+  prepare_log(log, no_stops, done);
+  ASSERT_TRUE(done.typical_max_grade.has_value());
+  ASSERT_TRUE(done.drive_forward_offset.has_value()) << done.describe();
+  EXPECT_NEAR(done.drive_forward_offset->forward_mps2, -0.3, done.drive_forward_offset->sigma_mps2);
+  EXPECT_TRUE(done.drive_forward_offset->removed);
+  // Without the altitude the open drive cannot tell the ramps from the offset.
+  log.gnss.altitude_m.clear();
+  LogPreparation flat;
+  prepare_log(log, no_stops, flat);
+  EXPECT_FALSE(flat.drive_forward_offset.has_value()) << flat.describe();
+}
+
 TEST(DriveForwardOffset, BlocksThatRemovedAnotherEstimateThanTheDriveSaysWidenTheSigma) {
   // The lap prepared in blocks of 60 s, as a long log is: it closes only in its last block, so
   // the blocks before it knew no slope and left the 0.2 m/s^2 in (their one stop's reading at the
