@@ -7,6 +7,7 @@
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/median.hpp"
 #include "odocal/estimation/prepared_blocks.hpp"
+#include "odocal/estimation/road_grade.hpp"
 
 namespace odocal::detail {
 namespace {
@@ -29,6 +30,7 @@ class FactGathering {
       : source_(source), signals_(signals), step_s_(step_s) {
     facts_.vehicle = source.vehicle();
     nominal_ = facts_.vehicle.nominal_params();
+    drive_.emplace(nominal_, facts_.vehicle.body_geometry());
     signals_ = DiagnosisSignals{};
     signals_.step_s = step_s;
   }
@@ -38,6 +40,7 @@ class FactGathering {
     LogBlocks blocks(source_, start_s, CalibrationOptions{}.prepare_block_s, start_s);
     while (const std::optional<PreparedBlock> block = blocks.next()) add(*block);
     source_.finish();
+    facts_.drive_forward_offset = drive_->measure();
     // The grid of a log whose wheels and GNSS share a few seconds only is no comparison.
     const double shared_s =
         std::min(facts_.wheels.last_s, facts_.gnss.last_s) - grid_from_.value_or(0.0);
@@ -81,7 +84,23 @@ class FactGathering {
       add_standstills(block);
     }
     add_grid(block);
+    add_drive(block);
     gnss_rows_before_ += gnss_last - gnss_first;
+  }
+
+  // The forward reading over the drive, on hills with the altitude's grade taken out of a copy of
+  // the block (as the preparation does).
+  void add_drive(const PreparedBlock& block) {
+    const Log& log = block.context;
+    if (!log.imu || log.wheels.size() < 2) return;
+    const double from = block.first ? log.wheels.t_s.front() : block.core_from_s;
+    std::optional<Log> projected;
+    const CalibrationOptions defaults;
+    if (const auto profile = grade_from_gnss_altitude(log, nominal_, defaults.grade_window_m)) {
+      projected = log;
+      project_to_horizontal(*projected, *profile);
+    }
+    drive_->add(projected ? *projected : log, from, block.core_to_s, projected.has_value());
   }
 
   void add_repeats(const GnssStream& gnss, std::size_t first, std::size_t last) {
@@ -158,6 +177,7 @@ class FactGathering {
   double step_s_;
   DiagnosisFacts facts_;
   OdometryParams nominal_;
+  std::optional<DriveForwardMeasure> drive_;
   std::size_t gnss_rows_before_{};
   std::optional<double> grid_from_;
   WheelRateBias bias_sum_;

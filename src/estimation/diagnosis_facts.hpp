@@ -10,6 +10,7 @@
 
 #include "diagnosis_signals.hpp"
 #include "odocal/data/log_source.hpp"
+#include "odocal/estimation/drive_forward_offset.hpp"
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
@@ -39,6 +40,9 @@ struct DiagnosisFacts {
   // Angular-rate wheel sensors: the median rate over each block's standstills, averaged over the
   // blocks by their standing time.
   std::optional<WheelRateBias> wheel_rate_bias;
+  // The accelerometer's forward offset over the drive, where the altitude's grade or a closed
+  // loop tells the slope from it (drive_forward_offset.hpp).
+  std::optional<DriveForwardOffset> drive_forward_offset;
 };
 
 // Reads `source` from its first wheel sample to its end; the grid goes into `signals`.

@@ -86,6 +86,7 @@ class Doctor {
   void check_gaps();
 
   void check_standstill_biases();
+  void check_driving_forward_offset();
 
   void check_altitude();
 

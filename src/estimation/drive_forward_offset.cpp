@@ -5,6 +5,7 @@
 
 #include "odocal/estimation/accelerometer_walk.hpp"
 #include "odocal/estimation/interpolation.hpp"
+#include "odocal/estimation/median.hpp"
 #include "odocal/model/gravity.hpp"
 #include "odocal/model/tyre_car_prior.hpp"
 
@@ -19,6 +20,10 @@ constexpr double kMinDurationS = 30.0, kMinDistanceM = 200.0;
 constexpr double kPlaceSigmaM = 0.5, kYawSigmaRad = 0.01745;
 constexpr double kAltitudeSigmaM = 3.0, kClosedLoopSlopeSigmaMps2 = 0.03;
 constexpr double kSignificantSigmas = 3.0, kMinRemovedOffsetMps2 = 0.02;
+// A drive that ends within this of where it began climbed nothing net; each end's place is the
+// median of this many fixes.
+constexpr double kClosedLoopGapM = 50.0;
+constexpr std::size_t kPlaceFixes = 10;
 
 }  // namespace
 
@@ -130,6 +135,42 @@ std::optional<DriveForwardOffset> drive_forward_offset(const DriveForwardSums& s
   offset.removed = std::abs(offset.forward_mps2) >
                    std::max(kSignificantSigmas * offset.sigma_mps2, kMinRemovedOffsetMps2);
   return offset;
+}
+
+void DriveForwardMeasure::add(const Log& context, double from_s, double to_s, bool projected) {
+  sums_.add(drive_forward_sums(context, nominal_, from_s, to_s));
+  all_projected_ = all_projected_ && projected;
+  any_projected_ = any_projected_ || projected;
+  const GnssStream& gnss = context.gnss;
+  const auto begin = static_cast<std::size_t>(
+      std::lower_bound(gnss.t_s.begin(), gnss.t_s.end(), from_s) - gnss.t_s.begin());
+  const auto end = static_cast<std::size_t>(
+      std::lower_bound(gnss.t_s.begin() + static_cast<std::ptrdiff_t>(begin), gnss.t_s.end(),
+                       to_s) -
+      gnss.t_s.begin());
+  const auto place = [&](std::size_t from, std::size_t to) {
+    const auto column = [&](const std::vector<double>& values) {
+      return median(std::vector<double>(values.begin() + static_cast<std::ptrdiff_t>(from),
+                                        values.begin() + static_cast<std::ptrdiff_t>(to)));
+    };
+    return std::make_pair(column(gnss.x_m), column(gnss.y_m));
+  };
+  if (end > begin) {
+    if (!start_xy_) start_xy_ = place(begin, std::min(end, begin + kPlaceFixes));
+    end_xy_ = place(end - std::min(end - begin, kPlaceFixes), end);
+  }
+}
+
+std::optional<DriveForwardOffset> DriveForwardMeasure::measure() const {
+  std::optional<DriveSlope> slope;
+  if (all_projected_) {
+    slope = DriveSlope::kProjected;
+  } else if (!any_projected_ && start_xy_ && end_xy_ &&
+             std::hypot(end_xy_->first - start_xy_->first, end_xy_->second - start_xy_->second) <=
+                 kClosedLoopGapM) {
+    slope = DriveSlope::kClosedLoop;
+  }
+  return drive_forward_offset(sums_, body_, slope);
 }
 
 }  // namespace odocal

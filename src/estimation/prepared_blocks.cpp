@@ -9,7 +9,6 @@
 #include "odocal/estimation/accelerometer_offset.hpp"
 #include "odocal/estimation/drive_forward_offset.hpp"
 #include "odocal/estimation/log_window.hpp"
-#include "odocal/estimation/median.hpp"
 #include "odocal/estimation/road_grade.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/estimation/wheel_gaps.hpp"
@@ -22,8 +21,6 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Only a real standing start is cut (a second or two is harmless), keeping a little of it for
 // the filters to settle.
 constexpr double kMinStandingStartS = 5.0, kLeadS = 1.0;
-// A drive that ends within this of where it began climbed nothing net.
-constexpr double kClosedLoopGapM = 50.0;
 
 bool rate_sensor(const WheelStream& wheels) {
   return wheels.unit_rear == WheelUnit::kRadiansPerSecond ||
@@ -81,7 +78,7 @@ BlockPreparation::BlockPreparation(LogBlockSource& source, const CalibrationOpti
       options_(options),
       done_(done),
       nominal_(source.vehicle().nominal_params()),
-      body_(source.vehicle().body_geometry()),
+      drive_measure_(nominal_, source.vehicle().body_geometry()),
       log_start_s_(source.first_wheel_time_s()) {
   // The first block looks back over a standing start for its standstills (and their bias).
   source_.keep_back(options_.prepare_block_s);
@@ -234,8 +231,11 @@ void BlockPreparation::remove_forward_offset(PreparedBlock& block,
   // 3 stops measure it, they do for the rest of the log.
   const auto& stops = done_.accelerometer_offset;
   done_.drive_forward_offset.reset();
-  if (!stops || stops->stops < kMinStopsForOffset)
-    done_.drive_forward_offset = measure_over_drive(block, projected);
+  if (!stops || stops->stops < kMinStopsForOffset) {
+    const double own_from = block.first ? log.wheels.t_s.front() : block.core_from_s;
+    drive_measure_.add(log, own_from, block.core_to_s, projected);
+    done_.drive_forward_offset = drive_measure_.measure();
+  }
 
   double removed = 0.0;
   if (const auto& drive = done_.drive_forward_offset) {
@@ -258,44 +258,6 @@ void BlockPreparation::remove_forward_offset(PreparedBlock& block,
     squares += duration_s * (each - removed) * (each - removed);
   }
   done_.unevenly_removed_forward_mps2 = weights > 0.0 ? std::sqrt(squares / weights) : 0.0;
-}
-
-std::optional<DriveForwardOffset> BlockPreparation::measure_over_drive(const PreparedBlock& block,
-                                                                       bool projected) {
-  const Log& log = block.context;
-  const double own_from = block.first ? log.wheels.t_s.front() : block.core_from_s;
-  drive_sums_.add(drive_forward_sums(log, nominal_, own_from, block.core_to_s));
-  all_projected_ = all_projected_ && projected;
-  any_projected_ = any_projected_ || projected;
-  // Where the drive began and where it is now: the median of 10 fixes, so that one outlier
-  // neither opens nor closes the loop.
-  const auto begin = static_cast<std::size_t>(
-      std::lower_bound(log.gnss.t_s.begin(), log.gnss.t_s.end(), own_from) - log.gnss.t_s.begin());
-  const auto end = static_cast<std::size_t>(
-      std::lower_bound(log.gnss.t_s.begin() + static_cast<std::ptrdiff_t>(begin),
-                       log.gnss.t_s.end(), block.core_to_s) -
-      log.gnss.t_s.begin());
-  const auto place = [&](std::size_t from, std::size_t to) {
-    return std::make_pair(
-        median(std::vector<double>(log.gnss.x_m.begin() + static_cast<std::ptrdiff_t>(from),
-                                   log.gnss.x_m.begin() + static_cast<std::ptrdiff_t>(to))),
-        median(std::vector<double>(log.gnss.y_m.begin() + static_cast<std::ptrdiff_t>(from),
-                                   log.gnss.y_m.begin() + static_cast<std::ptrdiff_t>(to))));
-  };
-  constexpr std::size_t kPlaceFixes = 10;
-  if (end > begin) {
-    if (!drive_start_xy_) drive_start_xy_ = place(begin, std::min(end, begin + kPlaceFixes));
-    drive_end_xy_ = place(end - std::min(end - begin, kPlaceFixes), end);
-  }
-  std::optional<DriveSlope> slope;
-  if (all_projected_) {
-    slope = DriveSlope::kProjected;
-  } else if (!any_projected_ && drive_start_xy_ && drive_end_xy_ &&
-             std::hypot(drive_end_xy_->first - drive_start_xy_->first,
-                        drive_end_xy_->second - drive_start_xy_->second) <= kClosedLoopGapM) {
-    slope = DriveSlope::kClosedLoop;
-  }
-  return drive_forward_offset(drive_sums_, body_, slope);
 }
 
 }  // namespace odocal

@@ -107,6 +107,30 @@ TEST(DoctorRealisticDrive, AnAccelerometerOffsetIsSeenAtStandstill) {
   EXPECT_FALSE(doctor_log(log).blocking());
 }
 
+// The built-in circuit stands one second: too little to read the offset at. The drive, which
+// ends where it began, reads it (drive_forward_offset.hpp), and the note says so.
+TEST(DoctorRealisticDrive, AnAccelerometerOffsetIsReadOverADriveThatBarelyStands) {
+  const TempLogDir dir;
+  const fs::path log = dir.path() / "log";
+  const auto run =
+      run_cli(fmt::format("simulate --scenario circuit --laps 1 --seed 2 --out {}", log.string()));
+  ASSERT_EQ(run.status, 0) << run.err;
+  const auto offset_note = [&]() -> std::optional<Finding> {
+    const Diagnosis diagnosis = doctor_log(log);
+    for (const Finding& f : diagnosis.findings)
+      if (f.check == "imu.ax_offset") return f;
+    return std::nullopt;
+  };
+  EXPECT_FALSE(offset_note().has_value());
+  edit_csv(log / "imu.csv", [](Row& r) { r["ax"] -= 0.7; });
+  const std::optional<Finding> note = offset_note();
+  ASSERT_TRUE(note.has_value());
+  EXPECT_EQ(note->severity, FindingSeverity::kNote);
+  EXPECT_NE(note->what.find("over the drive"), std::string::npos) << note->what;
+  EXPECT_NE(note->evidence.find("-0.7"), std::string::npos) << note->evidence;
+  EXPECT_FALSE(doctor_log(log).blocking());
+}
+
 // A rear-driven car raced around Hockenheim for 3 laps: the inner rear wheel spins out of every
 // corner, and the wheels' yaw rate, which the gyro is compared with, trails the corners' ends:
 // once read as the IMU's clock 1.0 s off, blocking a clean log. The forward accelerations put it

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "odocal/data/log.hpp"
 #include "odocal/model/odometry_model.hpp"
@@ -62,5 +63,26 @@ struct DriveForwardOffset {
 std::optional<DriveForwardOffset> drive_forward_offset(const DriveForwardSums& sums,
                                                        const VehicleBody& body,
                                                        std::optional<DriveSlope> slope);
+
+// The measure over a log read in blocks (prepared_blocks.hpp): each block's own span adds its
+// sums, and the slope is known where every block's grade was projected, or none was and the drive
+// is back within 50 m of its start (the median of 10 fixes at either end, so that one outlier
+// neither opens nor closes the loop).
+class DriveForwardMeasure {
+ public:
+  DriveForwardMeasure(const OdometryParams& nominal, const VehicleBody& body)
+      : nominal_(nominal), body_(body) {}
+  // [from_s, to_s) of `context` (a block with its margins); `projected`: its grade's gravity
+  // was taken out of ax.
+  void add(const Log& context, double from_s, double to_s, bool projected);
+  std::optional<DriveForwardOffset> measure() const;
+
+ private:
+  OdometryParams nominal_;
+  VehicleBody body_;
+  DriveForwardSums sums_;
+  bool all_projected_ = true, any_projected_ = false;
+  std::optional<std::pair<double, double>> start_xy_, end_xy_;  // GNSS, m
+};
 
 }  // namespace odocal

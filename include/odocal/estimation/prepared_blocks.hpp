@@ -85,23 +85,17 @@ class BlockPreparation {
   // The accelerometer's forward offset: the stops' readings, or the drive's, and its removal.
   void remove_forward_offset(PreparedBlock& block, const std::vector<Standstill>& standing,
                              const std::function<bool(double)>& own, bool projected);
-  // The running measure over the drive so far, where the slope is known (all blocks projected,
-  // or none and the drive back within 50 m of its start).
-  std::optional<DriveForwardOffset> measure_over_drive(const PreparedBlock& block, bool projected);
 
   LogBlockSource& source_;
   CalibrationOptions options_;  // a copy: a temporary may be passed
   LogPreparation& done_;
   OdometryParams nominal_;
-  VehicleBody body_;
+  DriveForwardMeasure drive_measure_;
   double log_start_s_{}, start_s_{};
   std::optional<LogBlocks> blocks_;
   bool changed_{};
   std::optional<WheelRateBias> bias_;  // the last block's, for blocks without a standstill
   double grade_distance_m_{}, grade_excess_m_{}, grade_scale_variance_m2_{};
-  DriveForwardSums drive_sums_;
-  bool all_projected_ = true, any_projected_ = false;
-  std::optional<std::pair<double, double>> drive_start_xy_, drive_end_xy_;  // GNSS, m
   std::vector<std::pair<double, double>> removed_per_block_;  // IMU time s, removed m/s^2
 };
 
