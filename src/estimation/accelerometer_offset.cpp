@@ -6,6 +6,7 @@
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/median.hpp"
 #include "odocal/model/odometry_model.hpp"
+#include "wheel_distance_sums.hpp"
 
 namespace odocal {
 namespace {
@@ -41,32 +42,17 @@ std::vector<StopReading> standing_forward_readings(const ImuStream& imu,
 std::optional<double> driving_forward_offset(const Log& log, const OdometryParams& nominal) {
   const WheelStream& wheels = log.wheels;
   if (!log.imu || wheels.size() < 3) return std::nullopt;
-  // The wheels' distance, heading and chain breaks summed from the start, for differences.
-  std::vector<double> distance(wheels.size()), heading(wheels.size()), breaks(wheels.size());
-  for (std::size_t k = 1; k < wheels.size(); ++k) {
-    const BodyIncrement step = body_increment(wheels.increment(k), nominal);
-    distance[k] = distance[k - 1] + step.distance_m;
-    heading[k] = heading[k - 1] + step.yaw_rad;
-    breaks[k] = breaks[k - 1] + (wheels.breaks_at(k) ? 1.0 : 0.0);
-  }
-  const auto at = [&](const std::vector<double>& sums, double t_s) {
-    return interpolate_linear(wheels.t_s, sums, t_s);
-  };
-  const auto speed = [&](double t_s) -> std::optional<double> {
-    const auto behind = at(distance, t_s - 0.5 * kSpeedWindowS);
-    const auto ahead = at(distance, t_s + 0.5 * kSpeedWindowS);
-    if (!behind || !ahead) return std::nullopt;
-    return (*ahead - *behind) / kSpeedWindowS;
-  };
+  const WheelDistanceSums sums(wheels, nominal);
   std::vector<double> readings;  // one allocation, however long the log
   readings.reserve(
       static_cast<std::size_t>((wheels.t_s.back() - wheels.t_s.front()) / kDrivingBinS) + 1);
   for (double from = wheels.t_s.front() + kSpeedWindowS;
        from + kDrivingBinS + kSpeedWindowS <= wheels.t_s.back(); from += kDrivingBinS) {
     const double to = from + kDrivingBinS;
-    const auto v0 = speed(from), v1 = speed(to);
-    const auto turned0 = at(heading, from), turned1 = at(heading, to);
-    const auto broken0 = at(breaks, from - kSpeedWindowS), broken1 = at(breaks, to + kSpeedWindowS);
+    const auto v0 = sums.speed(from, kSpeedWindowS), v1 = sums.speed(to, kSpeedWindowS);
+    const auto turned0 = sums.heading_at(from), turned1 = sums.heading_at(to);
+    const auto broken0 = sums.breaks_at(from - kSpeedWindowS);
+    const auto broken1 = sums.breaks_at(to + kSpeedWindowS);
     if (!v0 || !v1 || !turned0 || !turned1 || !broken0 || !broken1) continue;
     if (*broken1 != *broken0 || std::min(*v0, *v1) < kMinDrivingSpeedMps ||
         std::abs(*turned1 - *turned0) > kMaxStraightTurnRadps * kDrivingBinS)
@@ -96,8 +82,7 @@ std::optional<AccelerometerOffset> accelerometer_offset(const std::vector<StopRe
   }
   offset.forward_mps2 /= weights;
   const auto decide = [&] {
-    offset.removed = std::abs(offset.forward_mps2) >
-                     std::max(kSignificantSigmas * offset.sigma_mps2, kMinRemovedOffsetMps2);
+    offset.removed = forward_offset_stands_out(offset.forward_mps2, offset.sigma_mps2);
     return offset;
   };
   if (stops.size() < kMinStopsForOffset) {
@@ -114,6 +99,10 @@ std::optional<AccelerometerOffset> accelerometer_offset(const std::vector<StopRe
   const double standard_error = std::sqrt(variance * squared_weights) / weights;
   offset.sigma_mps2 = std::hypot(standard_error, kCommonSlopeSigmaMps2);
   return decide();
+}
+
+bool forward_offset_stands_out(double forward_mps2, double sigma_mps2) {
+  return std::abs(forward_mps2) > std::max(kSignificantSigmas * sigma_mps2, kMinRemovedOffsetMps2);
 }
 
 void remove_accelerometer_offset(ImuStream& imu, double forward_mps2) {

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <vector>
 
+#include "odocal/estimation/accelerometer_offset.hpp"
 #include "odocal/estimation/accelerometer_walk.hpp"
-#include "odocal/estimation/interpolation.hpp"
 #include "odocal/estimation/median.hpp"
 #include "odocal/model/gravity.hpp"
 #include "odocal/model/tyre_car_prior.hpp"
+#include "wheel_distance_sums.hpp"
 
 namespace odocal {
 namespace {
@@ -19,7 +20,6 @@ constexpr double kMinDurationS = 30.0, kMinDistanceM = 200.0;
 // What the drive's terms are known to (the header's list).
 constexpr double kPlaceSigmaM = 0.5, kYawSigmaRad = 0.01745;
 constexpr double kAltitudeSigmaM = 3.0, kClosedLoopSlopeSigmaMps2 = 0.03;
-constexpr double kSignificantSigmas = 3.0, kMinRemovedOffsetMps2 = 0.02;
 // A drive that ends within this of where it began climbed nothing net; each end's place is the
 // median of this many fixes.
 constexpr double kClosedLoopGapM = 50.0;
@@ -44,21 +44,7 @@ DriveForwardSums drive_forward_sums(const Log& log, const OdometryParams& nomina
   const WheelStream& wheels = log.wheels;
   if (!log.imu || wheels.size() < 3) return sums;
   const ImuStream& imu = *log.imu;
-  // The wheels' signed distance and chain breaks summed from the start, for speeds.
-  std::vector<double> distance(wheels.size()), breaks(wheels.size());
-  for (std::size_t k = 1; k < wheels.size(); ++k) {
-    distance[k] = distance[k - 1] + body_increment(wheels.increment(k), nominal).distance_m;
-    breaks[k] = breaks[k - 1] + (wheels.breaks_at(k) ? 1.0 : 0.0);
-  }
-  const auto speed = [&](double t_s) -> std::optional<double> {
-    const double behind = t_s - 0.5 * kSpeedWindowS, ahead = t_s + 0.5 * kSpeedWindowS;
-    const auto d0 = interpolate_linear(wheels.t_s, distance, behind);
-    const auto d1 = interpolate_linear(wheels.t_s, distance, ahead);
-    const auto b0 = interpolate_linear(wheels.t_s, breaks, behind);
-    const auto b1 = interpolate_linear(wheels.t_s, breaks, ahead);
-    if (!d0 || !d1 || !b0 || !b1 || *b1 != *b0) return std::nullopt;
-    return (*d1 - *d0) / kSpeedWindowS;
-  };
+  const WheelDistanceSums wheel_sums(wheels, nominal);
   // Within the wheels' span, so that a stretch's ends have their speed.
   from_s = std::max(from_s, wheels.t_s.front() + 0.5 * kSpeedWindowS);
   to_s = std::min(to_s, wheels.t_s.back() - 0.5 * kSpeedWindowS);
@@ -70,26 +56,23 @@ DriveForwardSums drive_forward_sums(const Log& log, const OdometryParams& nomina
   const auto add_stretch = [&](std::size_t start, std::size_t stop) {
     const double t0 = imu.t_s[start], t1 = imu.t_s[stop];
     if (t1 - t0 < kMinStretchS) return;
-    const auto v0 = speed(t0), v1 = speed(t1);
+    const auto v0 = wheel_sums.speed(t0, kSpeedWindowS), v1 = wheel_sums.speed(t1, kSpeedWindowS);
     if (!v0 || !v1) return;
     DriveForwardSums stretch;
     for (std::size_t k = start; k < stop; ++k) {
       const double dt = imu.t_s[k + 1] - imu.t_s[k];
-      const auto mean = [&](const std::vector<double>& column, auto f) {
-        return 0.5 * (f(column[k]) + f(column[k + 1])) * dt;
-      };
-      const auto same = [](double x) { return x; };
-      const auto squared = [](double x) { return x * x; };
+      const auto trapezoid = [&](double a, double b) { return 0.5 * (a + b) * dt; };
+      const double ay0 = imu.ay_mps2[k], ay1 = imu.ay_mps2[k + 1];
+      const double wz0 = imu.wz_radps[k], wz1 = imu.wz_radps[k + 1];
       stretch.duration_s += dt;
       stretch.squared_steps_s2 += dt * dt;
-      stretch.forward_less_gain += mean(imu.ax_mps2, same);
-      stretch.lateral += mean(imu.ay_mps2, same);
-      stretch.lateral_squared += mean(imu.ay_mps2, squared);
-      stretch.turn_squared += mean(imu.wz_radps, squared);
+      stretch.forward_less_gain += trapezoid(imu.ax_mps2[k], imu.ax_mps2[k + 1]);
+      stretch.lateral += trapezoid(ay0, ay1);
+      stretch.lateral_squared += trapezoid(ay0 * ay0, ay1 * ay1);
+      stretch.turn_squared += trapezoid(wz0 * wz0, wz1 * wz1);
     }
     stretch.forward_less_gain -= *v1 - *v0;
-    const auto d0 = interpolate_linear(wheels.t_s, distance, t0);
-    const auto d1 = interpolate_linear(wheels.t_s, distance, t1);
+    const auto d0 = wheel_sums.distance_at(t0), d1 = wheel_sums.distance_at(t1);
     if (d0 && d1) stretch.distance_m = std::abs(*d1 - *d0);
     sums.add(stretch);
   };
@@ -132,8 +115,7 @@ std::optional<DriveForwardOffset> drive_forward_offset(const DriveForwardSums& s
       std::sqrt(noise * noise + std::pow(side_slip * lateral_squared, 2) +
                 std::pow(kPlaceSigmaM * turn_squared, 2) +
                 std::pow(kYawSigmaRad * sums.lateral / T, 2) + slope_sigma * slope_sigma);
-  offset.removed = std::abs(offset.forward_mps2) >
-                   std::max(kSignificantSigmas * offset.sigma_mps2, kMinRemovedOffsetMps2);
+  offset.removed = forward_offset_stands_out(offset.forward_mps2, offset.sigma_mps2);
   return offset;
 }
 

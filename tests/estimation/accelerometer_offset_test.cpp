@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include "../support/forward_offset_removed.hpp"
 #include "odocal/estimation/log_preparation.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
@@ -107,15 +109,7 @@ TEST(AccelerometerOffset, IsTakenOutOfTheLogWhereItIsPrepared) {
   EXPECT_NEAR(removed, 0.5, 3.0 * done.drive_forward_offset->sigma_mps2);
   EXPECT_NE(done.describe().find("accelerometer's forward offset removed over"), std::string::npos)
       << done.describe();
-  // The prepared log starts at first motion: its samples are the input's less the offset.
-  const ImuStream& in = *log.imu;
-  const ImuStream& out = *prepared->imu;
-  const auto first = static_cast<std::size_t>(
-      std::lower_bound(in.t_s.begin(), in.t_s.end(), out.t_s.front()) - in.t_s.begin());
-  for (std::size_t k = 0; k < out.size(); k += 97) {
-    ASSERT_EQ(out.t_s[k], in.t_s[first + k]);
-    EXPECT_NEAR(out.ax_mps2[k], in.ax_mps2[first + k] - removed, 1e-12);
-  }
+  testing::expect_forward_offset_removed(*log.imu, *prepared->imu, removed);
 
   // The clean lap's reading is within its noise: left in (the log not copied for it).
   LogPreparation clean;
@@ -130,7 +124,10 @@ TEST(AccelerometerOffset, IsTakenOutOfTheLogWhereItIsPrepared) {
   const std::optional<Log> without = prepare_log(log, kept, untouched);
   EXPECT_FALSE(untouched.accelerometer_offset.has_value());
   ASSERT_TRUE(without.has_value());  // it starts at first motion all the same
-  EXPECT_EQ(without->imu->ax_mps2.front(), in.ax_mps2[first]);
+  const ImuStream& in = *log.imu;
+  const auto first = std::lower_bound(in.t_s.begin(), in.t_s.end(), without->imu->t_s.front());
+  EXPECT_EQ(without->imu->ax_mps2.front(),
+            in.ax_mps2[static_cast<std::size_t>(first - in.t_s.begin())]);
 }
 
 // Without 3 stops: the forward reading while driving straight less the wheels' acceleration. On

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../support/forward_offset_removed.hpp"
 #include "odocal/estimation/accelerometer_offset.hpp"
 #include "odocal/estimation/log_preparation.hpp"
 #include "odocal/estimation/log_window.hpp"
@@ -114,12 +115,7 @@ TEST(DriveForwardOffset, WherePreparedALogWithTooFewStopsHasItRemovedAndReported
   EXPECT_EQ(done.unevenly_removed_forward_mps2, 0.0);  // one block
   EXPECT_NE(done.describe().find("accelerometer's forward offset removed over"), std::string::npos)
       << done.describe();
-  const ImuStream& in = *log.imu;
-  const ImuStream& out = *prepared->imu;
-  const auto first = static_cast<std::size_t>(
-      std::lower_bound(in.t_s.begin(), in.t_s.end(), out.t_s.front()) - in.t_s.begin());
-  for (std::size_t k = 0; k < out.size(); k += 97)
-    EXPECT_NEAR(out.ax_mps2[k], in.ax_mps2[first + k] - offset.forward_mps2, 1e-12);
+  testing::expect_forward_offset_removed(*log.imu, *prepared->imu, offset.forward_mps2);
 
   // One fix 400 m off at either end neither opens the loop nor closes an open one.
   Log outliers = log;

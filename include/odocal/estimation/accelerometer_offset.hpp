@@ -51,6 +51,10 @@ std::vector<StopReading> standing_forward_readings(const ImuStream& imu,
 // 3 sigma and 0.02 m/s^2. Nothing without a stop.
 std::optional<AccelerometerOffset> accelerometer_offset(const std::vector<StopReading>& stops);
 
+// Whether a measured offset is taken out of ax: beyond 3 of its sigma and 0.02 m/s^2 (0.1 deg of
+// pitch). Below, the sigma carries it whole, and a long log is not copied for what its noise hides.
+bool forward_offset_stands_out(double forward_mps2, double sigma_mps2);
+
 void remove_accelerometer_offset(ImuStream& imu, double forward_mps2);
 
 // Where no 3 stops measure the offset: the median, over 2 s of driving straight, of the forward

@@ -48,7 +48,7 @@ struct DriveForwardOffset {
   double sigma_mps2{};
   double duration_s{};
   double distance_m{};
-  bool removed{};  // from ax: beyond 3 sigma and 0.02 m/s^2, as the stops' offset
+  bool removed{};  // from ax where it stands out (forward_offset_stands_out), as the stops'
   // 1 sigma of what is left in ax.
   double left_sigma_mps2() const {
     return removed ? sigma_mps2 : std::hypot(forward_mps2, sigma_mps2);
