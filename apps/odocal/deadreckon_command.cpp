@@ -3,13 +3,13 @@
 #include <fmt/format.h>
 
 #include <limits>
-#include <memory>
 #include <optional>
 
 #include "log_window_args.hpp"
 #include "number_checks.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/log_dead_reckoning.hpp"
+#include "odocal/estimation/prepared_blocks.hpp"
 #include "odocal/io/log_block_reader.hpp"
 #include "odocal/io/trajectory_writer.hpp"
 #include "odocal/model/angle.hpp"
@@ -31,8 +31,18 @@ struct DeadreckonArgs {
 // grow with the drive (docs/real-data.md).
 void run_deadreckon(DeadreckonArgs args) {
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  LogBlockReader reader(args.log_dir, {}, args.window.from_s.value_or(-kInfinity),
-                        args.window.to_s.value_or(kInfinity));
+  const double from_s = args.window.from_s.value_or(-kInfinity);
+  const double to_s = args.window.to_s.value_or(kInfinity);
+  {
+    // The tyre model takes ax: a long log's forward offset is measured over all of it first, so
+    // that every block removes the same estimate, the one calibrate removes.
+    LogBlockReader first_pass(args.log_dir, {}, from_s, to_s);
+    const auto& tyre = first_pass.vehicle().tyre_model;
+    if (!args.options.plain && tyre && !tyre->plain())
+      args.options.forward_offset_mps2 =
+          whole_log_forward_offset(first_pass, args.options.preparation);
+  }
+  LogBlockReader reader(args.log_dir, {}, from_s, to_s);
   args.options.start = args.start == "truth"  ? LogStart::kTruth
                        : args.start == "gnss" ? LogStart::kGnss
                                               : LogStart::kAuto;

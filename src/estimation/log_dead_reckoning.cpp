@@ -46,7 +46,7 @@ ReferencePath reference_of(const Log& log, bool truth) {
 LogDeadReckoning dead_reckon_log(LogBlockSource& source, const LogDeadReckoningOptions& options,
                                  const std::function<void(double, const Pose2&)>& on_pose) {
   LogDeadReckoning run;
-  BlockPreparation blocks(source, options.preparation, run.prepared);
+  BlockPreparation blocks(source, options.preparation, run.prepared, options.forward_offset_mps2);
   run.params = source.vehicle().nominal_params();
   if (options.circumference_rl_m) run.params.circumference_rl_m = *options.circumference_rl_m;
   if (options.circumference_rr_m) run.params.circumference_rr_m = *options.circumference_rr_m;

@@ -64,7 +64,7 @@ std::string LogPreparation::describe() const {
   if (unevenly_removed_forward_mps2 > 0.0) {
     text += fmt::format(
         " (the log's blocks each removed the estimate of their time: {:.3f} m/s^2 RMS from the "
-        "last, in the sigma)",
+        "last)",
         unevenly_removed_forward_mps2);
   }
   if (driving_forward_offset_mps2) {
@@ -93,34 +93,13 @@ std::string LogPreparation::describe() const {
   return text;
 }
 
-std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options,
-                               LogPreparation& done, bool need_gnss_span) {
-  std::optional<Log> span;
-  if (need_gnss_span) {
-    const double wheel_from = log.wheels.t_s.front(), wheel_to = log.wheels.t_s.back();
-    const double from = std::max(wheel_from, log.gnss.t_s.front());
-    const double to = std::min(wheel_to, log.gnss.t_s.back());
-    constexpr double kMinCommonS = 2.0;
-    if (!(to - from >= kMinCommonS)) {
-      throw InsufficientDataError(fmt::format(
-          "wheels ({:.3f} to {:.3f} s) and GNSS ({:.3f} to {:.3f} s) share {:.3f} s of time: "
-          "the streams' clocks or time units disagree",
-          wheel_from, wheel_to, log.gnss.t_s.front(), log.gnss.t_s.back(),
-          std::max(0.0, to - from)));
-    }
-    // A few GNSS periods beyond either end is the normal sampling offset.
-    const double tolerance_s =
-        std::max(1.0, 5.0 * (log.gnss.t_s.back() - log.gnss.t_s.front()) /
-                          static_cast<double>(std::max<std::size_t>(1, log.gnss.size() - 1)));
-    if (from - wheel_from > tolerance_s || wheel_to - to > tolerance_s) {
-      done.common_span_s = {from, to};
-      done.cut_without_gnss_s = (from - wheel_from) + (wheel_to - to);
-      span = crop_log(log, from, to);
-    }
-  }
-  const Log& whole = span ? *span : log;
+namespace {
+
+// The log prepared block by block; `changed`: whether preparing changed anything.
+Log prepared_blocks(const Log& whole, const CalibrationOptions& options, LogPreparation& done,
+                    std::optional<double> forward_offset_mps2, bool& changed) {
   InMemoryLogSource source(whole);
-  BlockPreparation blocks(source, options, done);
+  BlockPreparation blocks(source, options, done, forward_offset_mps2);
   Log prepared;
   prepared.source = whole.source;
   prepared.vehicle = whole.vehicle;
@@ -152,7 +131,50 @@ std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options
     }
     append(core_log(*block));
   }
-  if (!blocks.changed()) return span;
+  changed = blocks.changed();
+  return prepared;
+}
+
+}  // namespace
+
+std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options,
+                               LogPreparation& done, bool need_gnss_span) {
+  std::optional<Log> span;
+  if (need_gnss_span) {
+    const double wheel_from = log.wheels.t_s.front(), wheel_to = log.wheels.t_s.back();
+    const double from = std::max(wheel_from, log.gnss.t_s.front());
+    const double to = std::min(wheel_to, log.gnss.t_s.back());
+    constexpr double kMinCommonS = 2.0;
+    if (!(to - from >= kMinCommonS)) {
+      throw InsufficientDataError(fmt::format(
+          "wheels ({:.3f} to {:.3f} s) and GNSS ({:.3f} to {:.3f} s) share {:.3f} s of time: "
+          "the streams' clocks or time units disagree",
+          wheel_from, wheel_to, log.gnss.t_s.front(), log.gnss.t_s.back(),
+          std::max(0.0, to - from)));
+    }
+    // A few GNSS periods beyond either end is the normal sampling offset.
+    const double tolerance_s =
+        std::max(1.0, 5.0 * (log.gnss.t_s.back() - log.gnss.t_s.front()) /
+                          static_cast<double>(std::max<std::size_t>(1, log.gnss.size() - 1)));
+    if (from - wheel_from > tolerance_s || wheel_to - to > tolerance_s) {
+      done.common_span_s = {from, to};
+      done.cut_without_gnss_s = (from - wheel_from) + (wheel_to - to);
+      span = crop_log(log, from, to);
+    }
+  }
+  const Log& whole = span ? *span : log;
+  const LogPreparation before = done;
+  bool changed = false;
+  Log prepared = prepared_blocks(whole, options, done, std::nullopt, changed);
+  if (done.unevenly_removed_forward_mps2 > 0.0) {
+    // A long log's early blocks removed the running estimate of their time: prepared again, with
+    // what the whole log measured removed from every block.
+    const double offset_mps2 = done.removed_forward_mps2;
+    prepared = Log{};
+    done = before;
+    prepared = prepared_blocks(whole, options, done, offset_mps2, changed);
+  }
+  if (!changed) return span;
   if (prepared.wheels.size() < 2 || prepared.gnss.t_s.empty()) {
     require_window_holds(prepared.wheels.size(), prepared.gnss.size(),
                          done.started_at_s.value_or(whole.wheels.t_s.front()),

@@ -73,13 +73,14 @@ Log core_log(const PreparedBlock& block) {
 Log InMemoryLogSource::block(double from_s, double to_s) { return slice_log(log_, from_s, to_s); }
 
 BlockPreparation::BlockPreparation(LogBlockSource& source, const CalibrationOptions& options,
-                                   LogPreparation& done)
+                                   LogPreparation& done, std::optional<double> forward_offset_mps2)
     : source_(source),
       options_(options),
       done_(done),
       nominal_(source.vehicle().nominal_params()),
       drive_measure_(nominal_, source.vehicle().body_geometry()),
-      log_start_s_(source.first_wheel_time_s()) {
+      log_start_s_(source.first_wheel_time_s()),
+      whole_log_offset_mps2_(forward_offset_mps2) {
   // The first block looks back over a standing start for its standstills (and their bias).
   source_.keep_back(options_.prepare_block_s);
   start_s_ = find_start();
@@ -243,6 +244,8 @@ void BlockPreparation::remove_forward_offset(PreparedBlock& block,
   } else if (stops && stops->removed) {
     removed = stops->forward_mps2;
   }
+  if (whole_log_offset_mps2_) removed = *whole_log_offset_mps2_;
+  done_.removed_forward_mps2 = removed;
   if (removed != 0.0) {
     remove_accelerometer_offset(*log.imu, removed);
     changed_ = true;
@@ -258,6 +261,18 @@ void BlockPreparation::remove_forward_offset(PreparedBlock& block,
     squares += duration_s * (each - removed) * (each - removed);
   }
   done_.unevenly_removed_forward_mps2 = weights > 0.0 ? std::sqrt(squares / weights) : 0.0;
+}
+
+std::optional<double> whole_log_forward_offset(LogBlockSource& source,
+                                               const CalibrationOptions& options) {
+  if (!options.remove_accelerometer_offset) return std::nullopt;
+  LogPreparation done;
+  BlockPreparation blocks(source, options, done);
+  while (blocks.next()) {
+  }
+  source.finish();
+  if (!(done.unevenly_removed_forward_mps2 > 0.0)) return std::nullopt;
+  return done.removed_forward_mps2;
 }
 
 }  // namespace odocal

@@ -10,6 +10,9 @@
 #include "odocal/estimation/prepared_blocks.hpp"
 #include "odocal/io/log_block_reader.hpp"
 #include "odocal/io/log_reader.hpp"
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/io/simulation_writer.hpp"
+#include "odocal/sim/simulator.hpp"
 
 namespace odocal {
 namespace {
@@ -87,6 +90,32 @@ TEST(LogDeadReckoning, WithoutBiasOrHillsBlocksChangeNothing) {
   EXPECT_NEAR(blocks.result.errors.mean_position_m, whole.result.errors.mean_position_m, 1e-9);
   EXPECT_NEAR(blocks.result.errors.max_heading_rad, whole.result.errors.max_heading_rad, 1e-12);
   EXPECT_NEAR(blocks.result.distance_m, whole.result.distance_m, 1e-9 * whole.result.distance_m);
+}
+
+TEST(LogDeadReckoning, AForwardOffsetMeasuredOverTheWholeLogFirstIsRemovedFromEveryBlock) {
+  // A lap of the circuit with the accelerometer reading 0.2 m/s^2 backward, in 60 s blocks: the
+  // drive closes only in the last, so a single pass removes it there alone (deadreckon's tyre
+  // model takes ax). Measured over the whole log first, every block removes the same.
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.route.laps = 1;
+  Log log = simulated_log(sim::simulate(scenario));
+  for (double& ax : log.imu->ax_mps2) ax -= 0.2;
+  LogDeadReckoningOptions options;
+  options.preparation.prepare_block_s = 60.0;
+  InMemoryLogSource single(log);
+  const DeadReckoned once = dead_reckoned(single, options);
+  EXPECT_GT(once.result.prepared.unevenly_removed_forward_mps2, 0.1);
+
+  InMemoryLogSource first(log);
+  options.forward_offset_mps2 = whole_log_forward_offset(first, options.preparation);
+  ASSERT_TRUE(options.forward_offset_mps2.has_value());
+  EXPECT_NEAR(*options.forward_offset_mps2, -0.2, 0.1);
+  EXPECT_EQ(*options.forward_offset_mps2, once.result.prepared.removed_forward_mps2);
+  InMemoryLogSource source(log);
+  const DeadReckoned even = dead_reckoned(source, options);
+  EXPECT_EQ(even.result.prepared.unevenly_removed_forward_mps2, 0.0);
+  EXPECT_EQ(even.result.prepared.removed_forward_mps2, *options.forward_offset_mps2);
+  EXPECT_EQ(even.trajectory.t_s, once.trajectory.t_s);
 }
 
 }  // namespace

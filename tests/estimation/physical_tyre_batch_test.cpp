@@ -545,6 +545,19 @@ TEST(PhysicalTyreBatch, AnOffsetTheDriveMeasuresIsTakenOutWithoutStops) {
   const double error_m = after.estimate.circumference_rl_m - drive.true_params.circumference_rl_m;
   EXPECT_LT(std::abs(error_m), 3.0 * after.sigma_rl_m()) << after.full_report();
   EXPECT_NE(after.full_report().find("removed over"), std::string::npos);
+
+  // Prepared in blocks of 2 minutes, as a long log is: the loop closes only in the last block,
+  // so a single pass's earlier blocks would have left the offset in. The whole log's measure is
+  // removed from every block, and the estimate is the same.
+  CalibrationOptions blocks;
+  blocks.prepare_block_s = 120.0;
+  const BatchSummary in_blocks = calibrate(pitched, TyreModelChoice::kPhysical, blocks);
+  EXPECT_EQ(in_blocks.preparation.unevenly_removed_forward_mps2, 0.0);
+  ASSERT_TRUE(in_blocks.preparation.drive_forward_offset.has_value());
+  EXPECT_NEAR(in_blocks.preparation.drive_forward_offset->forward_mps2, offset.forward_mps2, 0.002);
+  EXPECT_NEAR(in_blocks.estimate.circumference_rl_m, before.estimate.circumference_rl_m,
+              0.2 * before.sigma_rl_m());
+  EXPECT_NEAR(in_blocks.sigma_rl_m(), after.sigma_rl_m(), 0.05 * after.sigma_rl_m());
 }
 
 TEST(PhysicalTyreBatch, AnOffsetNoStopMeasuredWidensTheSigmaToWhatDrivingReads) {

@@ -25,6 +25,10 @@ struct LogDeadReckoningOptions {
   // counted.
   double tick_smoothing_s = kDefaultTickSmoothingS;
   CalibrationOptions preparation;  // prepared as every command prepares a log (the defaults)
+  // The accelerometer's forward offset that a first pass over the whole log measured
+  // (whole_log_forward_offset), removed from every block: else a long log's blocks remove the
+  // running estimate of their time (the tyre model takes ax).
+  std::optional<double> forward_offset_mps2;
 };
 
 struct LogDeadReckoning {

@@ -33,9 +33,9 @@ struct LogPreparation {
     WheelRateBias bias;
   };
   std::vector<BlockBias> wheel_rate_bias_per_block;
-  // The accelerometer's forward offset (imu.csv only), from every stop's reading: each block
-  // has the offset that the stops up to its end measured removed, where it stands out of its
-  // sigma (AccelerometerOffset::removed).
+  // The accelerometer's forward offset (imu.csv only), from every stop's reading, removed where
+  // it stands out of its sigma (AccelerometerOffset::removed): the whole log's estimate from
+  // every block (below).
   std::vector<StopReading> forward_readings;
   std::optional<AccelerometerOffset> accelerometer_offset;
   // Where fewer than 3 stops measured it: the drive's own measure (drive_forward_offset.hpp),
@@ -44,8 +44,12 @@ struct LogPreparation {
   // (driving_forward_offset; a calibration's, not removed).
   std::optional<DriveForwardOffset> drive_forward_offset;
   std::optional<double> driving_forward_offset_mps2;
-  // A long log's blocks each removed the estimate of their time: the time-weighted RMS of what
-  // they removed less what the last one did.
+  // What the last block removed from ax (0: nothing).
+  double removed_forward_mps2{};
+  // A single pass's blocks each remove the estimate of their time: the time-weighted RMS of what
+  // they removed less what the last one did. prepare_log prepares such a log again with the last
+  // block's removed from every block; only a streamed dead reckoning that was not given the
+  // whole log's (LogDeadReckoningOptions::forward_offset_mps2) keeps it.
   double unevenly_removed_forward_mps2{};
   std::optional<double> started_at_s;  // used from here on (first motion)
   std::vector<WheelGap> wheel_gaps;    // where the odometry chain breaks

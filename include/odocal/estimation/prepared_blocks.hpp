@@ -70,8 +70,11 @@ class LogBlocks {
 class BlockPreparation {
  public:
   // Finds where the log is used from (its first motion, options.start_at_first_motion) and
-  // records it in `done`, which collects what every block finds.
-  BlockPreparation(LogBlockSource& source, const CalibrationOptions& options, LogPreparation& done);
+  // records it in `done`, which collects what every block finds. `forward_offset_mps2`: the
+  // accelerometer's forward offset that a pass over the whole log removed at its end
+  // (whole_log_forward_offset), removed from every block in place of the running estimate.
+  BlockPreparation(LogBlockSource& source, const CalibrationOptions& options, LogPreparation& done,
+                   std::optional<double> forward_offset_mps2 = std::nullopt);
 
   // The next block, prepared; nothing after the last.
   std::optional<PreparedBlock> next();
@@ -97,6 +100,14 @@ class BlockPreparation {
   std::optional<WheelRateBias> bias_;  // the last block's, for blocks without a standstill
   double grade_distance_m_{}, grade_excess_m_{}, grade_scale_variance_m2_{};
   std::vector<std::pair<double, double>> removed_per_block_;  // IMU time s, removed m/s^2
+  std::optional<double> whole_log_offset_mps2_;
 };
+
+// What a long log's last block removes as the accelerometer's forward offset, where its blocks
+// removed it unevenly (each the running estimate of its time): a pass over the whole source,
+// prepared as BlockPreparation prepares it, for a second pass to remove from every block.
+// Nothing where every block removed the same.
+std::optional<double> whole_log_forward_offset(LogBlockSource& source,
+                                               const CalibrationOptions& options);
 
 }  // namespace odocal
