@@ -209,5 +209,44 @@ TEST(Comma2k19, APlainFitCarriesItsGapToAPhysicalFitThatHoldsEveryCoefficient) {
   EXPECT_GE(result.sigma_rl_m(), gap_rl_m);
 }
 
+TEST(Comma2k19, AForwardOffsetAddedToThePhonesIsMeasuredOverTheDriveAndTakenOut) {
+  // The phone's own offset (-0.70 m/s^2, pitched by 4 deg) with 0.4 m/s^2 more, as
+  // another mount would read: the drive (which never stops, its grade projected with the GNSS
+  // altitude) measures the sum, and the calibration (the defaults: batch, tyre model auto) is
+  // the unaltered log's. Without the altitude the open drive cannot tell the slope from the
+  // offset: the sigma carries what driving straight reads, and the answer is refused.
+  if (!std::filesystem::exists(kData / "wheel_speeds.csv"))
+    GTEST_SKIP() << "shared data absent: " << kData;
+  LogReadOptions without_truth;
+  without_truth.read_truth = false;
+  const Log log = imported_log(without_truth);
+  const BatchSummary as_logged = calibrate_batch(log, BatchOptions{});
+  ASSERT_TRUE(as_logged.usable()) << as_logged.full_report();
+  ASSERT_TRUE(as_logged.preparation.drive_forward_offset.has_value());
+  const double phones_mps2 = as_logged.preparation.drive_forward_offset->forward_mps2;
+  constexpr double kAddedMps2 = 0.4;
+  Log moved = log;
+  for (double& ax : moved.imu->ax_mps2) ax += kAddedMps2;
+  const BatchSummary result = calibrate_batch(moved, BatchOptions{});
+  ASSERT_TRUE(result.preparation.drive_forward_offset.has_value()) << result.full_report();
+  EXPECT_TRUE(result.preparation.drive_forward_offset->removed);
+  EXPECT_NEAR(result.preparation.drive_forward_offset->forward_mps2, phones_mps2 + kAddedMps2,
+              1e-3);
+  EXPECT_TRUE(result.usable()) << result.full_report();
+  EXPECT_NEAR(result.estimate.circumference_rl_m, as_logged.estimate.circumference_rl_m,
+              0.05 * as_logged.sigma_rl_m());
+
+  Log flat = log;
+  flat.gnss.altitude_m.clear();
+  const BatchSummary open = calibrate_batch(flat, BatchOptions{});
+  EXPECT_FALSE(open.preparation.drive_forward_offset.has_value()) << open.full_report();
+  ASSERT_TRUE(open.preparation.driving_forward_offset_mps2.has_value());
+  EXPECT_NEAR(open.forward_offset_sigma_mps2,
+              std::abs(*open.preparation.driving_forward_offset_mps2), 1e-12);
+  EXPECT_FALSE(open.usable()) << open.full_report();
+  EXPECT_LT(std::abs(open.estimate.circumference_rl_m - as_logged.estimate.circumference_rl_m),
+            3.0 * open.sigma_rl_m());
+}
+
 }  // namespace
 }  // namespace odocal
