@@ -16,6 +16,7 @@
 #include "odocal/estimation/driving_state.hpp"
 #include "odocal/estimation/log_diagnosis.hpp"
 #include "odocal/estimation/log_preparation.hpp"
+#include "odocal/estimation/tick_dequantisation.hpp"
 #include "odocal/io/log_doctor.hpp"
 #include "odocal/io/log_reader.hpp"
 #include "odocal/io/scenario_io.hpp"
@@ -173,11 +174,20 @@ PYBIND11_MODULE(odocal, m) {
 
   m.def(
       "dead_reckon",
-      [](const Log& log, py::object params, std::tuple<double, double, double> start) {
-        const OdometryParams at = params_of(log, params);
-        const PoseStream poses =
-            dead_reckon(with_tyre_model(log, at, tyre_of(log, params)), at,
-                        Pose2(std::get<0>(start), std::get<1>(start), std::get<2>(start)));
+      [](const Log& input, py::object params, std::tuple<double, double, double> start,
+         bool prepare, double tick_smoothing_s) {
+        const OdometryParams at = params_of(input, params);
+        // Prepared as `odocal deadreckon` prepares it: the tyre model was fitted to the prepared
+        // accelerometer (its forward offset taken out), and takes ax again here.
+        LogPreparation prepared_by;
+        const std::optional<Log> prepared =
+            prepare ? prepare_log(input, CalibrationOptions{}, prepared_by, false) : std::nullopt;
+        const Log& log = prepared ? *prepared : input;
+        const PoseStream poses = dead_reckon(
+            dequantised_ticks(with_tyre_model(log, at, tyre_of(input, params)), tick_smoothing_s),
+            at, Pose2(std::get<0>(start), std::get<1>(start), std::get<2>(start)),
+            // Without a reference, the pose is carried across a wheel gap.
+            [](double, const Pose2& carried) { return carried; });
         py::array_t<double> t(poses.size()), x(poses.size()), y(poses.size()), yaw(poses.size());
         for (std::size_t k = 0; k < poses.size(); ++k) {
           t.mutable_at(k) = poses.t_s[k];
@@ -190,10 +200,13 @@ PYBIND11_MODULE(odocal, m) {
         out["x_m"] = x;
         out["y_m"] = y;
         out["yaw_rad"] = yaw;
+        out["prepared"] = prepared_by.describe();
         return out;
       },
       py::arg("log"), py::arg("params") = py::none(),
-      py::arg("start") = std::make_tuple(0.0, 0.0, 0.0),
+      py::arg("start") = std::make_tuple(0.0, 0.0, 0.0), py::arg("prepare") = true,
+      py::arg("tick_smoothing_s") = kDefaultTickSmoothingS,
       "Dead-reckon the wheels from `start` (x, y, yaw) with `params` (default: nominal), with its "
-      "tyre model (a calibration's, or vehicle.yaml's for the nominal)");
+      "tyre model (a calibration's, or vehicle.yaml's for the nominal), the log prepared as "
+      "`odocal deadreckon` prepares it (prepare=False: as it is)");
 }
