@@ -199,8 +199,9 @@ TEST(DriveForwardOffset, BlocksThatRemovedAnotherEstimateThanTheDriveSaysArePrep
   EXPECT_NEAR(whole.drive_forward_offset->forward_mps2, done.drive_forward_offset->forward_mps2,
               0.002);
   // Where every block removed the same, there is nothing to prepare again.
-  InMemoryLogSource clean(lap("circuit", 0.0));
-  EXPECT_FALSE(whole_log_forward_offset(clean, blocks).has_value());
+  const Log clean = lap("circuit", 0.0);
+  InMemoryLogSource clean_source(clean);
+  EXPECT_FALSE(whole_log_forward_offset(clean_source, blocks).has_value());
 }
 
 }  // namespace
