@@ -178,9 +178,6 @@ def accelerometer_offset_text(result):
     elif "accelerometer_driving_offset_mps2" in preparation:
         parts.append(f"not measured: it reads {preparation['accelerometer_driving_offset_mps2']:+.3f}"
                      " m/s² beyond the wheels' acceleration driving straight")
-    uneven = preparation.get("accelerometer_offset_unevenly_removed_mps2")
-    if uneven:
-        parts.append(f"the log's blocks removed it unevenly by {uneven:.3f} m/s²")
     share = result.get("forward_offset_sigma_m")
     if share:
         parts.append(f"{1000 * share[0]:.3g} / {1000 * share[1]:.3g} mm of the circumferences' "

@@ -191,8 +191,6 @@ CalibrationRun::CalibrationRun(const Log& log, const CalibrationOptions& options
       if (driving)
         forward_offset_sigma_mps2_ = std::max(forward_offset_sigma_mps2_, std::abs(*driving));
     }
-    forward_offset_sigma_mps2_ =
-        std::hypot(forward_offset_sigma_mps2_, prepared.unevenly_removed_forward_mps2);
   }
   summary.nominal = log.vehicle.nominal_params();
   summary.estimate = summary.nominal;

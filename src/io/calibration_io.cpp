@@ -49,8 +49,6 @@ json preparation_json(const LogPreparation& p) {
                                          {"distance_m", drive->distance_m},
                                          {"removed", drive->removed}};
   }
-  if (p.unevenly_removed_forward_mps2 > 0.0)
-    out["accelerometer_offset_unevenly_removed_mps2"] = p.unevenly_removed_forward_mps2;
   if (p.driving_forward_offset_mps2)
     out["accelerometer_driving_offset_mps2"] = *p.driving_forward_offset_mps2;
   if (p.started_at_s) out["used_from_s"] = *p.started_at_s;
