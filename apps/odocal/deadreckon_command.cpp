@@ -37,8 +37,7 @@ void run_deadreckon(DeadreckonArgs args) {
     // The tyre model takes ax: a long log's forward offset is measured over all of it first, so
     // that every block removes the same estimate, the one calibrate removes.
     LogBlockReader first_pass(args.log_dir, {}, from_s, to_s);
-    const auto& tyre = first_pass.vehicle().tyre_model;
-    if (!args.options.plain && tyre && !tyre->plain())
+    if (!dead_reckoning_tyre_model(args.options, first_pass.vehicle()).plain())
       args.options.forward_offset_mps2 =
           whole_log_forward_offset(first_pass, args.options.preparation);
   }

@@ -43,6 +43,11 @@ ReferencePath reference_of(const Log& log, bool truth) {
 
 }  // namespace
 
+TyreModel dead_reckoning_tyre_model(const LogDeadReckoningOptions& options,
+                                    const VehicleConfig& vehicle) {
+  return options.plain ? TyreModel{} : vehicle.tyre_model.value_or(TyreModel{});
+}
+
 LogDeadReckoning dead_reckon_log(LogBlockSource& source, const LogDeadReckoningOptions& options,
                                  const std::function<void(double, const Pose2&)>& on_pose) {
   LogDeadReckoning run;
@@ -51,8 +56,7 @@ LogDeadReckoning dead_reckon_log(LogBlockSource& source, const LogDeadReckoningO
   if (options.circumference_rl_m) run.params.circumference_rl_m = *options.circumference_rl_m;
   if (options.circumference_rr_m) run.params.circumference_rr_m = *options.circumference_rr_m;
   if (options.track_width_m) run.params.track_width_m = *options.track_width_m;
-  const TyreModel tyre =
-      options.plain ? TyreModel{} : source.vehicle().tyre_model.value_or(TyreModel{});
+  const TyreModel tyre = dead_reckoning_tyre_model(options, source.vehicle());
   run.tyre_model = !tyre.plain();
   const bool truth =
       options.start == LogStart::kTruth || (options.start == LogStart::kAuto && source.has_truth());

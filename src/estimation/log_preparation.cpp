@@ -166,10 +166,10 @@ std::optional<Log> prepare_log(const Log& log, const CalibrationOptions& options
   const LogPreparation before = done;
   bool changed = false;
   Log prepared = prepared_blocks(whole, options, done, std::nullopt, changed);
-  if (done.unevenly_removed_forward_mps2 > 0.0) {
+  if (const std::optional<double> offset_mps2 = done.forward_offset_for_every_block()) {
     // A long log's early blocks removed the running estimate of their time: prepared again, with
-    // what the whole log measured removed from every block.
-    const double offset_mps2 = done.removed_forward_mps2;
+    // what the whole log measured removed from every block (the first copy freed before the
+    // second is built).
     prepared = Log{};
     done = before;
     prepared = prepared_blocks(whole, options, done, offset_mps2, changed);

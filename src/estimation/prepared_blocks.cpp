@@ -271,8 +271,7 @@ std::optional<double> whole_log_forward_offset(LogBlockSource& source,
   while (blocks.next()) {
   }
   source.finish();
-  if (!(done.unevenly_removed_forward_mps2 > 0.0)) return std::nullopt;
-  return done.removed_forward_mps2;
+  return done.forward_offset_for_every_block();
 }
 
 }  // namespace odocal

@@ -12,6 +12,7 @@
 #include "odocal/estimation/log_preparation.hpp"
 #include "odocal/estimation/tick_dequantisation.hpp"
 #include "odocal/estimation/trajectory_errors.hpp"
+#include "odocal/model/tyre_model.hpp"
 
 namespace odocal {
 
@@ -43,6 +44,10 @@ struct LogDeadReckoning {
   std::size_t wheel_samples{};
   LogPreparation prepared;
 };
+
+// The tyre model dead reckoning applies: vehicle.yaml's, unless options.plain.
+TyreModel dead_reckoning_tyre_model(const LogDeadReckoningOptions& options,
+                                    const VehicleConfig& vehicle);
 
 // `on_pose` receives every pose of the trajectory in time order.
 LogDeadReckoning dead_reckon_log(LogBlockSource& source, const LogDeadReckoningOptions& options,

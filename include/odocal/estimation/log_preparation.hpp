@@ -51,6 +51,12 @@ struct LogPreparation {
   // block's removed from every block; only a streamed dead reckoning that was not given the
   // whole log's (LogDeadReckoningOptions::forward_offset_mps2) keeps it.
   double unevenly_removed_forward_mps2{};
+  // Where a single pass's blocks removed different offsets: the last block's (the whole log's),
+  // for a second pass to remove from every block.
+  std::optional<double> forward_offset_for_every_block() const {
+    if (!(unevenly_removed_forward_mps2 > 0.0)) return std::nullopt;
+    return removed_forward_mps2;
+  }
   std::optional<double> started_at_s;  // used from here on (first motion)
   std::vector<WheelGap> wheel_gaps;    // where the odometry chain breaks
   // Hills: the grade 95 % of the road stays within, and how much longer the 3-D path was
