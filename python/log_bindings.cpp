@@ -52,6 +52,8 @@ void bind_log(py::module_& m) {
   column(wheels, "t_s", &WheelStream::t_s, "sample times, s");
   column(wheels, "rev_rl", &WheelStream::rev_rl, "RL revolutions since the previous sample");
   column(wheels, "rev_rr", &WheelStream::rev_rr, "RR revolutions since the previous sample");
+  column(wheels, "drive_force_n", &WheelStream::drive_force_n,
+         "the tyres' total longitudinal force, N (empty when absent)");
   wheels.def("__len__", &WheelStream::size);
 
   py::class_<GnssStream, std::unique_ptr<GnssStream, py::nodelete>> gnss(

@@ -416,6 +416,18 @@ def tyre_models(report):
                      "grip-sharing driver's ideal mode's. *Walk*: the heading walk that the "
                      "calibration reports the accelerometer's noise to make through its tyre "
                      "model (1σ at the log's end; the report's `noise` line).")
+    forced = [row for row in summary["rows"] if row["mode"].startswith("realistic, drive force")]
+    if forced:
+        errors = " and ".join(f"{row['mean_abs_error_mm']:.2f} mm ({row['drivetrain']}-driven, "
+                              f"dead reckoning {row['dr_over_ideal']:.1f}× the ideal mode's)"
+                              for row in forced)
+        report.write()
+        report.write("The rows with a drive force column are the circuit driver's drives again "
+                     "with wheels.csv's `drive_force_n`, the tyres' total longitudinal force as a "
+                     "car's bus gives it (white noise 100 N per sample), beside the targets, "
+                     "which hold the paper's sensors: the physical terms take their force from "
+                     "it in place of the accelerometer's forward reading (docs/tyre-model.md, "
+                     f"\"The drive force\"). Their mean |error| is {errors}.")
     report.write()
     report.write("| mode | drive | tyre_model | mean \\|err\\| [mm] | max \\|err\\| [mm] | "
                  "within 3σ | DR mean pos [m] | DR mean heading [°] | walk [°] | "

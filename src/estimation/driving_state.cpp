@@ -122,6 +122,7 @@ void fill_states(const FittedWheels& wheels, const ImuStream* imu, const Odometr
   static const ImuStream kNoImu{{0.0, 1.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
   const ImuStream& source = measured ? *imu : kNoImu;
   const double h = half_window_s;
+  const std::vector<double>& forces = wheels.drive_force_n;
   const auto fill_part = [&](std::size_t, std::size_t begin, std::size_t end) {
     RunningMean gyro(source, source.wz_radps), forward(source, source.ax_mps2),
         left(source, source.ay_mps2);
@@ -156,6 +157,10 @@ void fill_states(const FittedWheels& wheels, const ImuStream* imu, const Odometr
       state.specific_force_x_mps2 =
           stored((imu_here ? forward.at(mid, half) : longitudinal) + slope);
       state.specific_force_y_mps2 = stored(imu_here ? left.at(mid, half) : speed * yaw_rate);
+      // The log's force over the same increment (trapezoid of its two rows); a row not known
+      // (NaN, a block without the column) leaves the accelerometer's.
+      if (!forces.empty())
+        state.drive_force_n = stored(k > 0 ? 0.5 * (forces[k - 1] + forces[k]) : forces[0]);
     }
   };
   batch::run_in_parts(wheels.size(), threads, fill_part);

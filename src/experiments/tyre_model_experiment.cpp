@@ -53,6 +53,16 @@ sim::Scenario with_quiet_accelerometer(sim::Scenario scenario) {
   return scenario;
 }
 
+// The tyres' force from the car's bus (wheels.csv's drive_force_n) beside the accelerometer: the
+// physical terms take it in place of the accelerometer's forward reading (docs/tyre-model.md,
+// "The drive force"). Its noise per sample is a torque signal's (0.07 m/s^2 for 1500 kg).
+constexpr double kDriveForceSigmaN = 100.0;
+
+sim::Scenario with_drive_force(sim::Scenario scenario) {
+  scenario.wheels.drive_force_sigma_n = kDriveForceSigmaN;
+  return scenario;
+}
+
 const char* drivetrain_name(sim::Drivetrain drivetrain) {
   return drivetrain == sim::Drivetrain::kFront ? "front" : "rear";
 }
@@ -148,6 +158,10 @@ nlohmann::json run_tyre_model_seed(const PaperSetup& setup, std::uint64_t seed) 
     for (const TyreModelChoice model : kRealisticModels)
       result["realistic"][drivetrain_name(drivetrain)][enum_name(model)] =
           run_json(log, drive.true_params, batch_options(SimMode::kRealistic, model));
+    const sim::SimulatedDrive forced = sim::simulate(with_drive_force(scenario));
+    result["realistic_drive_force"][drivetrain_name(drivetrain)]["auto"] =
+        run_json(simulated_log(forced, true), forced.true_params,
+                 batch_options(SimMode::kRealistic, TyreModelChoice::kAuto));
     const sim::SimulatedDrive gentler = sim::simulate(with_grip_sharing_driver(scenario));
     result["grip_sharing"][drivetrain_name(drivetrain)]["auto"] =
         run_json(simulated_log(gentler, true), gentler.true_params,
@@ -291,6 +305,17 @@ nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
       }
       rows.push_back(row);
     }
+  }
+  // The same drives with the drive force column: beside the targets, which hold the paper's
+  // sensors.
+  for (const sim::Drivetrain drivetrain : kDrivetrains) {
+    nlohmann::json row = row_summary(runs(nlohmann::json::json_pointer(
+        std::string("/realistic_drive_force/") + drivetrain_name(drivetrain) + "/auto")));
+    row["mode"] = fmt::format("realistic, drive force column ({:g} N)", kDriveForceSigmaN);
+    row["drivetrain"] = drivetrain_name(drivetrain);
+    row["tyre_model"] = "auto";
+    row["dr_over_ideal"] = row.at("mean_dr_position_m").get<double>() / ideal_dr;
+    rows.push_back(row);
   }
   for (const auto& [name, row] : {std::pair{"none", ideal_none}, std::pair{"auto", ideal_auto}}) {
     nlohmann::json r = row;

@@ -280,6 +280,13 @@ ImportSummary import_csv(const fs::path& map_file, const fs::path& source_dir,
       ticks.push_back(quantity == Quantity::kTicks);
       decimals.push_back(quantity == Quantity::kTicks ? 0 : 9);
     }
+    // The tyres' total longitudinal force from the car's bus, for the tyre model's physical terms.
+    if (wheels->has("drive_force")) {
+      wheels->add_value("drive_force", {Quantity::kForce});
+      names.emplace_back("drive_force_n");
+      ticks.push_back(false);
+      decimals.push_back(1);
+    }
     wheels->done();
     // A wrapping counter read with scale -1 runs below zero: back into [0, 2^bits), where the
     // log reader unwraps it.

@@ -174,6 +174,8 @@ void parse_sensors(YamlMap sensors, sim::Scenario& s) {
     wheels->read("start_phase", s.wheels.start_phase, -1.0, 0.999999);
     wheels->read("rate_bias_rl_radps", s.wheels.rate_bias_rl_radps, -10.0, 10.0);
     wheels->read("rate_bias_rr_radps", s.wheels.rate_bias_rr_radps, -10.0, 10.0);
+    wheels->read("drive_force_sigma_n", s.wheels.drive_force_sigma_n, -1.0, 1e5);
+    wheels->read("drive_force_scale", s.wheels.drive_force_scale, 0.1, 10.0);
     wheels->reject_unknown_keys();
   }
   sensors.reject_unknown_keys();
@@ -437,6 +439,8 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("start_phase", s.wheels.start_phase);
   key("rate_bias_rl_radps", s.wheels.rate_bias_rl_radps);
   key("rate_bias_rr_radps", s.wheels.rate_bias_rr_radps);
+  key("drive_force_sigma_n", s.wheels.drive_force_sigma_n);
+  key("drive_force_scale", s.wheels.drive_force_scale);
   out << YAML::EndMap << YAML::EndMap;
   out << YAML::Key << "seeds" << YAML::Value << YAML::BeginMap;
   key("trajectory", s.seeds.trajectory);

@@ -20,16 +20,17 @@ void write_simulated_log(const sim::SimulatedDrive& drive, const sim::Scenario& 
   write_vehicle_config(drive.nominal_vehicle, directory / "vehicle.yaml");
   write_text_file(directory / "wheels.csv", [&](TextBuffer& out) {
     const char* unit = enum_name(drive.wheel_unit);
-    out.print("t,rl_{0},rr_{0}\n", unit);
+    const bool forces = !drive.wheel_drive_force_n.empty();
+    out.print("t,rl_{0},rr_{0}{1}\n", unit, forces ? ",drive_force_n" : "");
     const bool ticks = drive.wheel_unit == WheelUnit::kTicks;
     for (std::size_t k = 0; k < drive.wheel_t_s.size(); ++k) {
       if (ticks) {
-        out.print("{:.4f},{:.0f},{:.0f}\n", drive.wheel_t_s[k], drive.wheel_rl[k],
-                  drive.wheel_rr[k]);
+        out.print("{:.4f},{:.0f},{:.0f}", drive.wheel_t_s[k], drive.wheel_rl[k], drive.wheel_rr[k]);
       } else {
-        out.print("{:.4f},{:.9f},{:.9f}\n", drive.wheel_t_s[k], drive.wheel_rl[k],
-                  drive.wheel_rr[k]);
+        out.print("{:.4f},{:.9f},{:.9f}", drive.wheel_t_s[k], drive.wheel_rl[k], drive.wheel_rr[k]);
       }
+      if (forces) out.print(",{:.1f}", drive.wheel_drive_force_n[k]);
+      out.print("\n");
     }
   });
   write_text_file(directory / "gnss.csv", [&](TextBuffer& out) {
@@ -101,9 +102,14 @@ Log simulated_log(const sim::SimulatedDrive& drive, bool with_truth) {
   log.source = "simulation";
   log.vehicle = drive.nominal_vehicle;
   const std::string unit = enum_name(drive.wheel_unit);
-  log.wheels = wheel_stream_from_table(table("wheels.csv", {"t", "rl_" + unit, "rr_" + unit},
-                                             {drive.wheel_t_s, drive.wheel_rl, drive.wheel_rr}),
-                                       log.vehicle);
+  std::vector<std::string> wheel_header{"t", "rl_" + unit, "rr_" + unit};
+  std::vector<std::vector<double>> wheel_columns{drive.wheel_t_s, drive.wheel_rl, drive.wheel_rr};
+  if (!drive.wheel_drive_force_n.empty()) {
+    wheel_header.emplace_back("drive_force_n");
+    wheel_columns.push_back(drive.wheel_drive_force_n);
+  }
+  log.wheels =
+      wheel_stream_from_table(table("wheels.csv", wheel_header, wheel_columns), log.vehicle);
   std::vector<std::string> gnss_header{"t", drive.gnss_latlon ? "lat" : "x",
                                        drive.gnss_latlon ? "lon" : "y"};
   std::vector<std::vector<double>> gnss_columns{drive.gnss_t_s, drive.gnss_a, drive.gnss_b};

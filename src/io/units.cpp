@@ -12,7 +12,7 @@ struct NamedUnit {
 };
 
 constexpr double kPi = std::numbers::pi;
-constexpr std::array<NamedUnit, 18> kUnits = {{
+constexpr std::array<NamedUnit, 22> kUnits = {{
     {"s", {Quantity::kTime, 1.0}},
     {"ms", {Quantity::kTime, 1e-3}},
     {"us", {Quantity::kTime, 1e-6}},
@@ -31,6 +31,10 @@ constexpr std::array<NamedUnit, 18> kUnits = {{
     {"m/s^2", {Quantity::kAcceleration, 1.0}},
     {"g", {Quantity::kAcceleration, 9.80665}},
     {"ticks", {Quantity::kTicks, 1.0}},
+    {"N", {Quantity::kForce, 1.0}},
+    {"daN", {Quantity::kForce, 10.0}},
+    {"kN", {Quantity::kForce, 1e3}},
+    {"lbf", {Quantity::kForce, 4.4482216152605}},
 }};
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <optional>
 
+#include "drive_force_check.hpp"
 #include "odocal/io/stream_readers.hpp"
 #include "table_checks.hpp"
 
@@ -162,9 +163,9 @@ class WheelConverter {
 WheelStream wheel_stream_from_table(const CsvTable& table, const VehicleConfig& vehicle,
                                     const WheelReadOptions& options) {
   detail::require_known_columns(
-      table,
-      {"t", "rl_ticks", "rl_rad", "rl_radps", "rl_mps", "rr_ticks", "rr_rad", "rr_radps", "rr_mps",
-       "fl_ticks", "fl_rad", "fl_radps", "fl_mps", "fr_ticks", "fr_rad", "fr_radps", "fr_mps"});
+      table, {"t", "rl_ticks", "rl_rad", "rl_radps", "rl_mps", "rr_ticks", "rr_rad", "rr_radps",
+              "rr_mps", "fl_ticks", "fl_rad", "fl_radps", "fl_mps", "fr_ticks", "fr_rad",
+              "fr_radps", "fr_mps", "drive_force_n"});
   detail::require_increasing_time(table);
   detail::require_rows(table, 2, "need at least 2 samples to form a wheel increment");
 
@@ -202,6 +203,10 @@ WheelStream wheel_stream_from_table(const CsvTable& table, const VehicleConfig& 
   if (fl && fr) {
     stream.rev_fl = converter.increments(*fl, vehicle.circumference_fl_m.value_or(rear_mean_m));
     stream.rev_fr = converter.increments(*fr, vehicle.circumference_fr_m.value_or(rear_mean_m));
+  }
+  if (table.has("drive_force_n")) {
+    detail::check_drive_force(table, stream, vehicle);
+    stream.drive_force_n = table.column("drive_force_n");
   }
   return stream;
 }

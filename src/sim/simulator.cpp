@@ -123,6 +123,25 @@ void simulate_wheels(const Scenario& scenario, const MotionTruth& truth, std::mt
   out.distance_m = path_length_m(out.truth.pose);
 }
 
+// The tyres' force as the car's bus reports it, at the wheels' sample times, from a generator of
+// its own (every other sensor keeps its noise).
+void simulate_drive_force(const Scenario& scenario, const MotionTruth& truth, SimulatedDrive& out) {
+  const WheelSimConfig& config = scenario.wheels;
+  if (config.drive_force_sigma_n < 0.0) return;
+  if (scenario.ideal) {
+    throw InputError({"scenario", 0, "sensors.wheels.drive_force_sigma_n"},
+                     "the ideal vehicle has no tyre forces to report (set ideal: false)");
+  }
+  std::seed_seq seeds{scenario.seeds.noise, std::uint64_t{0xf04ce}};
+  std::mt19937_64 rng(seeds);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  out.wheel_drive_force_n.reserve(out.wheel_t_s.size());
+  for (const double t : out.wheel_t_s) {
+    out.wheel_drive_force_n.push_back(config.drive_force_scale * truth.at(t).longitudinal_force_n +
+                                      config.drive_force_sigma_n * unit(rng));
+  }
+}
+
 // Where the antenna at `lever` (ahead, left of the rear axle's centre) is at `pose`.
 Eigen::Vector2d antenna_at(const Pose2& pose, const Eigen::Vector2d& lever) {
   return pose.head<2>() + Eigen::Rotation2Dd(pose.z()) * lever;
@@ -311,6 +330,7 @@ SimulatedDrive simulate(const Scenario& scenario) {
     truth = std::make_unique<GradedMotion>(std::move(truth), scenario.route.terrain, lap_length_m);
   }
   simulate_wheels(scenario, *truth, wheel_rng, out);
+  simulate_drive_force(scenario, *truth, out);
   const bool hills = scenario.route.terrain.max_grade > 0.0;
   using Altitude = GnssSimConfig::Altitude;
   const bool altitude = scenario.gnss.altitude == Altitude::kAlways ||

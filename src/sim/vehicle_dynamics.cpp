@@ -192,6 +192,7 @@ class RecordedMotion : public MotionTruth {
     out.wheel_angle_rr_rad = mix(a.wheel_angle_rr_rad, b.wheel_angle_rr_rad);
     out.wheel_rate_rl_radps = mix(a.wheel_rate_rl_radps, b.wheel_rate_rl_radps);
     out.wheel_rate_rr_radps = mix(a.wheel_rate_rr_radps, b.wheel_rate_rr_radps);
+    out.longitudinal_force_n = mix(a.longitudinal_force_n, b.longitudinal_force_n);
     return out;
   }
 
@@ -309,6 +310,7 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
     sample.wheel_angle_rr_rad = s.angle_rr;
     sample.wheel_rate_rl_radps = d1.angle_rl;
     sample.wheel_rate_rr_radps = d1.angle_rr;
+    sample.longitudinal_force_n = controls.force_n;
     motion->add(sample);
     if (k == steps) break;
 

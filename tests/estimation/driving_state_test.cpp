@@ -52,6 +52,22 @@ TEST(DrivingState, CircleAtConstantSpeedHasOnlyLateralAcceleration) {
   }
 }
 
+TEST(DrivingState, TakesTheLogsForceOverEachIncrement) {
+  Log log = log_of(
+      2.0, [](double) { return 10.0; }, [](double) { return 0.0; });
+  EXPECT_FALSE(driving_states(log, log.vehicle.nominal_params())[50].force_given());
+  for (std::size_t k = 0; k < log.wheels.size(); ++k)
+    log.wheels.drive_force_n.push_back(100.0 * static_cast<double>(k));
+  // A row not known (a block of a long log without the column) leaves the accelerometer's.
+  log.wheels.drive_force_n[120] = std::nan("");
+  const auto states = driving_states(log, log.vehicle.nominal_params());
+  EXPECT_FLOAT_EQ(states[0].drive_force_n, 0.0f);
+  EXPECT_FLOAT_EQ(states[50].drive_force_n, 4950.0f);  // the trapezoid of rows 49 and 50
+  EXPECT_FALSE(states[120].force_given());
+  EXPECT_FALSE(states[121].force_given());
+  EXPECT_FLOAT_EQ(states[122].drive_force_n, 12150.0f);
+}
+
 TEST(DrivingState, StraightAccelerationIsMeasuredFromTheWheels) {
   const Log log = log_of(
       10.0, [](double t) { return 2.0 + 1.5 * t; }, [](double) { return 0.0; });

@@ -84,6 +84,32 @@ TEST(CsvImport, ConvertsUnitsFramesConventionsAndFiles) {
   EXPECT_NEAR(summary.streams[1].median_rate_hz, 10.0, 1e-3);
 }
 
+// The tyres' force from the car's bus, in kN at 25 Hz in a file of its own, onto the wheels'
+// time base in newtons (wheels.csv's drive_force_n).
+TEST(CsvImport, ReadsTheDriveForceInItsUnitOntoTheWheelsClock) {
+  const TempLogDir src;
+  write_logger_files(src);
+  std::string torque = "stamp_ns,force_kn\n";
+  for (int k = 0; k <= 500; ++k)  // 0.2 kN rising by 0.01 kN per second
+    torque += fmt::format("{},{:.4f}\n", 1'700'000'000'000'000'000 + std::int64_t{k} * 40'000'000,
+                          0.2 + 0.01 * 0.04 * k);
+  src.write("torque.csv", torque);
+  std::ifstream in(kMap);
+  std::stringstream map;
+  map << in.rdbuf();
+  std::string text = map.str();
+  const std::string rr = "    rr: {column: rear_right_count, unit: ticks}\n";
+  text.replace(text.find(rr), rr.size(),
+               rr + "    drive_force: {file: torque.csv, column: force_kn, unit: kN}\n");
+  src.write("map.yaml", text);
+  const TempLogDir out;
+  import_csv(src.file("map.yaml"), src.path(), out.path());
+  const Log log = read_log(out.path());
+  ASSERT_EQ(log.wheels.drive_force_n.size(), log.wheels.size());
+  // Row 100 is 2 s in: 0.22 kN.
+  EXPECT_NEAR(log.wheels.drive_force_n[100], 220.0, 0.1);
+}
+
 // An encoder that counts backwards (the right one, on a wrapping 16-bit counter) is read as it
 // is with `scale: -1` in the map, the fix `odocal doctor` names: the same log as the forward one.
 TEST(CsvImport, ScaleMinusOneReadsAReversedWrappingCounter) {

@@ -109,6 +109,33 @@ TEST(TyreModelPhysicalTerms, ALeftTurnMovesLoadToTheRightWheel) {
   EXPECT_NEAR(right(1), -3.0, 1e-6);
 }
 
+TEST(TyreModelPhysicalTerms, AForceTheLogGivesIsTheTyresInPlaceOfTheAccelerometers) {
+  // Accelerating at 2 m/s^2 in a left turn at 10 m/s (0.3 rad/s): the car of 1500 kg pushes
+  // m (2 + f_r g) = 3147.15 N through its tyres (no drag on this body, and the cornering drag's
+  // (1 - 0.5) L w^2 = 0.09 m/s^2). Given that force, the accelerometer's forward reading is not
+  // read: the regressors are those of the reading the force implies.
+  const VehicleBody body = simple_body();
+  const double cornering = 0.5 * 2.0 * 0.3 * 0.3;
+  DrivingState given = state(10.0, 2.0, 3.0, 0.3);
+  given.specific_force_x_mps2 = -7.0f;  // a forward reading far off
+  given.drive_force_n = static_cast<float>(body.mass_kg * (2.0 + 0.01 * kGravityMps2 + cornering));
+  const DrivingState read = state(10.0, 2.0, 3.0, 0.3);
+  for (const RearWheel wheel : {RearWheel::kLeft, RearWheel::kRight}) {
+    const TyreModel::Vector with_force = tyre_regressors(given, wheel, body);
+    const TyreModel::Vector with_reading = tyre_regressors(read, wheel, body);
+    // The regression terms keep the wheels' own acceleration, as they did.
+    for (int j = 0; j < TyreModel::kCoefficients; ++j)
+      EXPECT_NEAR(with_force(j), with_reading(j), 1e-6) << j;
+    EXPECT_NE(with_force(kLoad), tyre_regressors(state(10.0, -7.0, 3.0, 0.3), wheel, body)(kLoad));
+  }
+  // A force that brakes slips the other way, whatever the accelerometer reads.
+  given.drive_force_n = -3000.0f;
+  given.specific_force_x_mps2 = 2.0f;
+  const TyreModel::Vector braking = tyre_regressors(given, RearWheel::kLeft, body);
+  EXPECT_EQ(braking(kDriving), 0.0);
+  EXPECT_GT(braking(kBraking), 0.0);
+}
+
 TEST(TyreModelPhysicalTerms, ALiftedWheelKeepsATenthOfItsLoad) {
   const TyreModel::Vector x =
       tyre_regressors(state(20.0, 1.0, 20.0, 1.0), RearWheel::kLeft, simple_body());

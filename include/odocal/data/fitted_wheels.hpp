@@ -16,11 +16,16 @@ class FittedWheels {
   // `difference_change`: one value per sample (rev), or empty for the stream as it is. Both are
   // referred to, not copied. Implicit, so that a stream is read as itself.
   FittedWheels(const WheelStream& wheels, std::span<const double> difference_change = {})
-      : stream(wheels), t_s(wheels.t_s), grade(wheels.grade), change_(difference_change) {}
+      : stream(wheels),
+        t_s(wheels.t_s),
+        grade(wheels.grade),
+        drive_force_n(wheels.drive_force_n),
+        change_(difference_change) {}
 
   const WheelStream& stream;
   const std::vector<double>& t_s;
   const std::vector<float>& grade;
+  const std::vector<double>& drive_force_n;
 
   std::size_t size() const { return t_s.size(); }
   bool breaks_at(std::size_t k) const { return stream.breaks_at(k); }

@@ -81,6 +81,11 @@ struct WheelStream {
   // long log that had too little altitude for a fit read NaN: not known, and not projected.
   // Never read from a log file.
   std::vector<float> grade;
+  // The tyres' total longitudinal force at sample k (N, forward positive: the drive's at the
+  // wheels less the brakes'), where the log gives it (wheels.csv's drive_force_n: engine torque
+  // through the gears over the wheel radius, from the car's bus); empty: not given. The tyre
+  // model's physical terms take their force from it instead of the accelerometer.
+  std::vector<double> drive_force_n;
 
   std::size_t size() const { return t_s.size(); }
   WheelIncrement increment(std::size_t k) const { return {rev_rl[k], rev_rr[k]}; }

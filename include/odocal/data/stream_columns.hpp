@@ -23,6 +23,7 @@ void for_each_column(Visit&& visit, Streams&... s) {
     visit(s.chain_break...);
     visit(s.side_slip_rad...);
     visit(s.grade...);
+    visit(s.drive_force_n...);
   } else if constexpr (std::is_same_v<Stream, GnssStream>) {
     visit(s.t_s...);
     visit(s.x_m...);

@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -163,9 +164,13 @@ struct DrivingState {
   // wheels' a_x and v w.
   float specific_force_x_mps2{};
   float specific_force_y_mps2{};
+  // The tyres' total longitudinal force over this sample's increment where the log gives it
+  // (WheelStream::drive_force_n), N; NaN: not given, the accelerometer says it.
+  float drive_force_n = std::numeric_limits<float>::quiet_NaN();
 
-  // a_y = v w, left positive: computed, not stored (20 bytes per wheel sample, not 24).
+  // a_y = v w, left positive: computed, not stored (24 bytes per wheel sample, not 28).
   double lateral_mps2() const { return static_cast<double>(speed_mps) * yaw_rate_radps; }
+  bool force_given() const { return std::isfinite(drive_force_n); }
 };
 
 enum class RearWheel { kLeft, kRight };
@@ -205,14 +210,20 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
   const double drive = a_x > 0.0 ? -a_x : 0.0, brake = a_x < 0.0 ? -a_x : 0.0;
   const double turn = side * state.lateral_mps2();
   // Physical: per vehicle mass, the wheel's load and the force its axle transmits.
-  const double f_x = state.specific_force_x_mps2, f_y = state.specific_force_y_mps2;
   const double L = body.wheelbase_m, h = body.cg_height_m;
+  const double drag = 0.5 * kAirDensity * body.drag_area_m2 / body.mass_kg * v * v;
+  const double rolling = body.rolling_resistance * kGravityMps2;
+  const double cornering = (1.0 - body.rear_axle_load_share) * L * w * w;
+  // A force the log gives is the tyres' own, without the accelerometer's noise; what is left of
+  // it beyond the resistances accelerates the body and moves its load.
+  const bool given = state.force_given();
+  const double tractive = given ? state.drive_force_n / body.mass_kg
+                                : state.specific_force_x_mps2 + drag + rolling + cornering;
+  const double f_x = given ? tractive - drag - rolling - cornering : state.specific_force_x_mps2;
+  const double f_y = state.specific_force_y_mps2;
   const double static_load = 0.5 * kGravityMps2 * body.rear_axle_load_share;
   const double load_change =
       h * f_x / (2.0 * L) - side * body.rear_roll_share * h * f_y / body.track_width_m;
-  const double tractive = f_x + 0.5 * kAirDensity * body.drag_area_m2 / body.mass_kg * v * v +
-                          body.rolling_resistance * kGravityMps2 +
-                          (1.0 - body.rear_axle_load_share) * L * w * w;
   // A wheel that the turn lifts keeps a tenth of its load: beyond, nothing is linear anyway.
   const double force_over_load =
       0.5 * tractive / std::max(static_load + load_change, 0.1 * static_load);

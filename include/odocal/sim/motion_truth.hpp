@@ -15,6 +15,9 @@ struct TruthSample {
   double wheel_rate_rl_radps{};
   double wheel_rate_rr_radps{};
   double altitude_m{};  // of the road under the vehicle (0 on flat terrain)
+  // The tyres' total longitudinal force, N: the drive's less the brakes' (the realistic vehicle's
+  // command, on the ground along each axle's wheels; the ideal vehicle has none).
+  double longitudinal_force_n{};
 };
 
 class MotionTruth {

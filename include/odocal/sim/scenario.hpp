@@ -107,6 +107,11 @@ struct WheelSimConfig {
   // Zero-rate bias of angular-rate wheel sensors (outputs radps and mps), rad/s of wheel rate.
   double rate_bias_rl_radps = 0.0;
   double rate_bias_rr_radps = 0.0;
+  // wheels.csv's drive_force_n column, the tyres' total longitudinal force as a car's bus gives
+  // it (engine torque through the gears over the radius, less the brakes'): its white noise (N)
+  // and its scale (the torque map's and the radius's error); negative sigma: no column.
+  double drive_force_sigma_n = -1.0;
+  double drive_force_scale = 1.0;
 };
 
 struct Seeds {

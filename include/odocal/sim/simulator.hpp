@@ -21,6 +21,7 @@ struct SimulatedDrive {
   // wheels.csv: raw values in `wheel_unit` (ticks cumulative and wrapped, rad cumulative, ...)
   std::vector<double> wheel_t_s, wheel_rl, wheel_rr;
   WheelUnit wheel_unit{WheelUnit::kTicks};
+  std::vector<double> wheel_drive_force_n;  // its drive_force_n column (N); empty: none
   // gnss.csv: x/y in metres, or lat/lon in degrees when `gnss_latlon`
   std::vector<double> gnss_t_s, gnss_a, gnss_b;
   // gnss.csv's alt column (m, with its noise): local up, or ellipsoidal height with lat/lon; empty

@@ -1,0 +1,114 @@
+#include "drive_force_check.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <vector>
+
+#include "odocal/error.hpp"
+#include "odocal/model/gravity.hpp"
+
+namespace odocal::detail {
+namespace {
+
+constexpr double kMostGravities = 3.0;
+constexpr double kBinS = 1.0;
+constexpr double kMovingMps = 2.0;
+constexpr double kAirDensity = 1.2;
+constexpr std::size_t kFewestBins = 20;
+constexpr double kLeastSpreadMps2 = 0.3;
+constexpr double kLeastGain = 0.5, kMostGain = 2.0;
+constexpr double kLeastCorrelation = 0.5;
+
+// One second of the log: the wheels' mean speed and the force's mean.
+struct Bin {
+  double centre_s = 0.0, seconds = 0.0, metres = 0.0, force_sum_n = 0.0;
+  std::size_t rows = 0;
+  double speed_mps() const { return metres / seconds; }
+  double force_n() const { return force_sum_n / static_cast<double>(rows); }
+};
+
+std::vector<Bin> one_second_bins(const WheelStream& wheels, const std::vector<double>& force,
+                                 const VehicleConfig& vehicle) {
+  std::vector<Bin> bins;
+  const double start = wheels.t_s.front();
+  long current = -1;
+  for (std::size_t k = 1; k < wheels.size(); ++k) {
+    const long index = std::lround(std::floor((wheels.t_s[k] - start) / kBinS));
+    if (index != current) {
+      bins.push_back({start + (static_cast<double>(index) + 0.5) * kBinS});
+      current = index;
+    }
+    Bin& bin = bins.back();
+    bin.seconds += wheels.t_s[k] - wheels.t_s[k - 1];
+    bin.metres += 0.5 * (wheels.rev_rl[k] * vehicle.circumference_rl_m +
+                         wheels.rev_rr[k] * vehicle.circumference_rr_m);
+    bin.force_sum_n += force[k];
+    ++bin.rows;
+  }
+  return bins;
+}
+
+}  // namespace
+
+void check_drive_force(const CsvTable& table, const WheelStream& wheels,
+                       const VehicleConfig& vehicle) {
+  const VehicleBody& body = vehicle.body;
+  const double most_n = kMostGravities * kGravityMps2 * body.mass_kg;
+  const std::vector<double>& force = table.column("drive_force_n");
+  for (std::size_t k = 0; k < force.size(); ++k) {
+    if (std::abs(force[k]) <= most_n) continue;
+    throw InputError(table.at(k, "drive_force_n"),
+                     fmt::format("{:.6g} N is more than {} g for the body's mass_kg {:g} (a torque "
+                                 "in N m, or a force in another unit?)",
+                                 force[k], kMostGravities, body.mass_kg));
+  }
+  // The force per kilogram against what the wheels say it should be: their acceleration (central
+  // differences of 1 s mean speeds) and the drag and rolling resistance it overcomes.
+  const std::vector<Bin> bins = one_second_bins(wheels, force, vehicle);
+  double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
+  for (std::size_t i = 1; i + 1 < bins.size(); ++i) {
+    const Bin &before = bins[i - 1], &here = bins[i], &after = bins[i + 1];
+    if (after.centre_s - before.centre_s > 2.5 * kBinS || here.seconds < 0.5 * kBinS ||
+        before.seconds <= 0.0 || after.seconds <= 0.0)
+      continue;
+    const double v = here.speed_mps();
+    if (std::abs(v) < kMovingMps) continue;
+    double x = (after.speed_mps() - before.speed_mps()) / (after.centre_s - before.centre_s);
+    const double resistance =
+        0.5 * kAirDensity * body.drag_area_m2 * v * std::abs(v) / body.mass_kg +
+        std::copysign(body.rolling_resistance * kGravityMps2, v);
+    // What the force should be per kilogram, against what it is.
+    x += resistance;
+    const double y = here.force_n() / body.mass_kg;
+    n += 1.0;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    syy += y * y;
+    sxy += x * y;
+  }
+  if (n < static_cast<double>(kFewestBins)) return;
+  const double vxx = sxx / n - (sx / n) * (sx / n), vyy = syy / n - (sy / n) * (sy / n);
+  const double vxy = sxy / n - (sx / n) * (sy / n);
+  if (vxx < kLeastSpreadMps2 * kLeastSpreadMps2) return;
+  const double gain = vxy / vxx;
+  const double correlation = vyy > 0.0 ? vxy / std::sqrt(vxx * vyy) : 0.0;
+  const InputLocation where{table.file, 1, "drive_force_n"};
+  if (std::abs(correlation) < kLeastCorrelation) {
+    throw InputError(where, fmt::format("the force hardly follows the wheels' acceleration "
+                                        "(correlation {:.2f} over {:.0f} s of driving): another "
+                                        "clock, or another quantity?",
+                                        correlation, n * kBinS));
+  }
+  if (gain < kLeastGain || gain > kMostGain) {
+    throw InputError(
+        where, fmt::format(
+                   "the force over the body's mass_kg {:g} is {:.3g} times the "
+                   "wheels' acceleration with drag and rolling resistance over {:.0f} s of driving "
+                   "(expected 1: a force in kN or daN, its sign turned, or the mass?)",
+                   body.mass_kg, gain, n * kBinS));
+  }
+}
+
+}  // namespace odocal::detail
