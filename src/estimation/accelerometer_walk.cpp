@@ -61,7 +61,8 @@ AccelerometerWalk accelerometer_heading_walk(const WheelStream& wheels, const Im
                                              const OdometryParams& params) {
   if (states.size() != wheels.size())
     throw std::invalid_argument("accelerometer_heading_walk: one driving state per wheel sample");
-  AccelerometerWalk walk{white_noise_sigma(imu.ax_mps2), white_noise_sigma(imu.ay_mps2), 0.0};
+  AccelerometerWalk walk{white_noise_sigma(imu.ax_mps2), white_noise_sigma(imu.ay_mps2), 0.0,
+                         !wheels.drive_force_n.empty()};
   if (model.plain() || imu.size() < 2 || wheels.size() < 2) return walk;
   // Each accelerometer sample's weight in the heading: a wheel sample's force is the mean over
   // its increment, so each sample inside it carries its share of that sample's sensitivity; an

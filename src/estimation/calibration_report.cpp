@@ -71,11 +71,13 @@ std::string report_ending(const CalibrationSummary& s) {
   text += errors_line("  before", s.before);
   text += errors_line("  after", s.after);
   if (s.accelerometer_walk.heading_rad > 0.0) {
+    const bool given = s.accelerometer_walk.forward_force_given;
     text += fmt::format(
-        "  {:<11}the tyre model takes each sample's force from the accelerometer: its noise "
+        "  {:<11}the tyre model takes each sample's {} from the accelerometer: its noise "
         "({:.3g} / {:.3g} m/s^2 forward / left per sample) alone walks this heading by {:.3g} deg "
         "(1-sigma at the log's end)\n",
-        "noise", s.accelerometer_walk.noise_x_mps2, s.accelerometer_walk.noise_y_mps2,
+        "noise", given ? "lateral force (the forward one from drive_force_n)" : "force",
+        s.accelerometer_walk.noise_x_mps2, s.accelerometer_walk.noise_y_mps2,
         deg_from_rad(s.accelerometer_walk.heading_rad));
   }
   if (s.usable() && !s.note.empty()) text += fmt::format("{:<13}{}\n", "note", s.note);

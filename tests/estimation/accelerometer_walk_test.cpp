@@ -10,6 +10,7 @@
 #include <random>
 
 #include "odocal/estimation/driving_state.hpp"
+#include "odocal/model/gravity.hpp"
 
 namespace odocal {
 namespace {
@@ -119,6 +120,44 @@ void expect_walk_predicts_scatter(int imu_every) {
   ASSERT_GT(scatter, 1e-4);  // a walk worth predicting: 0.1 mrad at least
   // 300 draws measure a standard deviation to about 4 % (1 sigma).
   EXPECT_NEAR(walk.heading_rad / scatter, 1.0, 0.15) << walk.heading_rad << " vs " << scatter;
+}
+
+// The tyres' force at each wheel row, as a car's bus would give it (a rear-driven body's).
+void give_the_force(Drive& d) {
+  const VehicleBody body = rear_driven();
+  for (const double t : d.wheels.t_s) {
+    const double v = speed_at(t), w = yaw_rate_at(t);
+    d.wheels.drive_force_n.push_back(
+        body.mass_kg * (acceleration_at(t) + body.rolling_resistance * kGravityMps2 +
+                        (1.0 - body.rear_axle_load_share) * body.wheelbase_m * w * w) +
+        0.5 * 1.2 * body.drag_area_m2 * v * v);
+  }
+}
+
+TEST(AccelerometerWalk, WhereTheLogGivesTheForceOnlyTheLateralChannelWalks) {
+  Drive d = drive(200.0);
+  const TyreModel model = physical();
+  const VehicleBody body = rear_driven();
+  std::mt19937 random(5);
+  const ImuStream noisy = with_noise(d.imu, 0.2, random);
+  const AccelerometerWalk read = accelerometer_heading_walk(
+      d.wheels, noisy, driving_states(d.wheels, &d.imu, params()), model, body, params());
+  give_the_force(d);
+  const AccelerometerWalk given = accelerometer_heading_walk(
+      d.wheels, noisy, driving_states(d.wheels, &d.imu, params()), model, body, params());
+  EXPECT_FALSE(read.forward_force_given);
+  EXPECT_TRUE(given.forward_force_given);
+  EXPECT_LT(given.heading_rad, read.heading_rad);
+  // The same Monte Carlo as above: the forward noise moves nothing, the lateral one what it says.
+  const double exact = final_heading(d.wheels, d.imu, model, body);
+  double sum_squares = 0.0;
+  constexpr int kDraws = 300;
+  for (int draw = 0; draw < kDraws; ++draw) {
+    const double error =
+        final_heading(d.wheels, with_noise(d.imu, 0.2, random), model, body) - exact;
+    sum_squares += error * error;
+  }
+  EXPECT_NEAR(given.heading_rad / std::sqrt(sum_squares / kDraws), 1.0, 0.15);
 }
 
 TEST(AccelerometerWalk, PredictsTheHeadingScatterOfNoisyDeadReckoning) {

@@ -22,7 +22,8 @@ nlohmann::json run(double error_mm, double sigma_mm, double dr_m, bool with_mode
 // outside its, auto as extended; ideal: none and auto 0.2 mm off with 4 m of dead reckoning.
 // The grip-sharing driver: rear 0.8 mm inside its sigma with 9 m, front 1.5 mm outside its with
 // 30 m, its ideal mode 3 m; with a quieter accelerometer rear 0.6 mm with 6 m (walk 0.4 and 0.6
-// deg), front 0.4 mm with 4.5 m.
+// deg), front 0.4 mm with 4.5 m. With a drive force column: rear 0.9 mm with 8 m, front 0.3 mm
+// with 6 m.
 nlohmann::json seed(int n, double extended_dr_m) {
   nlohmann::json drive{{"none", run(10.0, 1.0, 500.0, false)},
                        {"extended", run(0.5, 1.0, extended_dr_m, true, 2.0 + n)},
@@ -30,6 +31,9 @@ nlohmann::json seed(int n, double extended_dr_m) {
                        {"auto", run(0.5, 1.0, extended_dr_m, true)}};
   return {{"seed", n},
           {"realistic", {{"rear", drive}, {"front", drive}}},
+          {"realistic_drive_force",
+           {{"rear", {{"auto", run(0.9, 1.0, 8.0, true)}}},
+            {"front", {{"auto", run(0.3, 1.0, 6.0, true)}}}}},
           {"ideal", {{"none", run(0.2, 0.1, 4.0, false)}, {"auto", run(0.2, 0.1, 4.0, false)}}},
           {"grip_sharing",
            {{"rear", {{"auto", run(0.8, 1.0, 9.0, true)}}},
@@ -62,7 +66,7 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
   // Dead reckoning 10 and 14 m with extended/auto (mean 12 m, 3x the ideal 4 m: on the limit).
   const nlohmann::json summary = summarise_tyre_models(
       {seed(1, 10.0), seed(2, 14.0)}, {urban(1, 0.2), urban(2, 0.5), urban(3, 0.25)});
-  ASSERT_EQ(summary.at("rows").size(), 15u);
+  ASSERT_EQ(summary.at("rows").size(), 17u);
   const nlohmann::json& rear_none = summary["rows"][0];
   EXPECT_EQ(rear_none["tyre_model"], "none");
   EXPECT_DOUBLE_EQ(rear_none["mean_abs_error_mm"].get<double>(), 10.0);
@@ -92,16 +96,25 @@ TEST(TyreModelSummary, TargetsFollowTheRows) {
   const nlohmann::json* ideal = find_target(summary, "ideal, auto: change");
   ASSERT_NE(ideal, nullptr);
   EXPECT_TRUE((*ideal)["met"].get<bool>());
+  // The circuit driver's drives with a drive force column: beside the targets, against the ideal
+  // mode's 4 m.
+  const nlohmann::json& forced_rear = summary["rows"][8];
+  EXPECT_EQ(forced_rear["mode"], "realistic, drive force column (100 N)");
+  EXPECT_EQ(forced_rear["drivetrain"], "rear");
+  EXPECT_DOUBLE_EQ(forced_rear["mean_abs_error_mm"].get<double>(), 0.9);
+  EXPECT_DOUBLE_EQ(forced_rear["dr_over_ideal"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(summary["rows"][9]["dr_over_ideal"].get<double>(), 1.5);
+  EXPECT_EQ(find_target(summary, "realistic, drive force"), nullptr);
   // The grip-sharing driver's rows and targets, its dead reckoning against its own ideal mode.
-  EXPECT_EQ(summary["rows"][10]["mode"], "realistic, grip-sharing driver");
-  EXPECT_EQ(summary["rows"][14]["mode"], "ideal, grip-sharing driver");
+  EXPECT_EQ(summary["rows"][12]["mode"], "realistic, grip-sharing driver");
+  EXPECT_EQ(summary["rows"][16]["mode"], "ideal, grip-sharing driver");
   // The same driver with a quieter accelerometer: its rows beside the targets, not among them.
-  const nlohmann::json& quiet_rear = summary["rows"][12];
+  const nlohmann::json& quiet_rear = summary["rows"][14];
   EXPECT_EQ(quiet_rear["mode"], "realistic, grip-sharing driver, 0.05 m/s² accelerometer");
   EXPECT_EQ(quiet_rear["drivetrain"], "rear");
   EXPECT_DOUBLE_EQ(quiet_rear["dr_over_ideal"].get<double>(), 2.0);  // 6 m over 3 m
   EXPECT_DOUBLE_EQ(quiet_rear["mean_accelerometer_walk_deg"].get<double>(), 0.5);
-  EXPECT_DOUBLE_EQ(summary["rows"][13]["mean_abs_error_mm"].get<double>(), 0.4);
+  EXPECT_DOUBLE_EQ(summary["rows"][15]["mean_abs_error_mm"].get<double>(), 0.4);
   for (const nlohmann::json& t : summary.at("targets"))
     EXPECT_EQ(t.at("target").get<std::string>().find("accelerometer"), std::string::npos);
   const auto met = [&](const std::string& what) {

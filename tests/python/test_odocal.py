@@ -31,6 +31,18 @@ def test_streams_are_views_without_copies(worn):
     assert worn.imu is not None and len(worn.imu.wz_radps) == len(worn.imu)
 
 
+def test_the_drive_force_column_is_a_view_where_the_log_has_it(worn, tmp_path):
+    assert len(worn.wheels.drive_force_n) == 0  # no column: empty
+    circuit = open(os.path.join(SOURCE, "config", "scenarios", "circuit.yaml")).read()
+    scenario = tmp_path / "forced.yaml"
+    scenario.write_text(circuit.replace("drive_force_sigma_n: -1", "drive_force_sigma_n: 100"))
+    forced = odocal.simulate(str(scenario), laps=1)
+    force = forced.wheels.drive_force_n
+    assert len(force) == len(forced.wheels) and not force.flags.owndata
+    # The car accelerates out of its first standing second and brakes into the hairpin.
+    assert force.max() > 1000 and force.min() < -1000
+
+
 def test_an_array_keeps_its_log_alive():
     rev = odocal.simulate("circuit", ideal=True, laps=1).wheels.rev_rl
     gc.collect()

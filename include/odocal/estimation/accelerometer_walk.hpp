@@ -16,6 +16,9 @@ struct AccelerometerWalk {
   double noise_x_mps2{};  // white noise per accelerometer sample, forward and left
   double noise_y_mps2{};
   double heading_rad{};  // 1-sigma heading error at the log's end that this noise alone makes
+  // The log gives the tyres' force (WheelStream::drive_force_n): the forward channel moves no
+  // state where it does.
+  bool forward_force_given = false;
 };
 
 // The white noise of one channel from its second differences (a slow signal cancels in them),
