@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "odocal/estimation/interpolation.hpp"
+#include "odocal/estimation/paired_moments.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/model/tyre_model.hpp"
 
 namespace odocal::detail {
 namespace {
@@ -130,6 +132,14 @@ void append_diagnosis_signals(const Log& log, double from, double step_s, std::s
       s.ax_mps2.push_back(smoothed(log.imu->ax_mps2));
       s.ay_mps2.push_back(smoothed(log.imu->ay_mps2));
     }
+    if (!log.wheels.drive_force_n.empty()) {
+      const VehicleBody& body = log.vehicle.body;
+      const double speed = 0.5 * (s.speed_rl_mps.back() + s.speed_rr_mps.back());
+      const double resistance =
+          std::copysign(road_resistance(body, std::abs(speed)).total(), speed);
+      const double force = mean_over(log.wheels.t_s, log.wheels.drive_force_n, a, b);
+      s.drive_force_mps2.push_back(force / body.mass_kg - resistance);
+    }
     if (log.heading) {
       const auto before =
           interpolate_angle(log.heading->t_s, log.heading->heading_rad, t - 0.5 * step_s);
@@ -167,21 +177,11 @@ double slope_through_origin(const std::vector<double>& x, const std::vector<doub
 
 double correlation(const std::vector<double>& x, const std::vector<double>& y,
                    const std::vector<bool>& use, std::size_t min_samples) {
-  double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
-  std::size_t count = 0;
+  PairedMoments moments;
   for (std::size_t k = 0; k < x.size() && k < y.size(); ++k) {
-    if (!use[k] || !std::isfinite(x[k]) || !std::isfinite(y[k])) continue;
-    sx += x[k];
-    sy += y[k];
-    sxx += x[k] * x[k];
-    syy += y[k] * y[k];
-    sxy += x[k] * y[k];
-    ++count;
+    if (use[k] && std::isfinite(x[k]) && std::isfinite(y[k])) moments.add(x[k], y[k]);
   }
-  if (count < min_samples) return kNaN;
-  const double n = static_cast<double>(count);
-  const double cov = sxy - sx * sy / n, vx = sxx - sx * sx / n, vy = syy - sy * sy / n;
-  return vx > 0.0 && vy > 0.0 ? cov / std::sqrt(vx * vy) : kNaN;
+  return moments.count() < min_samples ? kNaN : moments.correlation();
 }
 
 namespace {

@@ -31,6 +31,9 @@ struct DiagnosisSignals {
   }
   std::vector<double> gyro_radps, ax_mps2, ay_mps2;  // empty without imu.csv
   std::vector<double> heading_rate_radps;            // empty without heading.csv
+  // wheels.csv's drive_force_n over the body's mass, less the drag and rolling resistance at the
+  // wheels' speed: the acceleration the force gives (empty without the column).
+  std::vector<double> drive_force_mps2;
   // heading.csv less the course of the 4 s chord where it is straight (the wheels turn less than
   // kStraightChordRad over it) and forward at kCourseSpeedMps or more: a mount's yaw offset. NaN
   // elsewhere; empty without heading.csv. (Below 5 m/s too: the parking drive's straights, at

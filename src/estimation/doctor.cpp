@@ -27,6 +27,7 @@ Diagnosis Doctor::run() {
     const bool signs_ok = check_wheel_speeds();
     if (signs_ok) check_yaw_rates();
     check_clock_offsets();
+    check_drive_force_clock();
     if (signs_ok) check_track_width();
     if (signs_ok) check_imu_axes();
     if (signs_ok) check_heading_offset();

@@ -69,6 +69,9 @@ class Doctor {
 
   // Clock offsets between streams, from the cross-correlation of what both measure.
   void check_clock_offsets();
+  // wheels.csv's drive_force_n against the body's acceleration (after check_clock_offsets, which
+  // measures the IMU's delay).
+  void check_drive_force_clock();
 
   // The lateral acceleration in a turn is speed x yaw rate, to the left.
   void check_imu_axes();
@@ -98,6 +101,7 @@ class Doctor {
   DiagnosisFacts facts_;
   DiagnosisSignals signals_;
   std::vector<bool> moving_, turning_;
+  double imu_delay_s_ = 0.0;  // the IMU's clock against the wheels', where the yaw rates tell it
   double distance_ratio_ = std::numeric_limits<double>::quiet_NaN();  // wheels / GNSS, straight
   Diagnosis out_;
 };

@@ -27,6 +27,7 @@
 #include "odocal/io/text_output.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
 #include "odocal/model/angle.hpp"
+#include "staged_clock_shift.hpp"
 #include "units.hpp"
 #include "vehicle_config_parse.hpp"
 #include "yaml_map.hpp"
@@ -163,34 +164,6 @@ void report_accounts(const std::vector<StreamAccount>& accounts, ImportSummary& 
   }
 }
 
-// Adds `shift_s` to the time (first) column of a log stream file, leaving every other byte; line
-// by line, so that a file of any length passes through.
-void shift_times(const fs::path& file, double shift_s) {
-  std::ifstream in = open_input_stream(file);
-  OutputFileStream out(file);
-  fmt::memory_buffer buffer;
-  std::string line;
-  bool header = true;
-  while (std::getline(in, line)) {
-    if (header || line.empty()) {
-      fmt::format_to(std::back_inserter(buffer), "{}\n", line);
-      header = false;
-    } else {
-      const std::size_t comma = line.find(',');
-      const double t = std::stod(line.substr(0, comma));
-      fmt::format_to(
-          std::back_inserter(buffer), "{:.6f}{}\n", t + shift_s,
-          comma == std::string::npos ? std::string_view{} : std::string_view(line).substr(comma));
-    }
-    if (buffer.size() >= (std::size_t{1} << 20)) {
-      out.write({buffer.data(), buffer.size()});
-      buffer.clear();
-    }
-  }
-  out.write({buffer.data(), buffer.size()});
-  out.commit();
-}
-
 // --sync: the doctor's clock-offset estimates against the wheels, applied to the staged files.
 std::vector<std::string> sync_clocks(const fs::path& staged) {
   LogBlockReader reader(staged);
@@ -200,8 +173,17 @@ std::vector<std::string> sync_clocks(const fs::path& staged) {
     const char* file = finding.check == "time.gnss_offset"  ? "gnss.csv"
                        : finding.check == "time.imu_offset" ? "imu.csv"
                                                             : nullptr;
-    if (file == nullptr || !std::isfinite(finding.estimate)) continue;
-    shift_times(staged / file, -finding.estimate);
+    if (!std::isfinite(finding.estimate)) continue;
+    if (finding.check == "time.drive_force_offset") {
+      detail::advance_column(staged / "wheels.csv", "drive_force_n", finding.estimate);
+      applied.push_back(
+          fmt::format("wheels.csv drive_force_n: moved by {:+.3f} s onto the "
+                      "wheels' clock ({})",
+                      -finding.estimate, finding.evidence));
+      continue;
+    }
+    if (file == nullptr) continue;
+    detail::shift_times(staged / file, -finding.estimate);
     applied.push_back(fmt::format("{}: clock moved by {:+.3f} s onto the wheels' ({})", file,
                                   -finding.estimate, finding.evidence));
   }

@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "odocal/error.hpp"
+#include "odocal/estimation/paired_moments.hpp"
 #include "odocal/model/gravity.hpp"
+#include "odocal/model/tyre_model.hpp"
 
 namespace odocal::detail {
 namespace {
@@ -14,7 +16,6 @@ namespace {
 constexpr double kMostGravities = 3.0;
 constexpr double kBinS = 1.0;
 constexpr double kMovingMps = 2.0;
-constexpr double kAirDensity = 1.2;
 constexpr std::size_t kFewestBins = 20;
 constexpr double kLeastSpreadMps2 = 0.3;
 constexpr double kLeastGain = 0.5, kMostGain = 2.0;
@@ -66,7 +67,7 @@ void check_drive_force(const CsvTable& table, const WheelStream& wheels,
   // The force per kilogram against what the wheels say it should be: their acceleration (central
   // differences of 1 s mean speeds) and the drag and rolling resistance it overcomes.
   const std::vector<Bin> bins = one_second_bins(wheels, force, vehicle);
-  double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
+  PairedMoments moments;
   for (std::size_t i = 1; i + 1 < bins.size(); ++i) {
     const Bin &before = bins[i - 1], &here = bins[i], &after = bins[i + 1];
     if (after.centre_s - before.centre_s > 2.5 * kBinS || here.seconds < 0.5 * kBinS ||
@@ -74,32 +75,23 @@ void check_drive_force(const CsvTable& table, const WheelStream& wheels,
       continue;
     const double v = here.speed_mps();
     if (std::abs(v) < kMovingMps) continue;
-    double x = (after.speed_mps() - before.speed_mps()) / (after.centre_s - before.centre_s);
-    const double resistance =
-        0.5 * kAirDensity * body.drag_area_m2 * v * std::abs(v) / body.mass_kg +
-        std::copysign(body.rolling_resistance * kGravityMps2, v);
-    // What the force should be per kilogram, against what it is.
-    x += resistance;
-    const double y = here.force_n() / body.mass_kg;
-    n += 1.0;
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    syy += y * y;
-    sxy += x * y;
+    const double acceleration =
+        (after.speed_mps() - before.speed_mps()) / (after.centre_s - before.centre_s);
+    // Drag and rolling resistance oppose the motion, forward or reversing.
+    const double resistance = std::copysign(road_resistance(body, std::abs(v)).total(), v);
+    moments.add(acceleration + resistance, here.force_n() / body.mass_kg);
   }
-  if (n < static_cast<double>(kFewestBins)) return;
-  const double vxx = sxx / n - (sx / n) * (sx / n), vyy = syy / n - (sy / n) * (sy / n);
-  const double vxy = sxy / n - (sx / n) * (sy / n);
-  if (vxx < kLeastSpreadMps2 * kLeastSpreadMps2) return;
-  const double gain = vxy / vxx;
-  const double correlation = vyy > 0.0 ? vxy / std::sqrt(vxx * vyy) : 0.0;
+  if (moments.count() < kFewestBins) return;
+  if (moments.variance_x() < kLeastSpreadMps2 * kLeastSpreadMps2) return;
+  const double seconds = static_cast<double>(moments.count()) * kBinS;
+  const double gain = moments.slope(), correlation = moments.correlation();
   const InputLocation where{table.file, 1, "drive_force_n"};
-  if (std::abs(correlation) < kLeastCorrelation) {
+  // A force that does not vary at all correlates with nothing (NaN): refused as well.
+  if (!(std::abs(correlation) >= kLeastCorrelation)) {
     throw InputError(where, fmt::format("the force hardly follows the wheels' acceleration "
                                         "(correlation {:.2f} over {:.0f} s of driving): another "
                                         "clock, or another quantity?",
-                                        correlation, n * kBinS));
+                                        correlation, seconds));
   }
   if (gain < kLeastGain || gain > kMostGain) {
     throw InputError(
@@ -107,7 +99,7 @@ void check_drive_force(const CsvTable& table, const WheelStream& wheels,
                    "the force over the body's mass_kg {:g} is {:.3g} times the "
                    "wheels' acceleration with drag and rolling resistance over {:.0f} s of driving "
                    "(expected 1: a force in kN or daN, its sign turned, or the mass?)",
-                   body.mass_kg, gain, n * kBinS));
+                   body.mass_kg, gain, seconds));
   }
 }
 

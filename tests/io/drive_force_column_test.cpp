@@ -157,6 +157,11 @@ TEST(DriveForceColumn, AForceInAnotherUnitWithItsSignTurnedOrLateIsRefused) {
     std::rotate(f.begin(), f.end() - 250, f.end());  // 5 s late at 50 Hz
   });
   EXPECT_NE(late.find("another clock"), std::string::npos) << late;
+  // A column that never changes (a signal the bus did not fill) follows nothing.
+  const std::string constant = refusal_of([](std::vector<double>& f) {
+    for (double& v : f) v = 500.0;
+  });
+  EXPECT_NE(constant.find("hardly follows"), std::string::npos) << constant;
 }
 
 }  // namespace

@@ -13,8 +13,8 @@ namespace odocal {
 
 struct CsvImportOptions {
   // Estimate the GNSS and IMU clock offsets against the wheels as `odocal doctor` does (the
-  // cross-correlation of yaw rates and speeds) and shift those streams by them; each applied
-  // offset is a note in the summary.
+  // cross-correlation of yaw rates and speeds) and shift those streams by them, and the drive
+  // force column's against the accelerometer; each applied offset is a note in the summary.
   bool sync_clocks = false;
 };
 

@@ -69,6 +69,19 @@ struct VehicleBody {
   std::optional<Drivetrain> drivetrain;
 };
 
+// What air drag and rolling resistance take per kilogram from a car moving forward at speed_mps
+// on the level: the force the tyres give to hold its speed. One formula for the tyre model and for
+// the check of a log's drive force (the simulator keeps its own, as the truth it is).
+struct RoadResistance {
+  double drag_mps2{}, rolling_mps2{};
+  double total() const { return drag_mps2 + rolling_mps2; }
+};
+inline RoadResistance road_resistance(const VehicleBody& body, double speed_mps) {
+  constexpr double kAirDensity = 1.2;
+  return {0.5 * kAirDensity * body.drag_area_m2 / body.mass_kg * speed_mps * speed_mps,
+          body.rolling_resistance * kGravityMps2};
+}
+
 enum class TyreTerms { kRegression, kPhysical };
 
 // The batch's tyre_model option that fits a family of terms.
@@ -203,7 +216,6 @@ inline double slip_curve_bend(double force_over_load, const VehicleBody& body) {
 // d(c_i,eff / c_i) / d coefficients at this state, for one wheel (zero for the side slip).
 inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wheel,
                                          const VehicleBody& body) {
-  constexpr double kAirDensity = 1.2;
   const double side = wheel == RearWheel::kLeft ? 1.0 : -1.0;
   const double v = state.speed_mps, w = state.yaw_rate_radps;
   const double a_x = state.longitudinal_mps2;
@@ -211,8 +223,8 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
   const double turn = side * state.lateral_mps2();
   // Physical: per vehicle mass, the wheel's load and the force its axle transmits.
   const double L = body.wheelbase_m, h = body.cg_height_m;
-  const double drag = 0.5 * kAirDensity * body.drag_area_m2 / body.mass_kg * v * v;
-  const double rolling = body.rolling_resistance * kGravityMps2;
+  const RoadResistance road = road_resistance(body, v);
+  const double drag = road.drag_mps2, rolling = road.rolling_mps2;
   const double cornering = (1.0 - body.rear_axle_load_share) * L * w * w;
   // A force the log gives is the tyres' own, without the accelerometer's noise; what is left of
   // it beyond the resistances accelerates the body and moves its load.
