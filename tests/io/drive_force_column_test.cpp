@@ -1,5 +1,6 @@
 // wheels.csv's drive_force_n: read where given, and refused where it cannot be the tyres' force
-// (a value beyond 3 g, a force in kN, its sign turned, another clock), named by file and column.
+// (a value beyond 3 g, a force in kN, its sign turned, another clock, no brakes in it), named by
+// file and column.
 // The simulator writes it when asked, as a car's bus would give it.
 
 #include <gtest/gtest.h>
@@ -162,6 +163,13 @@ TEST(DriveForceColumn, AForceInAnotherUnitWithItsSignTurnedOrLateIsRefused) {
     for (double& v : f) v = 500.0;
   });
   EXPECT_NE(constant.find("hardly follows"), std::string::npos) << constant;
+  // The engine's drive torque without the brakes': right while driving on, nothing while braking
+  // (the lap drives forward only). Over the whole lap it reads 0.43 of the wheels' acceleration,
+  // which the gain check would blame on a unit.
+  const std::string drive_only = refusal_of([](std::vector<double>& f) {
+    for (double& v : f) v = std::max(v, 0.0);
+  });
+  EXPECT_NE(drive_only.find("hardly brakes"), std::string::npos) << drive_only;
 }
 
 }  // namespace
