@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "odocal/bag/bag_reader.hpp"
 #include "odocal/bag/message_decoder.hpp"
 #include "odocal/error.hpp"
+#include "odocal/estimation/interpolation.hpp"
 #include "odocal/io/log_directory_output.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
 #include "odocal/model/angle.hpp"
@@ -200,6 +202,40 @@ Plan heading_plan(const HeadingSource& source, const std::string& type) {
           }};
 }
 
+// A number in any message, in newtons: a message whose value is not finite is left out.
+Plan drive_force_plan(const DriveForceSource& source) {
+  return {{source.force.path}, [&source](const DecodedFields& f, double t, Rows& rows) {
+            const double force = f.numbers[1][0] * source.force.to_si;
+            if (!std::isfinite(force)) {
+              ++rows.skipped;
+              rows.skipped_why = "with a force that is not finite";
+              return;
+            }
+            rows.t_s.push_back(t);
+            rows.values[0].push_back(force);
+          }};
+}
+
+// The drive force at each wheel row, linear between its messages; the wheel rows outside the
+// force's span are left out (as the CSV importer keeps the rows where every value exists).
+struct ForceOnWheels {
+  std::vector<double> force_n;  // per wheel row, NaN where left out
+  std::vector<std::size_t> rows;
+};
+
+ForceOnWheels force_on_wheels(const Rows& wheels, const Rows& force) {
+  ForceOnWheels out;
+  out.force_n.assign(wheels.t_s.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t k = 0; k < wheels.t_s.size(); ++k) {
+    const std::optional<double> value =
+        interpolate_linear(force.t_s, force.values[0], wheels.t_s[k]);
+    if (!value) continue;
+    out.force_n[k] = *value;
+    out.rows.push_back(k);
+  }
+  return out;
+}
+
 class ImportVisitor : public BagVisitor {
  public:
   ImportVisitor(std::vector<Collector>& collectors, const TopicMap& map, std::string bag)
@@ -264,6 +300,7 @@ class ImportVisitor : public BagVisitor {
       return wheels_plan(map_.wheels, type, map_.vehicle.track_width_m);
     if (collector.stream == "gnss") return gnss_plan(map_.gnss, type);
     if (collector.stream == "imu") return imu_plan(*map_.imu, type);
+    if (collector.stream == "drive_force") return drive_force_plan(*map_.wheels.drive_force);
     return heading_plan(*map_.heading, type);
   }
 
@@ -321,6 +358,8 @@ ImportSummary import_bag(const fs::path& map_file, const fs::path& bag_path,
   collectors.push_back({"gnss", &map.gnss, 4, {}, {}, false, 0, {}});
   if (map.imu) collectors.push_back({"imu", &*map.imu, 3, {}, {}, false, 0, {}});
   if (map.heading) collectors.push_back({"heading", &*map.heading, 1, {}, {}, false, 0, {}});
+  if (map.wheels.drive_force)
+    collectors.push_back({"drive_force", &*map.wheels.drive_force, 1, {}, {}, false, 0, {}});
 
   ImportVisitor visitor(collectors, map, bag_path.string());
   read_bag(bag_path, visitor);
@@ -349,6 +388,28 @@ ImportSummary import_bag(const fs::path& map_file, const fs::path& bag_path,
     }
   }
 
+  const auto rows_of = [&](const char* stream) -> const Rows* {
+    for (const Collector& c : collectors)
+      if (c.stream == stream) return &c.rows;
+    return nullptr;
+  };
+  std::optional<ForceOnWheels> force;
+  if (const Rows* force_rows = rows_of("drive_force")) {
+    const Rows& wheels = *rows_of("wheels");
+    force = force_on_wheels(wheels, *force_rows);
+    if (force->rows.size() < 2) {
+      throw InputError(map.wheels.drive_force->where,
+                       fmt::format("topic {}'s messages ({:.3f} to {:.3f} s) do not span the "
+                                   "wheels' ({:.3f} to {:.3f} s): another clock (time, offset_s)?",
+                                   map.wheels.drive_force->topic, force_rows->t_s.front(),
+                                   force_rows->t_s.back(), wheels.t_s.front(), wheels.t_s.back()));
+    }
+    if (const std::size_t outside = rows_of("wheels")->t_s.size() - force->rows.size()) {
+      notes_only.notes.push_back(
+          fmt::format("wheels: {} rows outside the drive force's messages left out", outside));
+    }
+  }
+
   LogDirectoryOutput output(out_dir);
   const fs::path& dir = output.staging();
   write_vehicle_config(map.vehicle, dir / "vehicle.yaml");
@@ -357,10 +418,18 @@ ImportSummary import_bag(const fs::path& map_file, const fs::path& bag_path,
     const auto every = all_rows(rows.t_s.size());
     std::vector<const std::vector<double>*> columns;
     for (const auto& column : rows.values) columns.push_back(&column);
+    if (collector.stream == "drive_force") continue;  // a column of wheels.csv
     if (collector.stream == "wheels") {
       const char* unit = map.wheels.twist ? "mps" : map.wheels.joint_velocity ? "radps" : "rad";
-      write_stream_csv(dir / "wheels.csv", fmt::format("t,rl_{0},rr_{0}", unit), rows.t_s, columns,
-                       every, {9, 9});
+      std::string header = fmt::format("t,rl_{0},rr_{0}", unit);
+      std::vector<int> decimals = {9, 9};
+      if (force) {
+        header += ",drive_force_n";
+        columns.push_back(&force->force_n);
+        decimals.push_back(3);
+      }
+      write_stream_csv(dir / "wheels.csv", header, rows.t_s, columns, force ? force->rows : every,
+                       decimals);
     } else if (collector.stream == "gnss") {
       std::string header = "t,lat,lon";
       std::vector<const std::vector<double>*> kept = {columns[0], columns[1]};

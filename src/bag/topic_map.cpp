@@ -80,8 +80,20 @@ Eigen::Matrix3d mounting(YamlMap& parent) {
       .toRotationMatrix();
 }
 
+void read_drive_force(YamlMap& wheels, StampSource stamp, WheelsSource& out) {
+  auto map = wheels.map("drive_force");
+  if (!map) return;
+  DriveForceSource& source = out.drive_force.emplace();
+  read_topic(*map, stamp, source);
+  map->read("field", source.force.path);
+  if (source.force.path.empty()) throw InputError(map->location(), "'field' is missing");
+  source.force.to_si = unit_factor(*map, {Quantity::kForce});
+  map->reject_unknown_keys();
+}
+
 void read_wheels(YamlMap& map, StampSource stamp, WheelsSource& out) {
   read_topic(map, stamp, out);
+  read_drive_force(map, stamp, out);
   const bool joints = map.has("rl") || map.has("rr");
   out.twist = !joints;
   if (out.twist) {

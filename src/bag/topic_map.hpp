@@ -26,6 +26,12 @@ struct FieldSource {
   double to_si{1.0};
 };
 
+// The tyres' total longitudinal force from the car's bus (wheels.csv's drive_force_n): a number
+// in any message (std_msgs/Float64, a vehicle interface's report), on its own topic.
+struct DriveForceSource : TopicSource {
+  FieldSource force;
+};
+
 struct WheelsSource : TopicSource {
   // sensor_msgs/JointState: the joints' positions (angle units) or velocities (angular speeds).
   std::string rl_joint, rr_joint;
@@ -35,6 +41,7 @@ struct WheelsSource : TopicSource {
   // rate, empty paths for the message type's own (twist.twist.linear.x, ...).
   bool twist{};
   FieldSource speed, yaw_rate;
+  std::optional<DriveForceSource> drive_force;  // interpolated onto the wheels' times
 };
 
 enum class GnssSigma { kCovariance, kNone, kFixed };

@@ -71,6 +71,62 @@ TEST(BagImport, SimulatedLogAsBagGivesTheSameLogAndCalibration) {
   }
 }
 
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The tyres' force from the car's bus on a topic of its own (std_msgs/Float64, stamped with the
+// bag's record time) becomes wheels.csv's drive_force_n, on the wheels' times, as the CSV log has
+// it; a map naming a topic the bag lacks says so.
+TEST(BagImport, ADriveForceTopicBecomesTheWheelsDriveForceColumn) {
+  ScratchDir dir("force");
+  const fs::path scenario = dir.path() / "urban-force.yaml";
+  const fs::path csv_log = dir.path() / "csv-log";
+  const fs::path bag = dir.path() / "drive.bag";
+  const fs::path bag_log = dir.path() / "bag-log";
+  std::ofstream(scenario) << read_text(kSource / "config/scenarios/urban.yaml")
+                          << "sensors:\n  wheels:\n    drive_force_sigma_n: 100\n";
+  ASSERT_EQ(run_cli("simulate --scenario " + scenario.string() +
+                    " --laps 1 --wheel-output rad --gnss-output latlon --out " + csv_log.string())
+                .status,
+            0);
+  ASSERT_EQ(
+      std::system(("/usr/bin/python3 " + (kSource / "tests/bag/write_log_as_bag.py").string() +
+                   " " + csv_log.string() + " " + bag.string())
+                      .c_str()),
+      0);
+  std::string map = read_text(kSource / "examples/bag-joint-states/topics.yaml");
+  const std::string rr = "    rr: {joint: rear_right_wheel, unit: rad}\n";
+  ASSERT_NE(map.find(rr), std::string::npos);
+  map.replace(map.find(rr), rr.size(),
+              rr + "    drive_force: {topic: /drive_force, field: data, unit: kN, scale: 0.001, "
+                   "time: record}\n");
+  std::ofstream(dir.path() / "topics.yaml") << map;
+  const CliRun import =
+      run_cli("import bag " + bag.string() + " --map " + (dir.path() / "topics.yaml").string() +
+              " --out " + bag_log.string());
+  ASSERT_EQ(import.status, 0) << import.err;
+  const Log from_csv = read_log(csv_log), from_bag = read_log(bag_log);
+  ASSERT_EQ(from_bag.wheels.size(), from_csv.wheels.size());
+  ASSERT_EQ(from_bag.wheels.drive_force_n.size(), from_bag.wheels.size());
+  for (std::size_t k = 0; k < from_csv.wheels.size(); k += 97)
+    EXPECT_NEAR(from_bag.wheels.drive_force_n[k], from_csv.wheels.drive_force_n[k], 1e-3) << k;
+
+  map.replace(map.find("/drive_force"), 12, "/vehicle/force");
+  std::ofstream(dir.path() / "topics.yaml") << map;
+  const CliRun missing =
+      run_cli("import bag " + bag.string() + " --map " + (dir.path() / "topics.yaml").string() +
+              " --out " + (dir.path() / "missing").string());
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(
+      missing.err.find("'streams.wheels.drive_force': topic /vehicle/force is not in the bag"),
+      std::string::npos)
+      << missing.err;
+}
+
 }  // namespace
 }  // namespace odocal::testing
 

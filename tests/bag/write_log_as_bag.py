@@ -7,6 +7,10 @@ python3-rosbag), in the layout examples/bag-joint-states/topics.yaml maps:
   /fix           sensor_msgs/NavSatFix   lat/lon (altitude NaN without an alt column), diagonal
                                          covariance from sigma_m
 
+With a drive_force_n column in wheels.csv, also
+  /drive_force   std_msgs/Float64        the tyres' force (N), at its row's time as the bag's
+                                         record time (the message has no header)
+
 The log must have wheels in rad, GNSS in lat/lon, and heading.csv on imu.csv's time stamps (as
 `odocal simulate --wheel-output rad --gnss-output latlon` writes them).
 
@@ -26,6 +30,7 @@ import rosbag
 import yaml
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, NavSatFix
+from std_msgs.msg import Float64
 
 
 def rows(path):
@@ -84,6 +89,9 @@ def main():
                 joints.name = ["front_left_wheel", "rear_left_wheel", "rear_right_wheel"]
                 joints.position = [0.0, rl, rr]
                 bag.write("/joint_states", joints, joints.header.stamp)
+        if "drive_force_n" in wheels[0]:
+            for r in wheels:
+                bag.write("/drive_force", Float64(float(r["drive_force_n"])), stamp(r["t"]))
         for k, r in enumerate(imu):
             message = Imu()
             message.header.stamp = stamp(r["t"])
