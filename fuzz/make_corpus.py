@@ -52,6 +52,11 @@ streams:
   imu: {file: imu.csv, time: {column: time_ms, unit: ms}, frame: frd, ax: {column: ax, unit: m/s^2}, ay: {column: ay, unit: m/s^2}, wz: {column: gz, unit: rad/s}}
   heading: {file: gnss.csv, time: {column: time_ms, unit: ms}, convention: compass_cw, heading: {column: hdg_deg, unit: deg}}
 """)
+    write("import_map", "drive-force", """vehicle: {track_width_m: 1.6, circumference_rl_m: 1.96, circumference_rr_m: 1.96, ticks_per_rev: 96, counter_bits: 16, body: {mass_kg: 1500}}
+streams:
+  wheels: {file: wheels.csv, time: {column: time_ms, unit: ms}, rl: {column: left, unit: ticks}, rr: {column: right, unit: ticks}, drive_force: {file: imu.csv, time: {column: time_ms, unit: ms, offset_s: 0.2}, column: ax, unit: kN}}
+  gnss: {file: gnss.csv, time: {column: time_ms, unit: ms}, position: latlon, lat: {column: lat, unit: deg}, lon: {column: lon, unit: deg}}
+""")
     write("import_map", "speeds-and-truth", """vehicle: {track_width_m: 1.6, circumference_rl_m: 1.96, circumference_rr_m: 1.96}
 streams:
   wheels: {file: wheels.csv, time: {column: time_ms, unit: ms}, rl: {column: speed_kmh, unit: km/h}, rr: {column: speed_kmh, unit: km/h}}
