@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "odocal/estimation/interpolation.hpp"
@@ -35,25 +36,27 @@ Log with_force_late(Log log, double late_s) {
   return log;
 }
 
-const Finding* force_clock_finding(const Diagnosis& diagnosis) {
+// A copy: the diagnoses are temporaries.
+std::optional<Finding> force_clock_finding(const Diagnosis& diagnosis) {
   for (const Finding& f : diagnosis.findings)
-    if (f.check == "time.drive_force_offset") return &f;
-  return nullptr;
+    if (f.check == "time.drive_force_offset") return f;
+  return std::nullopt;
 }
 
 TEST(DoctorDriveForceClock, AForceOnAnotherClockIsNamedWithItsOffset) {
   const Log log = drive_with_force("urban", Drivetrain::kRear);
-  EXPECT_EQ(force_clock_finding(diagnose_log(log)), nullptr);
+  EXPECT_FALSE(force_clock_finding(diagnose_log(log)));
   const Diagnosis late = diagnose_log(with_force_late(log, 0.3));
-  const Finding* blocking = force_clock_finding(late);
-  ASSERT_NE(blocking, nullptr);
+  const std::optional<Finding> blocking = force_clock_finding(late);
+  ASSERT_TRUE(blocking);
   EXPECT_EQ(blocking->severity, FindingSeverity::kBlocking);
   EXPECT_NEAR(blocking->estimate, 0.3, 0.04);
   EXPECT_NE(blocking->fix.find("wheels.drive_force"), std::string::npos) << blocking->fix;
   EXPECT_TRUE(late.blocking());
   // 0.1 s early: below what blocks, but the tyre model feels it.
-  const Finding* warning = force_clock_finding(diagnose_log(with_force_late(log, -0.1)));
-  ASSERT_NE(warning, nullptr);
+  const std::optional<Finding> warning =
+      force_clock_finding(diagnose_log(with_force_late(log, -0.1)));
+  ASSERT_TRUE(warning);
   EXPECT_EQ(warning->severity, FindingSeverity::kWarning);
   EXPECT_NEAR(warning->estimate, -0.1, 0.04);
 }
@@ -63,16 +66,16 @@ TEST(DoctorDriveForceClock, AForceOnAnotherClockIsNamedWithItsOffset) {
 // offset is named.
 TEST(DoctorDriveForceClock, AHardDrivenWheelsSlipIsNoClockOffset) {
   const Log log = drive_with_force("circuit", Drivetrain::kRear);
-  EXPECT_EQ(force_clock_finding(diagnose_log(log)), nullptr);
-  const Finding* late = force_clock_finding(diagnose_log(with_force_late(log, 0.2)));
-  ASSERT_NE(late, nullptr);
+  EXPECT_FALSE(force_clock_finding(diagnose_log(log)));
+  const std::optional<Finding> late = force_clock_finding(diagnose_log(with_force_late(log, 0.2)));
+  ASSERT_TRUE(late);
   EXPECT_NEAR(late->estimate, 0.2, 0.03);
   Log without_imu = log;
   without_imu.imu.reset();
-  EXPECT_EQ(force_clock_finding(diagnose_log(without_imu)), nullptr);
+  EXPECT_FALSE(force_clock_finding(diagnose_log(without_imu)));
   without_imu = with_force_late(without_imu, 0.5);
-  const Finding* named = force_clock_finding(diagnose_log(without_imu));
-  ASSERT_NE(named, nullptr);
+  const std::optional<Finding> named = force_clock_finding(diagnose_log(without_imu));
+  ASSERT_TRUE(named);
   EXPECT_EQ(named->severity, FindingSeverity::kBlocking);
 }
 
