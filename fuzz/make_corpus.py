@@ -26,6 +26,9 @@ def csv_streams():
     for selector, stream in enumerate(["wheels", "gnss", "imu", "heading", "truth"]):
         for lines in (3, 40):
             write("csv_streams", f"{stream}-{lines}", bytes([selector]) + head(EXAMPLE / f"{stream}.csv", lines).encode())
+    rows = head(EXAMPLE / "wheels.csv", 40).splitlines()
+    with_force = [rows[0] + ",drive_force_n"] + [f"{row},{(k % 7 - 3) * 400.0}" for k, row in enumerate(rows[1:])]
+    write("csv_streams", "wheels-drive-force", bytes([0]) + ("\n".join(with_force) + "\n").encode())
     track = "# x_m,y_m,w_tr_right_m,w_tr_left_m\n" + "".join(
         f"{x},{y},5,5\n" for x, y in [(0, 0), (50, 0), (100, 10), (120, 50), (100, 90), (50, 100), (0, 90), (-20, 50), (-10, 10)])
     write("csv_streams", "track", bytes([5]) + track.encode())
