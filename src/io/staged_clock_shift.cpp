@@ -70,39 +70,47 @@ void shift_times(const std::filesystem::path& file, double shift_s) {
 }
 
 void advance_column(const std::filesystem::path& file, const std::string& column, double late_s) {
-  std::vector<std::string> lines;
+  // Two streaming passes, as shift_times: the times and the column's values first (all the
+  // interpolation needs), then every row copied with the column's field replaced.
+  std::size_t index = 0;
+  std::vector<double> t, values;
   {
     std::ifstream in = open_input_stream(file);
-    for (std::string line; std::getline(in, line);)
-      if (!line.empty()) lines.push_back(std::move(line));
+    std::string line;
+    if (!std::getline(in, line)) return;
+    const std::vector<std::string_view> header = fields(line);
+    const auto found = std::find(header.begin(), header.end(), column);
+    if (found == header.end())
+      throw InputError({file.string(), 1, column}, "no such column to move in time");
+    index = static_cast<std::size_t>(found - header.begin());
+    while (std::getline(in, line)) {
+      if (line.empty()) continue;
+      const std::vector<std::string_view> row = fields(line);
+      t.push_back(std::stod(std::string(row.front())));
+      values.push_back(std::stod(std::string(row.at(index))));
+    }
   }
-  if (lines.size() < 2) return;
-  const std::vector<std::string_view> header = fields(lines.front());
-  const auto found = std::find(header.begin(), header.end(), column);
-  if (found == header.end())
-    throw InputError({file.string(), 1, column}, "no such column to move in time");
-  const auto index = static_cast<std::size_t>(found - header.begin());
-  std::vector<double> t, values;
-  for (std::size_t k = 1; k < lines.size(); ++k) {
-    const std::vector<std::string_view> row = fields(lines[k]);
-    t.push_back(std::stod(std::string(row.front())));
-    values.push_back(std::stod(std::string(row.at(index))));
-  }
+  if (t.empty()) return;
+  std::ifstream in = open_input_stream(file);
   BufferedWriter out(file);
-  fmt::format_to(std::back_inserter(out.buffer()), "{}\n", lines.front());
-  for (std::size_t k = 1; k < lines.size(); ++k) {
-    const std::vector<std::string_view> row = fields(lines[k]);
-    const double at = std::clamp(t[k - 1] + late_s, t.front(), t.back());
+  std::string line;
+  std::getline(in, line);
+  fmt::format_to(std::back_inserter(out.buffer()), "{}\n", line);
+  for (std::size_t k = 0; std::getline(in, line);) {
+    if (line.empty()) continue;
+    const std::vector<std::string_view> row = fields(line);
+    const double at = std::clamp(t[k] + late_s, t.front(), t.back());
     for (std::size_t i = 0; i < row.size(); ++i) {
       if (i > 0) out.buffer().push_back(',');
       if (i == index)
         fmt::format_to(std::back_inserter(out.buffer()), "{:.6g}",
-                       interpolate_linear(t, values, at).value_or(values[k - 1]));
+                       interpolate_linear(t, values, at).value_or(values[k]));
       else
         out.buffer().append(row[i]);
     }
     out.buffer().push_back('\n');
     out.flush_if_full();
+    ++k;
   }
   out.commit();
 }

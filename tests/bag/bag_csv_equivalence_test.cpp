@@ -29,6 +29,22 @@ std::string line_starting(const std::string& text, const std::string& prefix) {
   return "(no line " + prefix + ")";
 }
 
+// ROS's own rosbag writes the CSV log as a bag (tests/bag/write_log_as_bag.py); `options` go to
+// the script (e.g. --twist).
+void write_log_as_bag(const fs::path& csv_log, const fs::path& bag,
+                      const std::string& options = "") {
+  const std::string command = "/usr/bin/python3 " +
+                              (kSource / "tests/bag/write_log_as_bag.py").string() + " " +
+                              csv_log.string() + " " + bag.string() + " " + options;
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+}
+
+double parameter(const nlohmann::json& result, const std::string& name, const char* key) {
+  for (const auto& p : result.at("parameters"))
+    if (p.at("name") == name) return p.at(key).get<double>();
+  return NAN;
+}
+
 TEST(BagImport, SimulatedLogAsBagGivesTheSameLogAndCalibration) {
   ScratchDir dir("sim");
   const fs::path csv_log = dir.path() / "csv-log";
@@ -38,11 +54,7 @@ TEST(BagImport, SimulatedLogAsBagGivesTheSameLogAndCalibration) {
       run_cli("simulate --laps 1 --wheel-output rad --gnss-output latlon --out " + csv_log.string())
           .status,
       0);
-  ASSERT_EQ(
-      std::system(("/usr/bin/python3 " + (kSource / "tests/bag/write_log_as_bag.py").string() +
-                   " " + csv_log.string() + " " + bag.string())
-                      .c_str()),
-      0);
+  ASSERT_NO_FATAL_FAILURE(write_log_as_bag(csv_log, bag));
   const CliRun import = run_cli("import bag " + bag.string() + " --map " +
                                 (kSource / "examples/bag-joint-states/topics.yaml").string() +
                                 " --out " + bag_log.string());
@@ -71,13 +83,6 @@ TEST(BagImport, SimulatedLogAsBagGivesTheSameLogAndCalibration) {
   }
 }
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // The tyres' force from the car's bus on a topic of its own (std_msgs/Float64, stamped with the
 // bag's record time) becomes wheels.csv's drive_force_n, on the wheels' times, as the CSV log has
 // it; a map naming a topic the bag lacks says so.
@@ -87,18 +92,14 @@ TEST(BagImport, ADriveForceTopicBecomesTheWheelsDriveForceColumn) {
   const fs::path csv_log = dir.path() / "csv-log";
   const fs::path bag = dir.path() / "drive.bag";
   const fs::path bag_log = dir.path() / "bag-log";
-  std::ofstream(scenario) << read_text(kSource / "config/scenarios/urban.yaml")
+  std::ofstream(scenario) << read_text_file((kSource / "config/scenarios/urban.yaml").string())
                           << "sensors:\n  wheels:\n    drive_force_sigma_n: 100\n";
   ASSERT_EQ(run_cli("simulate --scenario " + scenario.string() +
                     " --laps 1 --wheel-output rad --gnss-output latlon --out " + csv_log.string())
                 .status,
             0);
-  ASSERT_EQ(
-      std::system(("/usr/bin/python3 " + (kSource / "tests/bag/write_log_as_bag.py").string() +
-                   " " + csv_log.string() + " " + bag.string())
-                      .c_str()),
-      0);
-  std::string map = read_text(kSource / "examples/bag-joint-states/topics.yaml");
+  ASSERT_NO_FATAL_FAILURE(write_log_as_bag(csv_log, bag));
+  std::string map = read_text_file((kSource / "examples/bag-joint-states/topics.yaml").string());
   const std::string rr = "    rr: {joint: rear_right_wheel, unit: rad}\n";
   ASSERT_NE(map.find(rr), std::string::npos);
   map.replace(map.find(rr), rr.size(),
@@ -127,18 +128,6 @@ TEST(BagImport, ADriveForceTopicBecomesTheWheelsDriveForceColumn) {
       << missing.err;
 }
 
-}  // namespace
-}  // namespace odocal::testing
-
-namespace odocal::testing {
-namespace {
-
-double parameter(const nlohmann::json& result, const std::string& name, const char* key) {
-  for (const auto& p : result.at("parameters"))
-    if (p.at("name") == name) return p.at(key).get<double>();
-  return NAN;
-}
-
 // Twist odometry: the simulated skid-steer robot's wheels published as a drive controller's
 // nav_msgs/Odometry twist (speed and yaw rate), imported through a twist map and calibrated with
 // the robot configuration, finds the same effective track and odometry scales as its encoder log,
@@ -149,11 +138,7 @@ TEST(BagImport, TwistOdometryOfASimulatedRobotCalibratesToItsTruth) {
   const fs::path bag = dir.path() / "robot.bag";
   const fs::path bag_log = dir.path() / "bag-log";
   ASSERT_EQ(run_cli("simulate --scenario robot --out " + csv_log.string()).status, 0);
-  ASSERT_EQ(
-      std::system(("/usr/bin/python3 " + (kSource / "tests/bag/write_log_as_bag.py").string() +
-                   " " + csv_log.string() + " " + bag.string() + " --twist")
-                      .c_str()),
-      0);
+  ASSERT_NO_FATAL_FAILURE(write_log_as_bag(csv_log, bag, "--twist"));
   const fs::path map = dir.path() / "topics.yaml";
   std::ofstream(map) << "vehicle: {track_width_m: 0.555, circumference_rl_m: 1.03735389422, "
                         "circumference_rr_m: 1.03735389422}\n"
