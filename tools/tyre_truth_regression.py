@@ -68,6 +68,15 @@ def slip_curve_bend(force_over_load):
     return np.where(np.abs(force_over_load) < 1e-6, 1.0, c * np.tan(np.arcsin(x) / c) / x)
 
 
+def grip_limited(force_over_load, axle_share):
+    """The force over load a wheel carrying axle_share of its axle's force can transmit: at most
+    its grip (tyre_model.hpp's grip_limited)."""
+    if axle_share <= 0:
+        return force_over_load
+    limit = 0.99 * BODY["friction"] / axle_share
+    return np.clip(force_over_load, -limit, limit)
+
+
 def physical_regressors(side, f_x, f_y, v, w, track, drive_share):
     """The physical terms: minus the wheel's load change, minus its force over load (driving,
     braking) times the slip curve's bend, per vehicle mass, as tyre_regressors computes them."""
@@ -78,8 +87,10 @@ def physical_regressors(side, f_x, f_y, v, w, track, drive_share):
     tractive = (f_x + 0.6 * b["drag_area_m2"] / b["mass_kg"] * v * v
                 + b["rolling_resistance"] * g + (1 - b["rear_axle_load_share"]) * length * w * w)
     force_over_load = 0.5 * tractive / np.maximum(static + load_change, 0.1 * static)
-    driving = -force_over_load * slip_curve_bend(drive_share * force_over_load)
-    braking = -force_over_load * slip_curve_bend(b["brake_rear_share"] * force_over_load)
+    driven = grip_limited(force_over_load, drive_share)
+    braked = grip_limited(force_over_load, b["brake_rear_share"])
+    driving = -driven * slip_curve_bend(drive_share * driven)
+    braking = -braked * slip_curve_bend(b["brake_rear_share"] * braked)
     return np.column_stack([np.ones_like(v), -load_change, np.where(tractive > 0, driving, 0.0),
                             np.where(tractive < 0, braking, 0.0)])
 

@@ -278,11 +278,11 @@ TEST(TyreModelBatch, WhereAWrongBodyMakesThePhysicalTermsNoTyreTheRegressionTerm
 }
 
 TEST(TyreModelBatch, AutoCarriesTheRegressionTermsGapWhereVehicleYamlsBodyMovesThePhysicalOnes) {
-  // One lap of the realistic circuit (rear-driven), whose vehicle.yaml puts the centre of gravity
-  // 0.9 m high on a car of 0.55 m: the physical terms stand ~18 mm off, and without their witness
-  // their sigma (~3 mm) did not cover it. The regression terms, which need no body, disagree
-  // beyond 3 combined sigma: the physical circumferences carry the gap, and the answer is refused.
-  // With the body stated right the two agree and nothing is carried.
+  // One lap of the realistic circuit (rear-driven), whose vehicle.yaml states a front-driven car:
+  // the physical terms take the drive slip for none and stand ~50 mm off, and without their
+  // witness their sigma (~3 mm) did not cover it. The regression terms, which need no body,
+  // disagree beyond 3 combined sigma: the physical circumferences carry the gap, and the answer is
+  // refused. With the body stated right the two agree and nothing is carried.
   const sim::SimulatedDrive drive = sim::simulate(testing::realistic_lap_on_track(0.0, 1));
   Log log = simulated_log(drive);
   const double truth_m = drive.true_params.circumference_rl_m;
@@ -294,7 +294,7 @@ TEST(TyreModelBatch, AutoCarriesTheRegressionTermsGapWhereVehicleYamlsBodyMovesT
   EXPECT_EQ(right.tyre_selection.chosen_gap_to, "") << right.full_report();
   EXPECT_LT(std::abs(right.estimate.circumference_rl_m - truth_m), 3.0 * right.sigma_rl_m());
 
-  log.vehicle.body.cg_height_m = 0.9;
+  log.vehicle.body.drivetrain = Drivetrain::kFront;
   const BatchSummary wrong = calibrate_batch(log, options);
   const TyreModelSelection& selection = wrong.tyre_selection;
   EXPECT_EQ(selection.chosen, "physical") << wrong.full_report();
@@ -309,11 +309,13 @@ TEST(TyreModelBatch, AutoCarriesTheRegressionTermsGapWhereVehicleYamlsBodyMovesT
   EXPECT_NE(wrong.model_adequacy.verdict.find("check vehicle.yaml's body"), std::string::npos)
       << wrong.model_adequacy.verdict;
 
-  // Chosen by hand, the physical terms are witnessed alike.
+  // Chosen by hand, the physical terms are witnessed alike (where `auto` also weighed the plain
+  // model, its track width may settle a little differently).
   options.tyre_model = TyreModelChoice::kPhysical;
   const BatchSummary by_hand = calibrate_batch(log, options);
-  EXPECT_EQ(by_hand.estimate.circumference_rl_m, wrong.estimate.circumference_rl_m);
-  EXPECT_EQ(by_hand.sigma_rl_m(), wrong.sigma_rl_m());
+  EXPECT_NEAR(by_hand.estimate.circumference_rl_m, wrong.estimate.circumference_rl_m,
+              0.1 * wrong.sigma_rl_m());
+  EXPECT_GT(by_hand.model_spread_m[0], 3.0 * own_sigma_m) << by_hand.full_report();
   EXPECT_EQ(by_hand.termination, Termination::kNotIdentifiable);
 
   // Where the physical fit is refused on its own sigma (the default 1 mm), there is no answer to

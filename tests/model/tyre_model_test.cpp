@@ -136,12 +136,23 @@ TEST(TyreModelPhysicalTerms, AForceTheLogGivesIsTheTyresInPlaceOfTheAcceleromete
   EXPECT_GT(braking(kBraking), 0.0);
 }
 
-TEST(TyreModelPhysicalTerms, ALiftedWheelKeepsATenthOfItsLoad) {
-  const TyreModel::Vector x =
+// A wheel cannot carry more than its grip: past it, its slip regressor stays at the grip (0.99 mu
+// over its axle's share of the force), as the magic formula's slip at its end, however much the
+// car demands; below it, nothing is held.
+TEST(TyreModelPhysicalTerms, AWheelPastItsGripSlipsAsAtItsGrip) {
+  // A lifted inner wheel (a tenth of its load kept) in a hard left turn under power.
+  const TyreModel::Vector lifted =
       tyre_regressors(state(20.0, 1.0, 20.0, 1.0), RearWheel::kLeft, simple_body());
-  const double force = 0.5 * (1.0 + 0.01 * g + 1.0 * 1.0 * 1.0);
-  // Far beyond the grip: the bend is held where it is at 0.99 of it.
-  EXPECT_NEAR(x(kDriving), -force / (0.1 * g / 4) * driving_bend(0.99), 1e-4);
+  EXPECT_NEAR(lifted(kDriving), -0.99 * driving_bend(0.99), 1e-9);
+  // Braking at 12 m/s^2 straight: the rear brakes' 0.35 of the car's force is past the grip.
+  const TyreModel::Vector locked =
+      tyre_regressors(state(20.0, -12.0, 0.0, 0.0), RearWheel::kLeft, simple_body());
+  EXPECT_NEAR(locked(kBraking), 0.99 / 0.35 * braking_bend(0.99 / 0.35), 1e-9);
+  // Short of the grip: the force over load itself.
+  const TyreModel::Vector gentle =
+      tyre_regressors(state(20.0, -3.0, 0.0, 0.0), RearWheel::kLeft, simple_body());
+  const double rho = (-1.5 + 0.5 * 0.01 * g) / (g / 4 - 0.375);
+  EXPECT_NEAR(gentle(kBraking), -rho * braking_bend(rho), 1e-6);
 }
 
 TEST(TyreModelSlipCurve, BendIsTheMagicFormulasInverse) {

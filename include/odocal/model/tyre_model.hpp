@@ -19,7 +19,8 @@
 //   with dz_i = h a_x / (2 L) - s_i r h a_y / t (per vehicle mass), the tractive acceleration
 //   T = a_x + rho_air c_d A v^2 / (2 m) + f_r g + b w^2 and rho_i = (T / 2) / (z_0 + dz_i), z_0 the
 //   wheel's static load per vehicle mass; b() the slip curve's bend (slip_curve_bend), at the
-//   force over load the wheel carries, its axle's share s_d or s_b of the car's.
+//   force over load the wheel carries, its axle's share s_d or s_b of the car's; rho_i held
+//   where that reaches the wheel's grip (grip_limited).
 // With the physical terms, beside the circumference: the rear axle's side slip angle, which
 // eqs. 1-2 take as zero, beta = k_side_slip f_y (the rear tyres' slip angle grows with the
 // lateral force they carry): the reference point moves at beta from its heading (eq. 1's beta).
@@ -213,6 +214,15 @@ inline double slip_curve_bend(double force_over_load, const VehicleBody& body) {
   return c * std::tan(std::asin(x) / c) / x;
 }
 
+// The force over load that a wheel carrying axle_share of its axle's pair can transmit: at most
+// its grip (0.99 mu, where slip_curve_bend holds). Past it the wheel spins or locks at the slip
+// curve's end, so its slip regressor stays there instead of growing with the demand.
+inline double grip_limited(double force_over_load, double axle_share, const VehicleBody& body) {
+  if (axle_share <= 0.0) return force_over_load;
+  const double limit = 0.99 * body.friction / axle_share;
+  return std::clamp(force_over_load, -limit, limit);
+}
+
 // d(c_i,eff / c_i) / d coefficients at this state, for one wheel (zero for the side slip).
 inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wheel,
                                          const VehicleBody& body) {
@@ -241,14 +251,13 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
       0.5 * tractive / std::max(static_load + load_change, 0.1 * static_load);
   // The wheel carries its axle's share of the car's force over load: k_drive_slip and
   // k_brake_slip hold that share over the slip stiffness, the bend its force.
+  const double drive_share = drive_rear_share(body), brake_share = body.brake_rear_share;
+  const double driven = grip_limited(force_over_load, drive_share, body);
+  const double braked = grip_limited(force_over_load, brake_share, body);
   const double driving =
-      tractive > 0.0
-          ? -force_over_load * slip_curve_bend(drive_rear_share(body) * force_over_load, body)
-          : 0.0;
+      tractive > 0.0 ? -driven * slip_curve_bend(drive_share * driven, body) : 0.0;
   const double braking =
-      tractive < 0.0
-          ? -force_over_load * slip_curve_bend(body.brake_rear_share * force_over_load, body)
-          : 0.0;
+      tractive < 0.0 ? -braked * slip_curve_bend(brake_share * braked, body) : 0.0;
   return (TyreModel::Vector() << v * v, turn, drive, brake, w * w, drive * turn, brake * turn,
           -load_change, driving, braking, 0.0)
       .finished();
