@@ -85,7 +85,8 @@ def physical_regressors(side, f_x, f_y, v, w, track, drive_share):
     static = 0.5 * g * b["rear_axle_load_share"]
     load_change = h * f_x / (2 * length) - side * b["rear_roll_share"] * h * f_y / track
     tractive = (f_x + 0.6 * b["drag_area_m2"] / b["mass_kg"] * v * v
-                + b["rolling_resistance"] * g + (1 - b["rear_axle_load_share"]) * length * w * w)
+                + b["rolling_resistance"] * g
+                + (1 - b["rear_axle_load_share"]) * length * f_y * w / np.maximum(v, 1.0))
     force_over_load = 0.5 * tractive / np.maximum(static + load_change, 0.1 * static)
     driven = grip_limited(force_over_load, drive_share)
     braked = grip_limited(force_over_load, b["brake_rear_share"])

@@ -44,11 +44,13 @@ TEST(DriveForceBatch, TheTyresForceTakesTheKinksErrorOffTheCircumference) {
     GTEST_SKIP() << "shared data absent: " << kHockenheimTrack;
   // With the accelerometer alone the force the physical terms take in the kink is the body's
   // acceleration, which the fishtailing car's yaw and steered front wheels take apart from the
-  // tyres' force: c_RL 5.5 mm low. The force that the tyres transmit puts it within 2 mm.
+  // tyres' force: c_RL 3.7 mm low (5.5 mm before the grip limit and the cornering drag from the
+  // lateral acceleration, docs/tyre-model.md). The force that the tyres transmit more than halves
+  // that.
   const Fit read = calibrate_kink_laps(-1.0);
   const Fit given = calibrate_kink_laps(100.0);
-  EXPECT_GT(std::abs(read.error_rl_m), 4e-3) << read.report;
-  EXPECT_LT(std::abs(given.error_rl_m), 2.5e-3) << given.report;
+  EXPECT_GT(std::abs(read.error_rl_m), 3e-3) << read.report;
+  EXPECT_LT(std::abs(given.error_rl_m), 0.5 * std::abs(read.error_rl_m)) << given.report;
   EXPECT_LT(std::abs(given.error_rl_m), 3.0 * given.sigma_rl_m) << given.report;
 }
 

@@ -17,9 +17,9 @@
 //   follows,
 //     -dz_i, -rho_i b(s_d rho_i) (driving), -rho_i b(s_b rho_i) (braking),
 //   with dz_i = h a_x / (2 L) - s_i r h a_y / t (per vehicle mass), the tractive acceleration
-//   T = a_x + rho_air c_d A v^2 / (2 m) + f_r g + b w^2 and rho_i = (T / 2) / (z_0 + dz_i), z_0 the
-//   wheel's static load per vehicle mass; b() the slip curve's bend (slip_curve_bend), at the
-//   force over load the wheel carries, its axle's share s_d or s_b of the car's; rho_i held
+//   T = a_x + rho_air c_d A v^2 / (2 m) + f_r g + b a_y w / v and rho_i = (T / 2) / (z_0 + dz_i),
+//   z_0 the wheel's static load per vehicle mass; b() the slip curve's bend (slip_curve_bend), at
+//   the force over load the wheel carries, its axle's share s_d or s_b of the car's; rho_i held
 //   where that reaches the wheel's grip (grip_limited).
 // With the physical terms, beside the circumference: the rear axle's side slip angle, which
 // eqs. 1-2 take as zero, beta = k_side_slip f_y (the rear tyres' slip angle grows with the
@@ -235,7 +235,11 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
   const double L = body.wheelbase_m, h = body.cg_height_m;
   const RoadResistance road = road_resistance(body, v);
   const double drag = road.drag_mps2, rolling = road.rolling_mps2;
-  const double cornering = (1.0 - body.rear_axle_load_share) * L * w * w;
+  // The front tyres' cornering drag: their lateral force m (b / L) f_y along wheels steered by
+  // L w / v. The lateral force is the accelerometer's, not v w: where the car slides (a fishtail)
+  // the two part, and the tyres carry what the accelerometer reads.
+  const double cornering =
+      (1.0 - body.rear_axle_load_share) * L * state.specific_force_y_mps2 * w / std::max(v, 1.0);
   // A force the log gives is the tyres' own, without the accelerometer's noise; what is left of
   // it beyond the resistances accelerates the body and moves its load.
   const bool given = state.force_given();
