@@ -63,6 +63,7 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
   }
   adapt_doppler_noise(batch, options, summary, solver);
   adapt_gnss_noise(batch, options, common, summary, solver);
+  if (extended) hold_wrong_signed_slips(batch, options, summary, solver);
   if (controls.go_on) {
     AdaptedFacts adapted{{batch.params()[0], batch.params()[1]}, std::nullopt};
     const double scale = summary.gnss_noise.covariance_scale;

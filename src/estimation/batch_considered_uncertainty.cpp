@@ -33,7 +33,7 @@ void BatchProblem::add_considered_uncertainty() {
     // A regression term has no car's value, and a fit that wandered no word of its own.
     if (!(car.sigma > 0.0) && tyre_held_wandered_[index]) continue;
     const double sigma = held_coefficient_sigma(tyre_held_estimate_[index], tyre_held_sigma_[index],
-                                                car, tyre_held_value_[index]);
+                                                car, tyre_held_value_[index], tyre_nonnegative(j));
     if (!(sigma > 0.0)) continue;
     params_[static_cast<std::size_t>(kTyreOffset) + index] += kStep * sigma;
     const batch::ParamsVector moved = respond();

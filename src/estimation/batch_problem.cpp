@@ -105,6 +105,7 @@ void BatchProblem::set_tyre_terms(std::optional<TyreTerms> terms) {
   tyre_held_estimate_.fill(0.0);
   tyre_held_value_.fill(0.0);
   tyre_held_wandered_.fill(false);
+  tyre_held_below_zero_.fill(false);
   std::fill(params_.begin() + kTyreOffset, params_.end(), 0.0);
 }
 
@@ -113,7 +114,8 @@ void BatchProblem::hold_tyre_coefficient(int j, double sigma, FreeValue value) {
   const auto held = static_cast<std::size_t>(j);
   tyre_held_sigma_[held] = sigma;
   tyre_held_wandered_[held] = value == FreeValue::kWandered;
-  tyre_held_estimate_[held] = value == FreeValue::kEstimate ? params_[index] : 0.0;
+  tyre_held_below_zero_[held] = value == FreeValue::kBelowZero;
+  tyre_held_estimate_[held] = value == FreeValue::kWandered ? 0.0 : params_[index];
   tyre_held_value_[held] = 0.0;
   params_[index] = 0.0;
 }
@@ -123,9 +125,12 @@ bool BatchProblem::hold_at_car_values() {
   for (int j = 0; j < TyreModel::kCoefficients; ++j) {
     const auto held = static_cast<std::size_t>(j);
     if (!tyre_in_fit(j) || !tyre_held(j) || tyre_held_wandered_[held]) continue;
+    const CarCoefficient car = car_coefficient(j);
+    const CarCoefficient combined =
+        combined_coefficient(tyre_held_estimate_[held], tyre_held_sigma_[held], car);
+    // However far below zero the log put a slip that it did not identify.
     tyre_held_value_[held] =
-        combined_coefficient(tyre_held_estimate_[held], tyre_held_sigma_[held], car_coefficient(j))
-            .mean;
+        tyre_nonnegative(j) ? nonnegative_coefficient(combined).mean : combined.mean;
     moved = moved || tyre_held_value_[held] != 0.0;
   }
   return moved;

@@ -76,8 +76,9 @@ class BatchProblem {
   // Holds coefficient j at zero from the next solve on (hold_at_car_values may move it after the
   // decisions): the log cannot identify it. Its sigma when it was free is kept for the report,
   // and with its value there for where it is held and its share of the circumferences' sigma; a
-  // fit that wandered says nothing of the value.
-  enum class FreeValue { kEstimate, kWandered };
+  // fit that wandered says nothing of the value; one below zero (a slip, tyre_nonnegative) is
+  // held for its sign, not for its spread.
+  enum class FreeValue { kEstimate, kWandered, kBelowZero };
   void hold_tyre_coefficient(int j, double sigma, FreeValue value = FreeValue::kEstimate);
   // Moves every held physical coefficient from zero to where a car's value of it and what the
   // log said while it was free put it together (tyre_car_prior.hpp), for the next solve on;
@@ -87,6 +88,12 @@ class BatchProblem {
   CarCoefficient car_coefficient(int j) const {
     return car_tyre_coefficient(j, body_,
                                 0.5 * (nominal_.circumference_rl_m + nominal_.circumference_rr_m));
+  }
+  // Whether coefficient j cannot be below zero: a slip of an axle the body drives or brakes (a
+  // free-rolling axle's is the model's slop, either way; tyre_car_prior.hpp).
+  bool tyre_nonnegative(int j) const {
+    return (j == kDriveSlipCoefficient || j == kBrakeSlipCoefficient) &&
+           car_coefficient(j).mean > 0.0;
   }
   double tyre_held_value(int j) const { return tyre_held_value_[static_cast<std::size_t>(j)]; }
   // Whether the car fixes coefficient j rather than the log: a stated front drivetrain's rear
@@ -132,6 +139,12 @@ class BatchProblem {
   void restart();
   bool tyre_held(int j) const { return tyre_held_sigma_[static_cast<std::size_t>(j)] > 0.0; }
   double tyre_held_sigma(int j) const { return tyre_held_sigma_[static_cast<std::size_t>(j)]; }
+  double tyre_held_estimate(int j) const {
+    return tyre_held_estimate_[static_cast<std::size_t>(j)];
+  }
+  bool tyre_held_below_zero(int j) const {
+    return tyre_held_below_zero_[static_cast<std::size_t>(j)];
+  }
   int free_tyre_coefficients() const;
   TyreModel tyre_model() const {
     return TyreModel::from(Eigen::Map<const TyreModel::Vector>(params_.data() + kTyreOffset));
@@ -558,6 +571,7 @@ class BatchProblem {
   std::array<double, TyreModel::kCoefficients> tyre_held_estimate_{};  // its value while free
   std::array<double, TyreModel::kCoefficients> tyre_held_value_{};     // where it is held
   std::array<bool, TyreModel::kCoefficients> tyre_held_wandered_{};    // its free fit wandered
+  std::array<bool, TyreModel::kCoefficients> tyre_held_below_zero_{};  // held for its sign
   std::unique_ptr<ceres::Problem> problem_;
   std::size_t gnss_residuals_ = 0;
   std::vector<ceres::ResidualBlockId> fold_blocks_;

@@ -27,6 +27,34 @@ double tyre_variance(const std::optional<BatchProblem::Uncertainty>& uncertainty
   return uncertainty ? uncertainty->params(kTyreOffset + j, kTyreOffset + j) : -1.0;
 }
 
+// The free coefficients this log does not identify, each with its sigma while free: too wide
+// for their effect and not significant, or a driven or braked axle's slip below zero within its
+// noise (never below zero: its share of the force over its slip stiffness).
+enum class Unidentified { kTooWide, kBelowZero };
+std::vector<std::pair<int, double>> unidentified_coefficients(BatchProblem& batch,
+                                                              const BatchOptions& options,
+                                                              Unidentified which) {
+  const auto uncertainty = batch.uncertainty();
+  std::vector<std::pair<int, double>> unidentified;
+  for (int j = 0; j < TyreModel::kCoefficients; ++j) {
+    if (!batch.tyre_in_fit(j) || batch.tyre_held(j)) continue;
+    const double variance = tyre_variance(uncertainty, j);
+    const double sigma = variance >= 0.0 ? std::sqrt(variance) : 0.0;
+    const double rms = batch.regressor_rms()(j);
+    const double value = batch.params()[static_cast<std::size_t>(kTyreOffset + j)];
+    const bool significant = std::abs(value) > kTyreSignificance * sigma;
+    const bool found = which == Unidentified::kBelowZero
+                           ? batch.tyre_nonnegative(j) && value < 0.0 && !significant
+                           : !(variance >= 0.0) || !(rms > 0.0) ||
+                                 (sigma * rms > options.max_sigma_tyre_effect && !significant);
+    if (found) {
+      unidentified.emplace_back(
+          j, std::isfinite(sigma) && sigma > 0.0 ? sigma : std::numeric_limits<double>::infinity());
+    }
+  }
+  return unidentified;
+}
+
 }  // namespace
 
 ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOptions& options,
@@ -105,23 +133,8 @@ ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions&
     return solve_relinearised(batch, options, summary);
   }
   for (int round = 0; round < TyreModel::kCoefficients && solver.IsSolutionUsable(); ++round) {
-    const auto uncertainty = batch.uncertainty();
-    // The coefficients the log does not identify, each with its sigma while free.
-    std::vector<std::pair<int, double>> unidentified;
-    for (int j = 0; j < TyreModel::kCoefficients; ++j) {
-      if (!batch.tyre_in_fit(j) || batch.tyre_held(j)) continue;
-      const double variance = tyre_variance(uncertainty, j);
-      const double sigma = variance >= 0.0 ? std::sqrt(variance) : 0.0;
-      const double rms = batch.regressor_rms()(j);
-      const double value = batch.params()[static_cast<std::size_t>(kTyreOffset + j)];
-      const bool significant = std::abs(value) > kTyreSignificance * sigma;
-      if (!(variance >= 0.0) || !(rms > 0.0) ||
-          (sigma * rms > options.max_sigma_tyre_effect && !significant)) {
-        unidentified.emplace_back(j, std::isfinite(sigma) && sigma > 0.0
-                                         ? sigma
-                                         : std::numeric_limits<double>::infinity());
-      }
-    }
+    std::vector<std::pair<int, double>> unidentified =
+        unidentified_coefficients(batch, options, Unidentified::kTooWide);
     if (unidentified.empty()) break;
     // All at once, but the side slip alone first: it turns the course, not the wheels, and an
     // unidentified side slip widens the sigma of the slip terms it is correlated with, which are
@@ -142,7 +155,21 @@ ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions&
     batch.restart();
     solver = solve_relinearised(batch, options, summary);
   }
+  hold_wrong_signed_slips(batch, options, summary, solver);
   return solver;
+}
+
+bool hold_wrong_signed_slips(BatchProblem& batch, const BatchOptions& options,
+                             BatchSummary& summary, ceres::Solver::Summary& solver) {
+  if (!solver.IsSolutionUsable()) return false;
+  const auto wrong_signed = unidentified_coefficients(batch, options, Unidentified::kBelowZero);
+  if (wrong_signed.empty()) return false;
+  for (const auto& [j, sigma] : wrong_signed)
+    batch.hold_tyre_coefficient(j, sigma, BatchProblem::FreeValue::kBelowZero);
+  batch.hold_at_car_values();
+  batch.restart();
+  solver = solve_relinearised(batch, options, summary);
+  return true;
 }
 
 }  // namespace odocal::batch

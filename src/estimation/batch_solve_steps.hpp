@@ -33,6 +33,14 @@ ceres::Solver::Summary solve_relinearised(BatchProblem& batch, const BatchOption
 ceres::Solver::Summary solve_tyre_model(BatchProblem& batch, const BatchOptions& options,
                                         BatchSummary& summary, TyreTerms terms);
 
+// A slip coefficient is an axle's share of the force over its slip stiffness, never below zero:
+// one that a solve left below zero within its noise (what the held values or the noise that
+// the residuals showed moved; comma2k19's minute put the brake slip at -0.013 +- 0.006) is held
+// beside the others, where a car's value and the log's word put it, and the problem solved
+// again; whether it was.
+bool hold_wrong_signed_slips(BatchProblem& batch, const BatchOptions& options,
+                             BatchSummary& summary, ceres::Solver::Summary& solver);
+
 // The largest coefficient's effect at the log's RMS driving state, relative to kMaxTyreEffect's
 // 3 % of circumference; the side slip's (rad) counts against kMaxSideSlipRad instead, the slip
 // coefficients themselves against kMaxSlipCoefficient.

@@ -275,8 +275,20 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
           "front), its spread the model's slop";
       continue;
     }
-    parameter.identified =
-        std::isfinite(parameter.sigma) && parameter.sigma <= thresholds[i] && block_used[i];
+    // A held coefficient is one that the log did not identify, however narrow its sigma then
+    // (held with others, where the side slip that widened it was held after it).
+    const bool held_for_spread =
+        i >= 8 && batch.tyre_held(coefficient) && !batch.tyre_held_below_zero(coefficient);
+    parameter.identified = std::isfinite(parameter.sigma) && parameter.sigma <= thresholds[i] &&
+                           block_used[i] && !held_for_spread;
+    const bool below_zero = i >= 8 && batch.tyre_held_below_zero(coefficient);
+    const std::string sign_hold =
+        below_zero ? fmt::format(
+                         "held at {:.3g}, above zero: the log put it at {:.3g}, below zero within "
+                         "its noise, where no driven or braked tyre slips",
+                         batch.tyre_held_value(coefficient), batch.tyre_held_estimate(coefficient))
+                   : "";
+    if (below_zero && parameter.identified) parameter.verdict = sign_hold;
     if (!parameter.identified) {
       parameter.verdict = unidentified_reason(parameter.name, coverage, block_used[i]);
       const bool considered =
@@ -303,7 +315,9 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
               misfit, summary.model_adequacy.chi2_per_dof);
         }
       }
-      if (i >= 8 && batch.tyre_held(coefficient)) {
+      if (below_zero) {
+        parameter.verdict = sign_hold + "; and " + parameter.verdict;
+      } else if (i >= 8 && batch.tyre_held(coefficient)) {
         const double held = batch.tyre_held_value(coefficient);
         parameter.verdict = (held == 0.0 ? std::string("held at zero: ")
                                          : fmt::format("held at a car's value, {:.3g}: ", held)) +

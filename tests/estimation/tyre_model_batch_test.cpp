@@ -617,6 +617,10 @@ TEST(TyreModelBatch, AutoKeepsAnIdentifiedPlainFitThatTheTyreModelAgreesWith) {
   // terms are not tried), and not where it does not.
   sim::Scenario scenario = load_scenario("circuit");
   scenario.ideal = true;
+  // Noise seed 4: its slips come out above zero, free and wide. (On seed 1 the brake slip came
+  // out below zero within its noise and is held above it since 2026-12-05, where a braked tyre's
+  // is: that physical fit is then as narrow as the widened plain one, auto's other branch.)
+  scenario.seeds.noise = 4;
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   Log log = simulated_log(drive);
   TyreModel load;

@@ -76,5 +76,44 @@ TEST(TyreCarPrior, AHeldCoefficientsSpreadCombinesTheLogsWordWithTheCars) {
   EXPECT_EQ(held_coefficient_sigma(std::nan(""), 0.01, {}, 0.0), 0.0);
 }
 
+// The mean and sigma of a Gaussian given that it is not below zero, by the midpoint rule over
+// [0, mean + 12 sigma]: the independent truth for the closed form.
+CarCoefficient integrated_above_zero(double mean, double sigma) {
+  constexpr int kSteps = 200000;
+  const double top = std::max(mean, 0.0) + 12.0 * sigma, step = top / kSteps;
+  double weight = 0.0, first = 0.0, second = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    const double x = (i + 0.5) * step, z = (x - mean) / sigma;
+    const double w = std::exp(-0.5 * z * z);
+    weight += w;
+    first += w * x;
+    second += w * x * x;
+  }
+  const double m = first / weight;
+  return {m, std::sqrt(second / weight - m * m)};
+}
+
+TEST(TyreCarPrior, ASlipBelowZeroIsHeldAtItsMeanAboveZero) {
+  for (const double mean : {0.02, 0.0, -0.01, -0.0135, -0.03, -0.05}) {
+    const CarCoefficient truth = integrated_above_zero(mean, 0.01);
+    const CarCoefficient bounded = nonnegative_coefficient({mean, 0.01});
+    EXPECT_NEAR(bounded.mean, truth.mean, 1e-6 * 0.01 + 1e-3 * truth.mean) << mean;
+    EXPECT_NEAR(bounded.sigma, truth.sigma, 1e-3 * truth.sigma) << mean;
+    EXPECT_GT(bounded.mean, 0.0) << mean;
+  }
+  // Far below zero, an exponential tail of rate |mean| / sigma^2: within 3 % at 9 sigma.
+  const CarCoefficient far = nonnegative_coefficient({-0.09, 0.01});
+  EXPECT_NEAR(far.mean, integrated_above_zero(-0.09, 0.01).mean, 0.03 * far.mean);
+  EXPECT_EQ(nonnegative_coefficient({-0.01, 0.0}).mean, 0.0);
+  // Held there, the spread about the held value is the bounded one's, not the Gaussian's.
+  const CarCoefficient car{0.0275, 0.0275};
+  const CarCoefficient combined = combined_coefficient(-0.0135, 0.006, car);
+  const double held = nonnegative_coefficient(combined).mean;
+  EXPECT_NEAR(held_coefficient_sigma(-0.0135, 0.006, car, held, true),
+              nonnegative_coefficient(combined).sigma, 1e-12);
+  EXPECT_GT(held_coefficient_sigma(-0.0135, 0.006, car, held),
+            3.0 * nonnegative_coefficient(combined).sigma);
+}
+
 }  // namespace
 }  // namespace odocal

@@ -4,6 +4,7 @@
 // there, and the car's own value beside what the log said is what that holding may be off by.
 // Not a prior of the free fit (nothing pulls a free coefficient towards it).
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -70,17 +71,34 @@ inline CarCoefficient combined_coefficient(double free_estimate, double free_sig
           std::sqrt(car2 * free2 / (car2 + free2))};
 }
 
-// The spread about `held` of a coefficient held there: the RMS of the combination above about
-// the held value (the error that holding it there makes). Where the car has no value (a
-// regression term) the log's statement alone, and zero where the log said nothing either.
+// A coefficient that cannot be below zero (a driven or braked axle's slip: its share of the force
+// over its slip stiffness), stated as the Gaussian `combined`: its mean and sigma given that it is
+// not below zero (the truncated Gaussian's), so a log that put it a little below zero holds it a
+// little above, never at a value no tyre has. Beyond 8 sigma below zero the tail is exponential,
+// with mean and sigma both sigma^2 / |mean|.
+inline CarCoefficient nonnegative_coefficient(const CarCoefficient& combined) {
+  if (!(combined.sigma > 0.0)) return {std::max(combined.mean, 0.0), 0.0};
+  const double s = combined.sigma, a = -combined.mean / s;  // zero in sigmas above the mean
+  if (a > 8.0) return {s / a, s / a};
+  const double density = std::exp(-0.5 * a * a) / std::sqrt(2.0 * std::numbers::pi);
+  const double ratio = density / (0.5 * std::erfc(a / std::numbers::sqrt2));
+  return {combined.mean + s * ratio, s * std::sqrt(std::max(1.0 + a * ratio - ratio * ratio, 0.0))};
+}
+
+// The spread about `held` of a coefficient held there: the RMS of the combination above (bounded
+// at zero where `nonnegative`) about the held value (the error that holding it there makes). Where
+// the car has no value (a regression term) the log's statement alone, and zero where the log said
+// nothing either.
 inline double held_coefficient_sigma(double free_estimate, double free_sigma,
-                                     const CarCoefficient& car, double held) {
+                                     const CarCoefficient& car, double held,
+                                     bool nonnegative = false) {
   if (!(car.sigma > 0.0)) {
     if (!std::isfinite(free_sigma) || !std::isfinite(free_estimate) || !(free_sigma > 0.0))
       return 0.0;
     return std::hypot(free_estimate - held, free_sigma);
   }
-  const CarCoefficient combined = combined_coefficient(free_estimate, free_sigma, car);
+  CarCoefficient combined = combined_coefficient(free_estimate, free_sigma, car);
+  if (nonnegative) combined = nonnegative_coefficient(combined);
   return std::hypot(combined.mean - held, combined.sigma);
 }
 
