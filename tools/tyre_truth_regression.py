@@ -51,7 +51,9 @@ def regressors(side, a_x, a_y, v, w, load_terms):
 BODY = {"wheelbase_m": 2.7, "rear_axle_load_share": 0.463, "cg_height_m": 0.55,
         "rear_roll_share": 0.45, "mass_kg": 1500.0, "drag_area_m2": 0.7,
         "rolling_resistance": 0.012, "friction": 1.0, "slip_curve_shape": 1.65,
-        "brake_rear_share": 0.35, "all_wheel_drive_rear_share": 0.6}
+        "brake_rear_share": 0.35, "all_wheel_drive_rear_share": 0.6,
+        "front_cornering_stiffness": 16.0, "rear_cornering_stiffness": 19.0,
+        "lateral_curve_shape": 1.3}
 
 
 def drive_rear_share(log):
@@ -77,7 +79,32 @@ def grip_limited(force_over_load, axle_share):
     return np.clip(force_over_load, -limit, limit)
 
 
-def physical_regressors(side, f_x, f_y, v, w, track, drive_share):
+def slip_angle(force_over_load, stiffness):
+    """The lateral magic formula inverted (tyre_model.hpp's slip_angle_rad)."""
+    c, mu = BODY["lateral_curve_shape"], BODY["friction"]
+    x = np.clip(force_over_load / mu, -0.99, 0.99)
+    return np.tan(np.arcsin(x) / c) * c * mu / stiffness
+
+
+def cornering_drag(f_y, a_x, v, w, w_dot):
+    """The front tyres' lateral force along their steer, per vehicle mass (tyre_model.hpp's
+    cornering_drag_mps2)."""
+    g, b = 9.81, BODY
+    length = b["wheelbase_m"]
+    front_arm = b["rear_axle_load_share"] * length
+    rear_arm = length - front_arm
+    front = rear_arm * (f_y + front_arm * w_dot) / length
+    rear = front_arm * (f_y - rear_arm * w_dot) / length
+    shift = b["cg_height_m"] * a_x / length
+    front_load = np.maximum(g * rear_arm / length - shift, 0.1 * g * rear_arm / length)
+    rear_load = np.maximum(g * front_arm / length + shift, 0.1 * g * front_arm / length)
+    steer = (length * w / np.maximum(v, 1.0)
+             + slip_angle(front / front_load, b["front_cornering_stiffness"])
+             - slip_angle(rear / rear_load, b["rear_cornering_stiffness"]))
+    return front * steer
+
+
+def physical_regressors(side, f_x, f_y, v, w, track, drive_share, a_x, w_dot):
     """The physical terms: minus the wheel's load change, minus its force over load (driving,
     braking) times the slip curve's bend, per vehicle mass, as tyre_regressors computes them."""
     g, b = 9.81, BODY
@@ -85,8 +112,7 @@ def physical_regressors(side, f_x, f_y, v, w, track, drive_share):
     static = 0.5 * g * b["rear_axle_load_share"]
     load_change = h * f_x / (2 * length) - side * b["rear_roll_share"] * h * f_y / track
     tractive = (f_x + 0.6 * b["drag_area_m2"] / b["mass_kg"] * v * v
-                + b["rolling_resistance"] * g
-                + (1 - b["rear_axle_load_share"]) * length * f_y * w / np.maximum(v, 1.0))
+                + b["rolling_resistance"] * g + cornering_drag(f_y, a_x, v, w, w_dot))
     force_over_load = 0.5 * tractive / np.maximum(static + load_change, 0.1 * static)
     driven = grip_limited(force_over_load, drive_share)
     braked = grip_limited(force_over_load, b["brake_rear_share"])
@@ -172,7 +198,9 @@ def main():
         raise SystemExit("imu.csv must share truth.csv's times")
     window_mean = lambda column: np.array([imu[a:b, column].mean() for a, b in zip(k, n)])
     f_x, f_y, gyro = window_mean(1), window_mean(2), window_mean(3)
-    physical = (f_x[moving], f_y[moving], v[moving], gyro[moving], track, drive_rear_share(args.log))
+    gyro_rate = np.gradient(gyro, dt.mean())
+    physical = (f_x[moving], f_y[moving], v[moving], gyro[moving], track, drive_rear_share(args.log),
+                a_x[moving], gyro_rate[moving])
     A_left, A_right = physical_regressors(1.0, *physical), physical_regressors(-1.0, *physical)
     names = ["k_load", "k_drive_slip", "k_brake_slip"]
     # The slip divides (c (1 + k_load x_load) / (1 + kappa), tyre_factor_with_gradient): with

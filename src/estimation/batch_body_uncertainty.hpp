@@ -35,6 +35,11 @@ inline constexpr BodyUncertainty kBodyUncertainties[] = {
     {"friction", &VehicleBody::friction, 0.15, 0.0},
     {"slip_curve_shape", &VehicleBody::slip_curve_shape, 0.15, 0.0},
     {"brake_rear_share", &VehicleBody::brake_rear_share, 0.05, 0.0},
+    // The tyres' cornering stiffness, each axle's on its own (their difference is the car's
+    // understeer), and the lateral curve's shape: a tyre's data sheet, which few logs come with.
+    {"front_cornering_stiffness", &VehicleBody::front_cornering_stiffness, 0.0, 0.25},
+    {"rear_cornering_stiffness", &VehicleBody::rear_cornering_stiffness, 0.0, 0.25},
+    {"lateral_curve_shape", &VehicleBody::lateral_curve_shape, 0.15, 0.0},
     {"all_wheel_drive_rear_share", &VehicleBody::all_wheel_drive_rear_share, 0.1, 0.0, true},
 };
 

@@ -121,14 +121,16 @@ void fill_states(const FittedWheels& wheels, const ImuStream* imu, const Odometr
   const bool measured = imu != nullptr && imu->size() >= 2;
   static const ImuStream kNoImu{{0.0, 1.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
   const ImuStream& source = measured ? *imu : kNoImu;
-  const double h = half_window_s;
+  const double h = half_window_s, h_yaw = std::min(h, kYawAccelerationHalfWindowS);
   const std::vector<double>& forces = wheels.drive_force_n;
   const auto fill_part = [&](std::size_t, std::size_t begin, std::size_t end) {
     RunningMean gyro(source, source.wz_radps), forward(source, source.ax_mps2),
-        left(source, source.ay_mps2);
+        left(source, source.ay_mps2), gyro_behind(source, source.wz_radps),
+        gyro_ahead(source, source.wz_radps);
     // Where each sequence of lookup times (t - 2h .. t + 2h) has got to.
     std::size_t at_minus_2h = begin, at_minus_h = begin, at_t = begin, at_plus_h = begin,
-                at_plus_2h = begin, turn_from = begin, turn_to = begin;
+                at_plus_2h = begin, turn_from = begin, turn_to = begin, turn_minus_2h = begin,
+                turn_t = begin, turn_plus_2h = begin;
     for (std::size_t k = begin; k < end; ++k) {
       const double t = wheels.t_s[k];
       DrivingState& state = states[k];
@@ -141,6 +143,15 @@ void fill_states(const FittedWheels& wheels, const ImuStream* imu, const Odometr
       state.speed_mps = stored(speed);
       state.yaw_rate_radps = stored(yaw_rate);
       state.longitudinal_mps2 = stored(longitudinal);
+      // As the wheels' acceleration: the difference of the means over the half windows either side.
+      // The gyro's over a shorter spacing, min(h, kYawAccelerationHalfWindowS).
+      const double yaw_acceleration =
+          imu_here
+              ? (gyro_ahead.at(t + h_yaw, h_yaw) - gyro_behind.at(t - h_yaw, h_yaw)) / (2.0 * h_yaw)
+              : (wheel_turn.rate(t + h, h, turn_t, turn_plus_2h) -
+                 wheel_turn.rate(t - h, h, turn_minus_2h, turn_t)) /
+                    (2.0 * h);
+      state.yaw_acceleration_radps2 = stored(yaw_acceleration);
       // The specific force the tyres push with: on a hill, with the slope's gravity that the
       // projection took out of the accelerometer (a wheel climbing slips as one accelerating
       // does). Where the grade is not known the projection left the increments alone: level, as

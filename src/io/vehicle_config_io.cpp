@@ -25,7 +25,7 @@ struct BodyField {
   double VehicleBody::*member;
   PhysicalRange range;
 };
-constexpr std::array<BodyField, 10> kBodyFields{{
+constexpr std::array<BodyField, 13> kBodyFields{{
     {"rear_axle_load_share", &VehicleBody::rear_axle_load_share, kAxleLoadShare},
     {"cg_height_m", &VehicleBody::cg_height_m, kCgHeightM},
     {"rear_roll_share", &VehicleBody::rear_roll_share, kRollShare},
@@ -36,6 +36,11 @@ constexpr std::array<BodyField, 10> kBodyFields{{
     {"slip_curve_shape", &VehicleBody::slip_curve_shape, kSlipCurveShape},
     {"brake_rear_share", &VehicleBody::brake_rear_share, kAxleForceShare},
     {"all_wheel_drive_rear_share", &VehicleBody::all_wheel_drive_rear_share, kAxleForceShare},
+    {"front_cornering_stiffness", &VehicleBody::front_cornering_stiffness,
+     kCorneringStiffnessPerLoad},
+    {"rear_cornering_stiffness", &VehicleBody::rear_cornering_stiffness,
+     kCorneringStiffnessPerLoad},
+    {"lateral_curve_shape", &VehicleBody::lateral_curve_shape, kSlipCurveShape},
 }};
 
 }  // namespace

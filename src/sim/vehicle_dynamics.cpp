@@ -27,8 +27,7 @@ State step_state(const State& s, const Derivative& d, double h) {
 struct Controls {
   double steer_rad;
   double force_n;  // total longitudinal tyre force command (signed, body x)
-  double ax_estimate_mps2;
-  Pitch pitch;  // of the road under the car: climbing takes m g sin(pitch) of the force
+  Pitch pitch;     // of the road under the car: climbing takes m g sin(pitch) of the force
 };
 
 class Vehicle {
@@ -74,26 +73,37 @@ class Vehicle {
     // to the rear as acceleration does.
     const Pitch& pitch = u.pitch;
     const double slope_n = c_.mass_kg * kGravityMps2 * pitch.sin;
-    const double transfer_x =
-        c_.load_transfer
-            ? c_.mass_kg * (u.ax_estimate_mps2 + kGravityMps2 * pitch.sin) * c_.cg_height_m / L_
-            : 0.0;
-    const double load_front = c_.mass_kg * kGravityMps2 * pitch.cos * b_ / L_ - transfer_x;
-    const double load_rear = c_.mass_kg * kGravityMps2 * pitch.cos * a_ / L_ + transfer_x;
+    // Load moves with the body's own acceleration: the drive's less the resistance's and, in a
+    // turn, the front tyres' cornering drag. That drag hangs on the loads, so the two settle in
+    // a fixed point; a few passes do (the drag's share of a load change is sin(delta) small).
+    const double weight_front_n = c_.mass_kg * kGravityMps2 * pitch.cos * b_ / L_;
+    const double weight_rear_n = c_.mass_kg * kGravityMps2 * pitch.cos * a_ / L_;
+    double specific_force_x = (u.force_n - resistance_n(s.vx)) / c_.mass_kg;
+    double load_front = 0.0, load_rear = 0.0;
+    const auto share_load = [&] {
+      const double transfer_x =
+          c_.load_transfer ? c_.mass_kg * specific_force_x * c_.cg_height_m / L_ : 0.0;
+      load_front = weight_front_n - transfer_x;
+      load_rear = weight_rear_n + transfer_x;
+    };
+    share_load();
     double ay = s.vx * r;
     if (kinematic(s)) {
       d.vx = (u.force_n - resistance_n(s.vx) - slope_n) / c_.mass_kg;
     } else {
       const double alpha_front = u.steer_rad - std::atan2(s.vy + a_ * s.r, s.vx);
       const double alpha_rear = -std::atan2(s.vy - b_ * s.r, s.vx);
-      const double fy_front =
-          lateral_force(alpha_front, load_front, c_.cornering_stiffness_per_load_front);
-      const double fy_rear =
-          lateral_force(alpha_rear, load_rear, c_.cornering_stiffness_per_load_rear);
       const double cos_d = std::cos(u.steer_rad), sin_d = std::sin(u.steer_rad);
-      d.vx = (drive_n + front_brake_n * cos_d - fy_front * sin_d - resistance_n(s.vx) - slope_n) /
-                 c_.mass_kg +
-             s.r * s.vy;
+      double fy_front = 0.0, fy_rear = 0.0;
+      constexpr int kLoadPasses = 3;
+      for (int pass = 0; pass < kLoadPasses; ++pass) {
+        if (pass > 0) share_load();
+        fy_front = lateral_force(alpha_front, load_front, c_.cornering_stiffness_per_load_front);
+        fy_rear = lateral_force(alpha_rear, load_rear, c_.cornering_stiffness_per_load_rear);
+        specific_force_x =
+            (drive_n + front_brake_n * cos_d - fy_front * sin_d - resistance_n(s.vx)) / c_.mass_kg;
+      }
+      d.vx = specific_force_x - slope_n / c_.mass_kg + s.r * s.vy;
       d.vy = (fy_rear + fy_front * cos_d + front_brake_n * sin_d) / c_.mass_kg - s.r * s.vx;
       d.r = (a_ * (fy_front * cos_d + front_brake_n * sin_d) - b_ * fy_rear) / c_.yaw_inertia_kgm2;
       ay = d.vy + s.r * s.vx;
@@ -243,7 +253,7 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
   auto motion = std::make_unique<RecordedMotion>(h);
   double progress_m = 0.0;
   const std::vector<double> cusps_m = path.direction_changes_m();
-  Controls controls{0.0, 0.0, 0.0, Pitch(grade ? grade(0.0) : 0.0)};
+  Controls controls{0.0, 0.0, Pitch(grade ? grade(0.0) : 0.0)};
 
   for (std::size_t k = 0; k <= steps; ++k) {
     const double t = static_cast<double>(k) * h;
@@ -296,7 +306,6 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
       controls.pitch = Pitch(grade ? grade(progress_m) : 0.0);
       controls.force_n = config.mass_kg * acc + vehicle.resistance_n(s.vx) +
                          config.mass_kg * kGravityMps2 * controls.pitch.sin;
-      controls.ax_estimate_mps2 = acc;
     }
 
     double ay = 0.0;

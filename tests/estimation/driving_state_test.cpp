@@ -99,6 +99,21 @@ TEST(DrivingState, PrefersTheGyroTurnToTheWheels) {
   EXPECT_NEAR(states[500].lateral_mps2(), 1.0, 1e-6);
 }
 
+TEST(DrivingState, YawAccelerationIsTheTurnsChangeFromTheGyroOrTheWheels) {
+  // A turn tightening at 0.02 rad/s^2: the wheels' own turn says so, and where a gyro measures, it
+  // does (here a gyro tightening twice as fast, which the wheels do not).
+  Log log = log_of(
+      10.0, [](double) { return 10.0; }, [](double t) { return 0.05 + 0.02 * t; });
+  const auto from_wheels = driving_states(log, log.vehicle.nominal_params());
+  for (std::size_t k = 100; k < log.wheels.size() - 100; k += 37)
+    EXPECT_NEAR(from_wheels[k].yaw_acceleration_radps2, 0.02, 1e-5) << k;
+  add_gyro(log, 0.0);
+  for (std::size_t k = 0; k < log.wheels.size(); ++k)
+    log.imu->wz_radps[k] = 0.04 * log.wheels.t_s[k];
+  const auto from_gyro = driving_states(log, log.vehicle.nominal_params());
+  EXPECT_NEAR(from_gyro[500].yaw_acceleration_radps2, 0.04, 1e-5);
+}
+
 TEST(DrivingState, SpecificForceIsTheAccelerometersWhereItMeasures) {
   // Wheels at a constant 10 m/s on a slope: the accelerometer feels gravity's share (what the
   // drive force pushes against), the wheels no acceleration. Before the IMU starts, the wheels'
@@ -229,6 +244,7 @@ TEST(DrivingState, MeasuredAgainOnThreadsTheStatesAreTheSameToTheBit) {
       ASSERT_EQ(several[k].speed_mps, one[k].speed_mps) << threads << " threads, sample " << k;
       ASSERT_EQ(several[k].longitudinal_mps2, one[k].longitudinal_mps2) << k;
       ASSERT_EQ(several[k].yaw_rate_radps, one[k].yaw_rate_radps) << k;
+      ASSERT_EQ(several[k].yaw_acceleration_radps2, one[k].yaw_acceleration_radps2) << k;
       ASSERT_EQ(several[k].specific_force_x_mps2, one[k].specific_force_x_mps2) << k;
       ASSERT_EQ(several[k].specific_force_y_mps2, one[k].specific_force_y_mps2) << k;
     }

@@ -452,8 +452,8 @@ TEST(PhysicalTyreBatch, SigmaCoversTheBodyThatVehicleYamlGetsWrong) {
   EXPECT_LT(physical.body_sigma_m[0], own_sigma_m);
   EXPECT_NE(physical.full_report().find("from the body's uncertainty"), std::string::npos);
   // Its parts, one per body number, add in squares to it, and the report names the largest.
-  // (nine numbers; the all-wheel drive's share moves nothing on this rear-driven car).
-  ASSERT_EQ(physical.body_sigma_parts.size(), 9u);
+  // (twelve numbers; the all-wheel drive's share moves nothing on this rear-driven car).
+  ASSERT_EQ(physical.body_sigma_parts.size(), 12u);
   for (std::size_t wheel = 0; wheel < 2; ++wheel) {
     double sum = 0.0, largest = 0.0;
     for (const auto& part : physical.body_sigma_parts) {

@@ -1,6 +1,7 @@
 // The tyre model's physical terms against closed-form loads and forces of a simple car (a body
-// with no drag, no cornering drag and an easy geometry): at rest, accelerating straight, braking,
-// and in a steady left turn; the slip curve's bend against the magic formula solved numerically.
+// with no drag, equally stiff axles and an easy geometry): at rest, accelerating straight, braking,
+// and in a steady left turn; the slip curve's bend and the front tyres' steer against the magic
+// formula solved numerically.
 
 #include "odocal/model/tyre_model.hpp"
 
@@ -17,6 +18,8 @@ constexpr int kLoad = 7, kDriving = 8, kBraking = 9;  // physical terms in TyreM
 
 // L = 2 m, half the weight on the rear axle, h = 0.5 m, the rear axle takes half the lateral
 // transfer, t = 1.5 m, f_r = 0.01, no drag: a rear wheel carries g / 4 per vehicle mass at rest.
+// Both axles' tyres equally stiff: at an even load they slip alike sideways, so the front wheels
+// are steered by L w / v alone.
 VehicleBody simple_body() {
   VehicleBody body;
   body.wheelbase_m = 2.0;
@@ -26,6 +29,7 @@ VehicleBody simple_body() {
   body.rear_roll_share = 0.5;
   body.drag_area_m2 = 0.0;
   body.rolling_resistance = 0.01;
+  body.front_cornering_stiffness = body.rear_cornering_stiffness = 18.0;
   return body;
 }
 
@@ -92,8 +96,9 @@ TEST(TyreModelPhysicalTerms, BrakingSlipsTheOtherWay) {
 
 TEST(TyreModelPhysicalTerms, ALeftTurnMovesLoadToTheRightWheel) {
   // a_y = 3 at w = 0.2 (v = 15): r h a_y / t = 0.5 moves from the left wheel to the right; the
-  // front tyres' cornering drag b w^2 = 0.04 adds to the tractive force; the unloaded left wheel
-  // slips more for the same force.
+  // front tyres' cornering drag b f_y w / v = 0.04 (both axles slip alike, so the front wheels
+  // are steered along the path) adds to the tractive force; the unloaded left wheel slips more
+  // for the same force.
   const VehicleBody body = simple_body();
   const DrivingState turn = state(15.0, 0.0, 3.0, 0.2);
   const TyreModel::Vector left = tyre_regressors(turn, RearWheel::kLeft, body);
@@ -111,15 +116,15 @@ TEST(TyreModelPhysicalTerms, ALeftTurnMovesLoadToTheRightWheel) {
 
 TEST(TyreModelPhysicalTerms, AForceTheLogGivesIsTheTyresInPlaceOfTheAccelerometers) {
   // Accelerating at 2 m/s^2 in a left turn at 10 m/s (0.3 rad/s): the car of 1500 kg pushes
-  // m (2 + f_r g) = 3147.15 N through its tyres (no drag on this body, and the cornering drag's
-  // (1 - 0.5) L w^2 = 0.09 m/s^2). Given that force, the accelerometer's forward reading is not
-  // read: the regressors are those of the reading the force implies.
+  // m (2 + f_r g + the cornering drag) through its tyres (no drag on this body). Given that force,
+  // the accelerometer's forward reading is not read: the regressors are those of the reading the
+  // force implies.
   const VehicleBody body = simple_body();
-  const double cornering = 0.5 * 2.0 * 0.3 * 0.3;
   DrivingState given = state(10.0, 2.0, 3.0, 0.3);
   given.specific_force_x_mps2 = -7.0f;  // a forward reading far off
-  given.drive_force_n = static_cast<float>(body.mass_kg * (2.0 + 0.01 * kGravityMps2 + cornering));
   const DrivingState read = state(10.0, 2.0, 3.0, 0.3);
+  given.drive_force_n = static_cast<float>(
+      body.mass_kg * (2.0 + 0.01 * kGravityMps2 + cornering_drag_mps2(read, body)));
   for (const RearWheel wheel : {RearWheel::kLeft, RearWheel::kRight}) {
     const TyreModel::Vector with_force = tyre_regressors(given, wheel, body);
     const TyreModel::Vector with_reading = tyre_regressors(read, wheel, body);
@@ -195,6 +200,63 @@ TEST(TyreModelSlipCurve, EachAxleBendsWithItsOwnShareOfTheForce) {
   body.all_wheel_drive_rear_share = 0.6;
   EXPECT_NEAR(tyre_regressors(accelerating, RearWheel::kLeft, body)(kDriving),
               -driving * magic_formula_bend(0.6 * driving, 1.65), 1e-6);
+}
+
+// The slip angle at which a tyre of cornering stiffness C_a per load carries the lateral force
+// over load y: the lateral magic formula y = mu sin(C atan(B alpha)), B = C_a / (C mu), solved by
+// bisection below its peak.
+double lateral_slip_angle(double y, double stiffness, const VehicleBody& body) {
+  const double c = body.lateral_curve_shape, mu = body.friction, b = stiffness / (c * mu);
+  const double sign = y < 0.0 ? -1.0 : 1.0;
+  double low = 0.0, high = std::tan(0.5 * std::numbers::pi / c) / b;
+  for (int i = 0; i < 200; ++i) {
+    const double alpha = 0.5 * (low + high);
+    (mu * std::sin(c * std::atan(b * alpha)) < std::abs(y) ? low : high) = alpha;
+  }
+  return sign * 0.5 * (low + high);
+}
+
+TEST(TyreModelSteer, SlipAngleIsTheLateralMagicFormulasInverse) {
+  VehicleBody body;
+  for (const double y : {-0.6, 0.01, 0.3, 0.6, 0.9})
+    EXPECT_NEAR(slip_angle_rad(y, 16.0, body), lateral_slip_angle(y, 16.0, body), 1e-9) << y;
+  EXPECT_NEAR(slip_angle_rad(0.01, 16.0, body), 0.01 / 16.0, 1e-7);  // the linear part: y / C_a
+  EXPECT_EQ(slip_angle_rad(3.0, 16.0, body), slip_angle_rad(0.99, 16.0, body));  // at its grip
+  body.friction = 0.5;
+  EXPECT_NEAR(slip_angle_rad(0.4, 19.0, body), lateral_slip_angle(0.4, 19.0, body), 1e-9);
+}
+
+TEST(TyreModelSteer, AxlesThatSlipAlikeSteerTheFrontWheelsAlongThePath) {
+  // The steady left turn at 15 m/s, 0.2 rad/s, 3 m/s^2: the front axle's b / L of the lateral
+  // force along wheels steered by L w / v, b f_y w / v = 0.04 m/s^2.
+  EXPECT_NEAR(cornering_drag_mps2(state(15.0, 0.0, 3.0, 0.2), simple_body()), 0.04, 1e-9);
+}
+
+TEST(TyreModelSteer, AnUndersteeringCarSteersBeyondThePath) {
+  // The rear tyres stiffer: at an even load (f_y / g on both axles) the front slips more sideways
+  // than the rear, and the front wheels are steered by that much beyond L w / v.
+  VehicleBody body = simple_body();
+  body.front_cornering_stiffness = 16.0;
+  body.rear_cornering_stiffness = 19.0;
+  const double f_y = 6.0, w = 0.3, v = 20.0;
+  const double steer = 2.0 * w / v + lateral_slip_angle(f_y / g, 16.0, body) -
+                       lateral_slip_angle(f_y / g, 19.0, body);
+  EXPECT_NEAR(cornering_drag_mps2(state(v, 0.0, f_y, w), body), 0.5 * f_y * steer,
+              1e-7);  // w a float
+  EXPECT_GT(steer, 2.0 * w / v);
+}
+
+TEST(TyreModelSteer, AFishtailTurnsTheFrontForceAgainstTheYawInertia) {
+  // No lateral force and no turn, but the yaw rate growing at 1 rad/s^2: with I_z = m a b the
+  // front axle pushes m a b / L = m / 2 left and the rear as much right; the front tyres' slip
+  // angle at 0.5 over their load g / 2 and the rear's at -0.5 over theirs steer the front wheels
+  // by twice the one angle, along which the front force drags.
+  DrivingState fishtail = state(20.0, 0.0, 0.0, 0.0);
+  fishtail.yaw_acceleration_radps2 = 1.0f;
+  const VehicleBody body = simple_body();
+  const double alpha = lateral_slip_angle(1.0 / g, 18.0, body);
+  EXPECT_NEAR(cornering_drag_mps2(fishtail, body), 0.5 * 2.0 * alpha, 1e-9);
+  EXPECT_GT(alpha, 0.0);
 }
 
 TEST(TyreModel, CoefficientTableRoundTripsEveryMember) {

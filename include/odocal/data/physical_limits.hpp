@@ -26,6 +26,8 @@ inline constexpr PhysicalRange kDragAreaM2{0.0, 50.0};
 inline constexpr PhysicalRange kRollingResistance{0.0, 0.2};
 inline constexpr PhysicalRange kTyreFriction{0.1, 2.0};
 inline constexpr PhysicalRange kSlipCurveShape{1.0, 2.0};
+// A tyre's cornering stiffness per unit load, 1/rad: a road tyre's 8-30, a racing slick's more.
+inline constexpr PhysicalRange kCorneringStiffnessPerLoad{3.0, 60.0};
 inline constexpr PhysicalRange kAxleForceShare{0.0, 1.0};
 
 // Log streams. Times are seconds on any clock up to 300 years from its zero (Unix time fits);

@@ -18,6 +18,12 @@ namespace odocal {
 // The states' speeds and yaw rate are means over +-this, s.
 inline constexpr double kDrivingStateHalfWindowS = 0.25;
 
+// Where a gyro measures, the yaw acceleration is the difference of its means over +-this either
+// side, s: a fishtail's yaw swings within half a second, and over +-0.25 s its acceleration
+// comes out at a third; shorter still, the gyro's noise grows (docs/tyre-model.md, "The front
+// tyres' steer").
+inline constexpr double kYawAccelerationHalfWindowS = 0.05;
+
 // One state per wheel sample. half_window_s: speeds and the yaw rate are means over
 // +-half_window_s, and the wheels' accelerations differences of those over the same spacing (the
 // window shrinks at the ends and across chain breaks, whose increments are zero).

@@ -65,6 +65,13 @@ struct VehicleBody {
   double slip_curve_shape = 1.65;
   double brake_rear_share = 0.35;
   double all_wheel_drive_rear_share = 0.6;
+  // The front and rear tyres' cornering stiffness per unit load (1/rad) and the magic formula's
+  // shape factor of their lateral force: how far the front wheels are steered beyond L w / v
+  // (their slip angle less the rear's), which turns their lateral force against the car's motion
+  // (cornering_drag). A car that understeers has the stiffer rear.
+  double front_cornering_stiffness = 16.0;
+  double rear_cornering_stiffness = 19.0;
+  double lateral_curve_shape = 1.3;
   // Which axle the drive's share above goes to, and what a coefficient held at zero is taken to
   // be uncertain by (tyre_car_prior.hpp). Unstated: a driven rear axle's, which covers every car.
   std::optional<Drivetrain> drivetrain;
@@ -181,8 +188,11 @@ struct DrivingState {
   // The tyres' total longitudinal force over this sample's increment where the log gives it
   // (WheelStream::drive_force_n), N; NaN: not given, the accelerometer says it.
   float drive_force_n = std::numeric_limits<float>::quiet_NaN();
+  // dw/dt: the yaw rate's change over the state's window (a car that fishtails turns the front
+  // tyres' force against its yaw inertia, and steers them beyond L w / v).
+  float yaw_acceleration_radps2{};
 
-  // a_y = v w, left positive: computed, not stored (24 bytes per wheel sample, not 28).
+  // a_y = v w, left positive: computed, not stored (28 bytes per wheel sample, not 32).
   double lateral_mps2() const { return static_cast<double>(speed_mps) * yaw_rate_radps; }
   bool force_given() const { return std::isfinite(drive_force_n); }
 };
@@ -223,6 +233,59 @@ inline double grip_limited(double force_over_load, double axle_share, const Vehi
   return std::clamp(force_over_load, -limit, limit);
 }
 
+// The slip angle (rad) at which a tyre of this cornering stiffness per unit load carries the
+// lateral force over load y: the lateral magic formula inverted (B = C_a / (C mu)), its force held
+// below the grip as slip_curve_bend holds the longitudinal one.
+inline double slip_angle_rad(double force_over_load, double stiffness, const VehicleBody& body) {
+  const double c = body.lateral_curve_shape, mu = body.friction;
+  const double x = std::clamp(force_over_load / mu, -0.99, 0.99);
+  return std::tan(std::asin(x) / c) * c * mu / stiffness;
+}
+
+// What the front tyres' lateral force takes from the car's forward motion, per unit mass
+// (m/s^2): their force F_yf along wheels steered by delta, F_yf delta. The two axles' lateral
+// forces hold the lateral specific force f_y and turn the yaw inertia (taken as m a b, a car's
+// dynamic index of one): F_yf / m = b (f_y + a dw/dt) / L, F_yr / m = a (f_y - b dw/dt) / L. The
+// front wheels point along the car's path at the front axle plus their slip angle, so
+// delta = L w / v + alpha_f - alpha_r: a car that understeers steers more than L w / v, and one
+// that fishtails (dw/dt) steers against its turn. The axles' loads move with the body's
+// acceleration f_x (not the wheels': a spinning wheel's is not the body's). On Hockenheim's fast
+// kink the force the accelerometer then leaves to the rear tyres is within 0.02 m/s^2 of the
+// simulator's, from 0.12 with F_yf = m b f_y / L along L w / v (docs/tyre-model.md, "The front
+// tyres' steer").
+inline double cornering_drag_at_mps2(const DrivingState& state, const VehicleBody& body,
+                                     double f_x) {
+  const double L = body.wheelbase_m, a = body.rear_axle_load_share * L, b = L - a;
+  const double f_y = state.specific_force_y_mps2;
+  const double w = state.yaw_rate_radps, w_dot = state.yaw_acceleration_radps2;
+  const double v = std::max(static_cast<double>(state.speed_mps), 1.0);
+  const double front = b * (f_y + a * w_dot) / L, rear = a * (f_y - b * w_dot) / L;
+  const double shift = body.cg_height_m * f_x / L;
+  const double front_load = std::max(kGravityMps2 * b / L - shift, 0.1 * kGravityMps2 * b / L);
+  const double rear_load = std::max(kGravityMps2 * a / L + shift, 0.1 * kGravityMps2 * a / L);
+  const double steer = L * w / v +
+                       slip_angle_rad(front / front_load, body.front_cornering_stiffness, body) -
+                       slip_angle_rad(rear / rear_load, body.rear_cornering_stiffness, body);
+  return front * steer;
+}
+
+// The same at the state's own forward force: the accelerometer's, or where the log gives the
+// tyres' force, the body's acceleration that force leaves (the force less the resistances and
+// this drag, a fixed point that contracts by the drag's few percent per m/s^2 of load shift), so
+// that a given force is never mixed with the accelerometer's forward reading.
+inline double cornering_drag_mps2(const DrivingState& state, const VehicleBody& body) {
+  if (!state.force_given()) return cornering_drag_at_mps2(state, body, state.specific_force_x_mps2);
+  const double pushed =
+      state.drive_force_n / body.mass_kg - road_resistance(body, state.speed_mps).total();
+  double drag = 0.0;
+  for (int pass = 0; pass < 8; ++pass) {
+    const double next = cornering_drag_at_mps2(state, body, pushed - drag);
+    if (std::abs(next - drag) < 1e-9) return next;
+    drag = next;
+  }
+  return drag;
+}
+
 // d(c_i,eff / c_i) / d coefficients at this state, for one wheel (zero for the side slip).
 inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wheel,
                                          const VehicleBody& body) {
@@ -235,11 +298,9 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
   const double L = body.wheelbase_m, h = body.cg_height_m;
   const RoadResistance road = road_resistance(body, v);
   const double drag = road.drag_mps2, rolling = road.rolling_mps2;
-  // The front tyres' cornering drag: their lateral force m (b / L) f_y along wheels steered by
-  // L w / v. The lateral force is the accelerometer's, not v w: where the car slides (a fishtail)
-  // the two part, and the tyres carry what the accelerometer reads.
-  const double cornering =
-      (1.0 - body.rear_axle_load_share) * L * state.specific_force_y_mps2 * w / std::max(v, 1.0);
+  // The lateral force is the accelerometer's, not v w: where the car slides (a fishtail) the two
+  // part, and the tyres carry what the accelerometer reads.
+  const double cornering = cornering_drag_mps2(state, body);
   // A force the log gives is the tyres' own, without the accelerometer's noise; what is left of
   // it beyond the resistances accelerates the body and moves its load.
   const bool given = state.force_given();
