@@ -12,9 +12,9 @@ namespace {
 // The heading increment of wheel sample k with the model applied at `state`.
 double heading_step(const WheelStream& wheels, std::size_t k, const DrivingState& state,
                     const TyreModel& model, const VehicleBody& body, const OdometryParams& params) {
-  const WheelIncrement counted{
-      wheels.rev_rl[k] * tyre_factor(model, state, RearWheel::kLeft, body),
-      wheels.rev_rr[k] * tyre_factor(model, state, RearWheel::kRight, body)};
+  const RearTyreFactors factors = rear_tyre_factors_with_gradient(model, state, body);
+  const WheelIncrement counted{wheels.rev_rl[k] * factors.left.value,
+                               wheels.rev_rr[k] * factors.right.value};
   return body_increment(counted, params).yaw_rad;
 }
 

@@ -225,8 +225,9 @@ WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<Driving
   const bool side_slips = model.k_side_slip_s2pm != 0.0;
   if (side_slips) corrected.side_slip_rad.resize(wheels.size());
   for (std::size_t k = 0; k < wheels.size(); ++k) {
-    corrected.rev_rl[k] *= tyre_factor(model, states[k], RearWheel::kLeft, body);
-    corrected.rev_rr[k] *= tyre_factor(model, states[k], RearWheel::kRight, body);
+    const RearTyreFactors factors = rear_tyre_factors_with_gradient(model, states[k], body);
+    corrected.rev_rl[k] *= factors.left.value;
+    corrected.rev_rr[k] *= factors.right.value;
     if (side_slips)
       corrected.side_slip_rad[k] = static_cast<float>(side_slip_rad(model, states[k]));
   }

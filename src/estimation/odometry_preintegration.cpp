@@ -36,8 +36,10 @@ PreintegratedSegment preintegrate(const FittedWheels& wheels, std::size_t first_
     double side_slip = 0.0, side_slip_per_coefficient = 0.0;
     if (tyre != nullptr) {
       const DrivingState& state = tyre->states[first_sample + s];
-      factor_rl = tyre_factor_with_gradient(tyre->model, state, RearWheel::kLeft, tyre->body);
-      factor_rr = tyre_factor_with_gradient(tyre->model, state, RearWheel::kRight, tyre->body);
+      const RearTyreFactors factors =
+          rear_tyre_factors_with_gradient(tyre->model, state, tyre->body);
+      factor_rl = factors.left;
+      factor_rr = factors.right;
       segment.tyre_factors[s] = {factor_rl, factor_rr};
       n.rev_rl *= factor_rl.value;
       n.rev_rr *= factor_rr.value;

@@ -86,6 +86,26 @@ TEST(TyreFactor, GradientMatchesCentralDifferences) {
   }
 }
 
+TEST(TyreFactor, BothWheelsAtOnceAreEachWheelAlone) {
+  // rear_tyre_factors_with_gradient shares the state's axle forces (and its cornering drag's
+  // fixed point) between the wheels: the same numbers, with the accelerometer or a given force.
+  const VehicleBody body;
+  const TyreModel tyre =
+      TyreModel{2e-6, 3e-4, 8e-3, -2e-3, -5e-3, 6e-4, 4e-4, 2e-3, 0.05, 0.02, -5e-3};
+  DrivingState given = turning(25.0, 1.5, -5.0);
+  given.drive_force_n = 4000.0f;
+  for (const DrivingState& state : {turning(20.0, 2.5, 4.0), turning(15.0, -6.0, -3.0), given}) {
+    const RearTyreFactors both = rear_tyre_factors_with_gradient(tyre, state, body);
+    const TyreFactor left = tyre_factor_with_gradient(tyre, state, RearWheel::kLeft, body);
+    const TyreFactor right = tyre_factor_with_gradient(tyre, state, RearWheel::kRight, body);
+    EXPECT_EQ(both.left.value, left.value);
+    EXPECT_EQ(both.right.value, right.value);
+    EXPECT_EQ(both.left.gradient, left.gradient);
+    EXPECT_EQ(both.right.gradient, right.gradient);
+    EXPECT_NE(left.value, right.value);  // the turn loads one wheel and lifts the other
+  }
+}
+
 TEST(TyreFactor, AnAbsurdTrialSlipStaysFiniteAndPositive) {
   // A solver may try the bounds: a braking slip coefficient of 1 on a hard stop would make
   // kappa beyond -1 and the wheel's circumference infinite or negative; the slip is held at half

@@ -212,6 +212,12 @@ inline double drive_rear_share(const VehicleBody& body) {
   return 1.0;
 }
 
+// The magic formula sin(C atan(u)) = x inverted for u, times C: C tan(asin(x) / C), which is
+// x (1 + (1 / 6 + 1 / (3 C^2)) x^2 + ...). Both the slip curve and the lateral curve use it.
+inline double magic_formula_inverse(double x, double shape) {
+  return shape * std::tan(std::asin(x) / shape);
+}
+
 // The slip curve's bend: the slip that transmits a force F on a load F_z, over its linear part
 // F / (C_k F_z). The magic formula F = mu F_z sin(C atan(B k)) with B = C_k / (C mu), inverted,
 // gives k = tan(asin(x) / C) / B at x = F / (mu F_z), so the bend is C tan(asin(x) / C) / x:
@@ -220,8 +226,7 @@ inline double drive_rear_share(const VehicleBody& body) {
 inline double slip_curve_bend(double force_over_load, const VehicleBody& body) {
   const double x = std::min(std::abs(force_over_load) / body.friction, 0.99);
   if (x < 1e-6) return 1.0;
-  const double c = body.slip_curve_shape;
-  return c * std::tan(std::asin(x) / c) / x;
+  return magic_formula_inverse(x, body.slip_curve_shape) / x;
 }
 
 // The force over load that a wheel carrying axle_share of its axle's pair can transmit: at most
@@ -237,9 +242,9 @@ inline double grip_limited(double force_over_load, double axle_share, const Vehi
 // lateral force over load y: the lateral magic formula inverted (B = C_a / (C mu)), its force held
 // below the grip as slip_curve_bend holds the longitudinal one.
 inline double slip_angle_rad(double force_over_load, double stiffness, const VehicleBody& body) {
-  const double c = body.lateral_curve_shape, mu = body.friction;
+  const double mu = body.friction;
   const double x = std::clamp(force_over_load / mu, -0.99, 0.99);
-  return std::tan(std::asin(x) / c) * c * mu / stiffness;
+  return magic_formula_inverse(x, body.lateral_curve_shape) * mu / stiffness;
 }
 
 // What the front tyres' lateral force takes from the car's forward motion, per unit mass
@@ -286,27 +291,39 @@ inline double cornering_drag_mps2(const DrivingState& state, const VehicleBody& 
   return drag;
 }
 
-// d(c_i,eff / c_i) / d coefficients at this state, for one wheel (zero for the side slip).
+// What both rear wheels' regressors share at one state, per vehicle mass: the forward force the
+// tyres transmit, and the body's forward acceleration that it leaves (which moves the loads).
+struct AxleForces {
+  double tractive_mps2, forward_mps2;
+};
+inline AxleForces axle_forces(const DrivingState& state, const VehicleBody& body) {
+  const RoadResistance road = road_resistance(body, state.speed_mps);
+  const double drag = road.drag_mps2, rolling = road.rolling_mps2;
+  const double cornering = cornering_drag_mps2(state, body);
+  // A force the log gives is the tyres' own, without the accelerometer's noise; what is left of
+  // it beyond the resistances accelerates the body and moves its load.
+  if (state.force_given()) {
+    const double tractive = state.drive_force_n / body.mass_kg;
+    return {tractive, tractive - drag - rolling - cornering};
+  }
+  const double f_x = state.specific_force_x_mps2;
+  return {f_x + drag + rolling + cornering, f_x};
+}
+
+// d(c_i,eff / c_i) / d coefficients at this state, for one wheel (zero for the side slip), given
+// the state's axle_forces.
 inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wheel,
-                                         const VehicleBody& body) {
+                                         const VehicleBody& body, const AxleForces& forces) {
   const double side = wheel == RearWheel::kLeft ? 1.0 : -1.0;
   const double v = state.speed_mps, w = state.yaw_rate_radps;
   const double a_x = state.longitudinal_mps2;
   const double drive = a_x > 0.0 ? -a_x : 0.0, brake = a_x < 0.0 ? -a_x : 0.0;
   const double turn = side * state.lateral_mps2();
-  // Physical: per vehicle mass, the wheel's load and the force its axle transmits.
+  // Physical: per vehicle mass, the wheel's load and the force its axle transmits. The lateral
+  // force is the accelerometer's, not v w: where the car slides (a fishtail) the two part, and
+  // the tyres carry what the accelerometer reads.
   const double L = body.wheelbase_m, h = body.cg_height_m;
-  const RoadResistance road = road_resistance(body, v);
-  const double drag = road.drag_mps2, rolling = road.rolling_mps2;
-  // The lateral force is the accelerometer's, not v w: where the car slides (a fishtail) the two
-  // part, and the tyres carry what the accelerometer reads.
-  const double cornering = cornering_drag_mps2(state, body);
-  // A force the log gives is the tyres' own, without the accelerometer's noise; what is left of
-  // it beyond the resistances accelerates the body and moves its load.
-  const bool given = state.force_given();
-  const double tractive = given ? state.drive_force_n / body.mass_kg
-                                : state.specific_force_x_mps2 + drag + rolling + cornering;
-  const double f_x = given ? tractive - drag - rolling - cornering : state.specific_force_x_mps2;
+  const double tractive = forces.tractive_mps2, f_x = forces.forward_mps2;
   const double f_y = state.specific_force_y_mps2;
   const double static_load = 0.5 * kGravityMps2 * body.rear_axle_load_share;
   const double load_change =
@@ -328,6 +345,11 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
       .finished();
 }
 
+inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wheel,
+                                         const VehicleBody& body) {
+  return tyre_regressors(state, wheel, body, axle_forces(state, body));
+}
+
 // d beta / d k_side_slip: the lateral specific force.
 inline double side_slip_regressor(const DrivingState& state) { return state.specific_force_y_mps2; }
 
@@ -341,9 +363,7 @@ struct TyreFactor {
   double value;
   TyreModel::Vector gradient;
 };
-inline TyreFactor tyre_factor_with_gradient(const TyreModel& model, const DrivingState& state,
-                                            RearWheel wheel, const VehicleBody& body) {
-  const TyreModel::Vector x = tyre_regressors(state, wheel, body);
+inline TyreFactor tyre_factor_at_regressors(const TyreModel& model, const TyreModel::Vector& x) {
   const TyreModel::Vector k = model.coefficients();
   TyreModel::Vector slip = TyreModel::Vector::Zero();
   slip(kDriveSlipCoefficient) = x(kDriveSlipCoefficient);
@@ -361,6 +381,24 @@ inline TyreFactor tyre_factor_with_gradient(const TyreModel& model, const Drivin
   TyreModel::Vector gradient = rest / (1.0 + held);
   if (held == kappa) gradient += numerator / ((1.0 + held) * (1.0 + held)) * slip;
   return {numerator / (1.0 + held), gradient};
+}
+
+inline TyreFactor tyre_factor_with_gradient(const TyreModel& model, const DrivingState& state,
+                                            RearWheel wheel, const VehicleBody& body) {
+  return tyre_factor_at_regressors(model, tyre_regressors(state, wheel, body));
+}
+
+// Both rear wheels' factors at one state, its axle forces (and their cornering drag) computed once.
+struct RearTyreFactors {
+  TyreFactor left, right;
+};
+inline RearTyreFactors rear_tyre_factors_with_gradient(const TyreModel& model,
+                                                       const DrivingState& state,
+                                                       const VehicleBody& body) {
+  const AxleForces forces = axle_forces(state, body);
+  return {
+      tyre_factor_at_regressors(model, tyre_regressors(state, RearWheel::kLeft, body, forces)),
+      tyre_factor_at_regressors(model, tyre_regressors(state, RearWheel::kRight, body, forces))};
 }
 
 inline double tyre_factor(const TyreModel& model, const DrivingState& state, RearWheel wheel,
