@@ -265,6 +265,7 @@ sim::Scenario parse_scenario(const std::string& yaml_text, const std::string& fi
       dynamics->read("kinematic_below_mps", d.kinematic_below_mps, 0.5, 20.0);
       dynamics->read("step_hz", d.step_hz, 1000.0, 1e5);
       dynamics->read("control_hz", d.control_hz, 1.0, 1e4);
+      dynamics->read("actuator_time_constant_s", d.actuator_time_constant_s, 0.0, 2.0);
       dynamics->reject_unknown_keys();
     }
     vehicle->reject_unknown_keys();
@@ -390,6 +391,7 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("kinematic_below_mps", d.kinematic_below_mps);
   key("step_hz", d.step_hz);
   key("control_hz", d.control_hz);
+  key("actuator_time_constant_s", d.actuator_time_constant_s);
   out << YAML::EndMap << YAML::EndMap;
   out << YAML::Key << "sensors" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "gnss" << YAML::Value << YAML::BeginMap;

@@ -26,7 +26,7 @@ State step_state(const State& s, const Derivative& d, double h) {
 // Controls held over a control period.
 struct Controls {
   double steer_rad;
-  double force_n;  // total longitudinal tyre force command (signed, body x)
+  double force_n;  // total longitudinal tyre force (signed, body x), after the actuators' lag
   Pitch pitch;     // of the road under the car: climbing takes m g sin(pitch) of the force
 };
 
@@ -254,6 +254,10 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
   double progress_m = 0.0;
   const std::vector<double> cusps_m = path.direction_changes_m();
   Controls controls{0.0, 0.0, Pitch(grade ? grade(0.0) : 0.0)};
+  // The force the driver commands; the tyres get it through the actuators' lag, step by step.
+  double commanded_force_n = 0.0;
+  const double tau = config.actuator_time_constant_s;
+  const double follow = tau > 0.0 ? -std::expm1(-h / tau) : 1.0;
 
   for (std::size_t k = 0; k <= steps; ++k) {
     const double t = static_cast<double>(k) * h;
@@ -304,9 +308,10 @@ std::unique_ptr<MotionTruth> simulate_vehicle_dynamics(const Path& path,
       // The driver holds the speed on a hill: the slope's share of the weight is driven (or
       // braked) on top.
       controls.pitch = Pitch(grade ? grade(progress_m) : 0.0);
-      controls.force_n = config.mass_kg * acc + vehicle.resistance_n(s.vx) +
-                         config.mass_kg * kGravityMps2 * controls.pitch.sin;
+      commanded_force_n = config.mass_kg * acc + vehicle.resistance_n(s.vx) +
+                          config.mass_kg * kGravityMps2 * controls.pitch.sin;
     }
+    controls.force_n += follow * (commanded_force_n - controls.force_n);
 
     double ay = 0.0;
     const Derivative d1 = vehicle.derivative(s, controls, &ay);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -352,6 +353,27 @@ TEST(RealisticSimulator, FreeRollingRearWheelsDoNotSlip) {
       realistic_errors("circuit", false, true, false, false, drivetrain(Drivetrain::kRear, 0.65));
   EXPECT_GT(braking.max_heading_rad, 1e-6);
   EXPECT_LT(braking.max_heading_rad, rear.max_heading_rad);
+}
+
+// The drive's and the brakes' force follow the driver's command through a first-order lag: over
+// one 20 ms wheel sample it moves by at most 1 - exp(-0.02 / tau) of the command's step (18 % at
+// tau = 0.1 s), where at once (tau = 0) a brake's onset steps the whole way between two samples.
+TEST(RealisticSimulator, TheForceFollowsTheCommandThroughTheActuatorsLag) {
+  const auto largest_step_over_range = [](double tau_s) {
+    const TempLogDir dir;
+    Scenario scenario = load_scenario("circuit");
+    scenario.route.laps = 1;
+    scenario.wheels.drive_force_sigma_n = 0.0;
+    scenario.dynamics.actuator_time_constant_s = tau_s;
+    const std::vector<double> force = simulate_and_read(scenario, dir).log.wheels.drive_force_n;
+    double step = 0.0;
+    for (std::size_t k = 1; k < force.size(); ++k)
+      step = std::max(step, std::abs(force[k] - force[k - 1]));
+    const auto [low, high] = std::minmax_element(force.begin(), force.end());
+    return step / (*high - *low);
+  };
+  EXPECT_GT(largest_step_over_range(0.0), 0.5);
+  EXPECT_LT(largest_step_over_range(0.1), 1.0 - std::exp(-0.02 / 0.1));
 }
 
 TEST(RealisticSimulator, SteadyRollingCircumferenceHasTheDriveSlipOfTheResistance) {

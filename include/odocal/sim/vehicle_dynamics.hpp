@@ -54,6 +54,12 @@ struct VehicleDynamicsConfig {
   double kinematic_below_mps = 3.0;  // slip angles are singular at standstill
   double step_hz = 1000.0;
   double control_hz = 100.0;
+  // The drive's and the brakes' force follow the driver's command through a first-order lag of
+  // this time constant, s: an engine's torque and a brake's pressure build over a tenth of a
+  // second, never in a step. 0: at once, a step at every control tick (odocal before
+  // 2026-12-05, whose sensors then sampled a force that jumps exactly at their sample times;
+  // docs/simulator.md, "The actuators' lag").
+  double actuator_time_constant_s = 0.1;
 };
 
 struct StaticRearRadii {
