@@ -390,7 +390,11 @@ def tyre_models(report):
                  "free and slip only under the brakes' rear share); and on the ideal runs, where "
                  "`auto` must keep the plain model. Every estimate is scored "
                  "(`max_sigma_circumference_m: 0.01`, since the tyre models' σ is above the "
-                 "default 1 mm refusal threshold). DR: the whole log dead-reckoned from the true "
+                 "default 1 mm refusal threshold), unjudged (`judge_model_adequacy: false`, as "
+                 "the paper's comparison scores the estimators): judged, as `calibrate` runs by "
+                 "default, the regression terms chosen by hand carry their gap to the physical "
+                 "terms' circumferences in their σ (docs/tyre-model.md, \"Chosen by hand\"), "
+                 "which the `extended` rows' σ here does not. DR: the whole log dead-reckoned from the true "
                  "start pose with the estimate and its tyre model, against the truth. Time: one "
                  "whole calibration on this machine.")
     if any(row["mode"].endswith("grip-sharing driver") for row in summary["rows"]):
