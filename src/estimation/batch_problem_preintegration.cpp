@@ -192,7 +192,7 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
     double distance = 0.0;
     for (std::size_t f = 0; f < interval->fixes.size(); ++f)
       distance += interval->weights_s[f] * log_.gnss.speed_mps[interval->fixes[f]];
-    r.shares.push_back({1.0, distance, 0.0});
+    r.shares.push_back({1.0, distance, 0.0, 0.0});
     return r;
   }
   // The wheels' yaw rate over about half a second around each fix: one sample's is quantised (one
@@ -210,7 +210,15 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
     while (lo > 0 && time_of(s) - time_of(lo - 1) <= kYawRateHalfWindowS) --lo;
     while (hi < last && time_of(hi + 1) - time_of(s + 1) <= kYawRateHalfWindowS) ++hi;
     const double yaw_rate = (seg.delta[hi].z() - seg.delta[lo].z()) / (time_of(hi) - time_of(lo));
-    r.shares.push_back({interval->weights_s[f], log_.gnss.speed_mps[j], yaw_rate});
+    // The side slip's regressor over the same samples (each the accelerometer over one increment);
+    // without tyre terms there is no side slip.
+    double lateral = 0.0;
+    if (tyre_fitted()) {
+      for (std::size_t m = lo + 1; m <= hi; ++m)
+        lateral += side_slip_regressor(states_[seg.first_sample + m]);
+      lateral /= static_cast<double>(hi - lo);
+    }
+    r.shares.push_back({interval->weights_s[f], log_.gnss.speed_mps[j], yaw_rate, lateral});
   }
   return r;
 }

@@ -17,11 +17,13 @@
 namespace odocal::batch {
 
 // One fix's share of an interval's Doppler distance: its weight in the integral of the linearly
-// interpolated speed, its speed, and the wheels' yaw rate there (for the antenna's lever arm).
+// interpolated speed, its speed, and the wheels' yaw rate and the side slip's regressor (the
+// lateral specific force) there, for the antenna's lever arm.
 struct DopplerShare {
   double weight_s{};
   double speed_mps{};
   double yaw_rate_radps{};
+  double side_slip_regressor{};
 };
 
 // The measured side of an interval [begin, end]: every fix from the last one at or before begin
@@ -47,9 +49,13 @@ std::optional<DopplerInterval> doppler_interval(const GnssStream& gnss, double b
 // factor's part not linear in k), x_w their sum weighted by each increment's factor gradient, q_w
 // the keyframes' count errors. The wheels roll at the side slip angle beta = k_side_slip f_y from
 // the course, so the ground is longer by 1 / cos(beta): z_w, the revolutions weighted by f_y^2 / 2,
-// times k^2 (to second order). The Doppler speed is the antenna's: with a lever arm l and yaw rate
-// w, the reference point's speed is w l_y + sqrt(|v|^2 - (w l_x)^2) (its side slip neglected here:
-// the lever's across-track speed is small beside the speed). A fix stamped t reports the speed at t
+// times k^2 (to second order). The Doppler speed is the antenna's: with the lever arm l in the
+// frame of the reference point's velocity (the body's turned by the side slip beta: along it
+// l_v = l_x cos beta + l_y sin beta, left of it l_n = l_y cos beta - l_x sin beta) and yaw rate w,
+// the antenna moves at (V - w l_n, w l_v) in that frame, so the reference point's speed is
+// V = w l_n + sqrt(|v|^2 - (w l_v)^2), exactly. Left out, the side slip's w l_x beta read as a
+// lever arm about k_side_slip v^2 short (some 8 cm at the urban drive's 4 m/s turns, RTK fixes
+// 2 m ahead of the axle), and its residual followed v^2. A fix stamped t reports the speed at t
 // - latency: the fixes are those of the interval shifted by the latency the residual is built at,
 // latency_lin, and the rest of it is taken to first order: the interval's true distance is the
 // integral plus (latency - latency_lin) x (speed at end - speed at begin).
@@ -78,13 +84,20 @@ struct SpeedResidual {
           half_side_slip_revolutions[static_cast<std::size_t>(w)] * side_slip * side_slip;
       wheels += params[w] * revolutions;
     }
+    using std::cos;
+    using std::sin;
     T doppler = (latency[0] - latency_lin_s) * speed_change_mps;
+    const T& side_slip = params[3 + kSideSlipCoefficient];
     for (const DopplerShare& share : shares) {
-      const T across = share.yaw_rate_radps * lever[0];
+      const T beta = side_slip * share.side_slip_regressor;
+      const T cos_beta = cos(beta), sin_beta = sin(beta);
+      const T along = lever[0] * cos_beta + lever[1] * sin_beta;
+      const T left = lever[1] * cos_beta - lever[0] * sin_beta;
+      const T across = share.yaw_rate_radps * along;
       const T squared = share.speed_mps * share.speed_mps - across * across;
       const T floor(0.25 * share.speed_mps * share.speed_mps);  // a lever arm far beyond a car's
-      doppler += share.weight_s *
-                 (share.yaw_rate_radps * lever[1] + sqrt(squared > floor ? squared : floor));
+      doppler +=
+          share.weight_s * (share.yaw_rate_radps * left + sqrt(squared > floor ? squared : floor));
     }
     residual[0] = (wheels - doppler) / sigma_m;
     return true;

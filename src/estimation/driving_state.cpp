@@ -1,6 +1,7 @@
 #include "odocal/estimation/driving_state.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -86,15 +87,16 @@ class RunningMean {
   RunningIntegral from_, to_;
 };
 
-// Fills `states` (one per wheel sample) from the wheels' increments, each scaled by
-// `factor(k, wheel)`, which may read `states` as they were: every factor is taken before any
+// Fills `states` (one per wheel sample) from the wheels' increments, each scaled by its wheel's
+// entry of `factors(k)` ({left, right}; both at once, since they share the axle's forces), which
+// may read `states` as they were: every factor is taken before any
 // state is written (the batch measures the state again in place). Both passes run in parts on
 // `threads` (parallel_parts.hpp) with the same arithmetic in the same order as on one: the
 // running sums are added up on the caller, and each part's running means start from the
 // stream's beginning.
-template <class Factor>
+template <class Factors>
 void fill_states(const FittedWheels& wheels, const ImuStream* imu, const OdometryParams& params,
-                 double half_window_s, const Factor& factor, std::vector<DrivingState>& states,
+                 double half_window_s, const Factors& factors, std::vector<DrivingState>& states,
                  int threads) {
   states.resize(wheels.size());
   if (wheels.size() < 2) {
@@ -107,8 +109,8 @@ void fill_states(const FittedWheels& wheels, const ImuStream* imu, const Odometr
   batch::run_in_parts(wheels.size() - 1, threads, [&](std::size_t, std::size_t b, std::size_t e) {
     for (std::size_t k = b + 1; k <= e; ++k) {
       const WheelIncrement n = wheels.increment(k);
-      const WheelIncrement counted{n.rev_rl * factor(k, RearWheel::kLeft),
-                                   n.rev_rr * factor(k, RearWheel::kRight)};
+      const std::array<double, 2> factor = factors(k);
+      const WheelIncrement counted{n.rev_rl * factor[0], n.rev_rr * factor[1]};
       const BodyIncrement step = body_increment(counted, params);
       path.value[k] = step.distance_m;
       wheel_turn.value[k] = step.yaw_rad;
@@ -188,7 +190,11 @@ std::vector<DrivingState> driving_states(const FittedWheels& wheels, const ImuSt
                                          const OdometryParams& params, double half_window_s) {
   std::vector<DrivingState> states;
   fill_states(
-      wheels, imu, params, half_window_s, [](std::size_t, RearWheel) { return 1.0; }, states, 1);
+      wheels, imu, params, half_window_s,
+      [](std::size_t) {
+        return std::array{1.0, 1.0};
+      },
+      states, 1);
   return states;
 }
 
@@ -210,8 +216,9 @@ void measure_driving_states_again(const FittedWheels& wheels, const ImuStream* i
     throw std::invalid_argument("driving_states: one driving state per wheel sample");
   fill_states(
       wheels, imu, params, half_window_s,
-      [&](std::size_t sample, RearWheel wheel) {
-        return tyre_factor(model, states[sample], wheel, body);
+      [&](std::size_t sample) {
+        const RearTyreFactors both = rear_tyre_factors_with_gradient(model, states[sample], body);
+        return std::array{both.left.value, both.right.value};
       },
       states, batch::usable_threads(threads));
 }

@@ -123,6 +123,31 @@ TEST(SpeedResidual, TakesTheAntennaLeverArmOutOfATurn) {
   EXPECT_GT(std::abs(evaluate(residual, params)), 10.0);  // without the lever: 0.14 m off
 }
 
+TEST(SpeedResidual, TakesTheRearAxlesSideSlipOutOfTheLeverArm) {
+  // The reference point at 4 m/s along its course, which lies beta = k_side_slip f_y = -0.005 x 2
+  // rad left of the heading, turning at 0.5 rad/s for 1 s (the urban drive's corners); the antenna
+  // 2 m ahead and 0.3 m left moves at the reference point's velocity plus w x l, in the body frame.
+  const double v = 4.0, w = 0.5, k_side_slip = -0.005, f_y = 2.0, beta = k_side_slip * f_y;
+  const Eigen::Vector2d lever(2.0, 0.3);
+  const double antenna =
+      std::hypot(v * std::cos(beta) - w * lever.y(), v * std::sin(beta) + w * lever.x());
+  ParamsVector params = ParamsVector::Zero();
+  params(0) = params(1) = 2.0;
+  params(3 + kSideSlipCoefficient) = k_side_slip;
+  SpeedResidual residual;
+  residual.half_revolutions = {1.0, 1.0};  // 4 m of ground; the wheels' 1 / cos(beta) left out
+  residual.shares = {{0.5, antenna, w, f_y}, {0.5, antenna, w, f_y}};
+  residual.sigma_m = 0.001;
+  EXPECT_NEAR(evaluate(residual, params, lever), 0.0, 1e-9);
+  // Without the side slip the antenna's across-track speed is short by v beta: 4 mm in 4 m, as a
+  // lever arm some 8 cm shorter would leave it.
+  ParamsVector without = params;
+  without(3 + kSideSlipCoefficient) = 0.0;
+  EXPECT_GT(std::abs(evaluate(residual, without, lever)), 3.0);
+  EXPECT_NEAR(evaluate(residual, without, Eigen::Vector2d(lever.x() + k_side_slip * v * v, 0.3)),
+              0.0, 0.5);
+}
+
 TEST(SpeedResidual, TheLatencyShiftsTheIntegralByItsSpeedChange) {
   // A fix stamped t reports the speed at t - 0.1 s: over a second in which the speed rose by
   // 2 m/s the stamped integral is short by 0.2 m.
