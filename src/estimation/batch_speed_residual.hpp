@@ -72,22 +72,22 @@ struct SpeedResidual {
   template <typename T>
   bool operator()(const T* params, const T* lever, const T* latency, const T* count_a,
                   const T* count_b, T* residual) const {
+    using std::cos;
+    using std::sin;
     using std::sqrt;
+    // The wheels' ground and the antenna's speed both depend on it.
+    const T& side_slip = params[3 + kSideSlipCoefficient];
     T wheels(0.0);
     for (int w = 0; w < 2; ++w) {
       T revolutions =
           T(half_revolutions[static_cast<std::size_t>(w)]) + T(0.5) * (count_b[w] - count_a[w]);
       for (int j = 0; j < TyreModel::kCoefficients; ++j)
         revolutions += T(half_tyre_revolutions(w, j)) * params[3 + j];
-      const T& side_slip = params[3 + kSideSlipCoefficient];
       revolutions +=
           half_side_slip_revolutions[static_cast<std::size_t>(w)] * side_slip * side_slip;
       wheels += params[w] * revolutions;
     }
-    using std::cos;
-    using std::sin;
     T doppler = (latency[0] - latency_lin_s) * speed_change_mps;
-    const T& side_slip = params[3 + kSideSlipCoefficient];
     for (const DopplerShare& share : shares) {
       const T beta = side_slip * share.side_slip_regressor;
       const T cos_beta = cos(beta), sin_beta = sin(beta);

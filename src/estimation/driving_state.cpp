@@ -89,8 +89,8 @@ class RunningMean {
 
 // Fills `states` (one per wheel sample) from the wheels' increments, each scaled by its wheel's
 // entry of `factors(k)` ({left, right}; both at once, since they share the axle's forces), which
-// may read `states` as they were: every factor is taken before any
-// state is written (the batch measures the state again in place). Both passes run in parts on
+// may read `states` as they were: every factor is taken before any state is written (the batch
+// measures the state again in place). Both passes run in parts on
 // `threads` (parallel_parts.hpp) with the same arithmetic in the same order as on one: the
 // running sums are added up on the caller, and each part's running means start from the
 // stream's beginning.
