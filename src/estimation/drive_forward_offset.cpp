@@ -52,11 +52,16 @@ DriveForwardSums drive_forward_sums(const Log& log, const OdometryParams& nomina
   const auto first = std::lower_bound(imu.t_s.begin(), imu.t_s.end(), from_s) - imu.t_s.begin();
   const auto last = std::lower_bound(imu.t_s.begin(), imu.t_s.end(), to_s) - imu.t_s.begin();
   const auto begin = static_cast<std::size_t>(first), end = static_cast<std::size_t>(last);
-  // One stretch [start, k]: its trapezoid integrals, kept where both ends have a speed.
+  const auto speed_at = [&](std::size_t k) { return wheel_sums.speed(imu.t_s[k], kSpeedWindowS); };
+  // One stretch [start, stop]: its trapezoid integrals between the samples nearest its ends
+  // that have a speed. Moved in, not dropped: a chain break beside an end, or a speed window
+  // one rounding short of the wheels' first sample, would otherwise lose a whole drive.
   const auto add_stretch = [&](std::size_t start, std::size_t stop) {
+    while (start < stop && !speed_at(start)) ++start;
+    while (stop > start && !speed_at(stop)) --stop;
     const double t0 = imu.t_s[start], t1 = imu.t_s[stop];
     if (t1 - t0 < kMinStretchS) return;
-    const auto v0 = wheel_sums.speed(t0, kSpeedWindowS), v1 = wheel_sums.speed(t1, kSpeedWindowS);
+    const auto v0 = speed_at(start), v1 = speed_at(stop);
     if (!v0 || !v1) return;
     DriveForwardSums stretch;
     for (std::size_t k = start; k < stop; ++k) {

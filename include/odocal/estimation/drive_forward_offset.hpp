@@ -32,8 +32,9 @@ struct DriveForwardSums {
   void add(const DriveForwardSums& other);
 };
 
-// Over the IMU samples in [from_s, to_s): stretches of at least 5 s whose ends have the wheels'
-// speed (over 1 s at the nominal parameters, no chain break inside).
+// Over the IMU samples in [from_s, to_s): the stretches between IMU gaps, each from its first to
+// its last sample that has the wheels' speed (over 1 s at the nominal parameters, no chain break
+// inside), where that spans at least 5 s.
 DriveForwardSums drive_forward_sums(const Log& log, const OdometryParams& nominal, double from_s,
                                     double to_s);
 
