@@ -129,7 +129,10 @@ TEST(PhysicalTyreBatch, CalibratesARealisticUrbanDriveToTheCircumferenceAtRest) 
   for (const double estimate :
        {physical.estimate.circumference_rl_m, physical.estimate.circumference_rr_m}) {
     EXPECT_LT(std::abs(estimate - truth_m), 3.0 * physical.sigma_rl_m()) << physical.full_report();
-    EXPECT_LT(std::abs(estimate - truth_m), 0.002) << physical.full_report();
+    // +2.5 mm at a sigma of 2.9 mm since the gyro's turn is the trapezoid of its samples
+    // (2026-12-06): -1.3 mm before, where the gyro's half-sample lag (about -3.8 mm on the urban
+    // drive) offset this body's own error.
+    EXPECT_LT(std::abs(estimate - truth_m), 0.003) << physical.full_report();
   }
   // The accelerometer's noise, which the physical terms carry into dead reckoning, is found and
   // its walk stated (its size against Monte Carlo: accelerometer_walk_test.cpp); the plain model
@@ -333,9 +336,11 @@ TEST(PhysicalTyreBatch, AStatedFrontDriveNarrowsTheHeldDriveSlipsShare) {
         summary->estimate.circumference_rl_m - drive.true_params.circumference_rl_m;
     EXPECT_LT(std::abs(error), 3.0 * summary->sigma_rl_m()) << summary->full_report();
   }
-  // The statement moves the drive slip's held value a little, and the circumferences with it.
+  // The statement moves the drive slip's held value a little, and the circumferences with it:
+  // -1.04 mm stated, +0.74 mm unstated at sigmas of 2.18 / 3.02 mm (-2.04 / -2.82 mm while the
+  // gyro's turn lagged by half a sample, before 2026-12-06).
   EXPECT_NEAR(stated.estimate.circumference_rl_m, unstated.estimate.circumference_rl_m,
-              0.5 * unstated.sigma_rl_m());
+              0.75 * unstated.sigma_rl_m());
   EXPECT_GT(unstated.held_sigma_m[0], 0.5 * unstated.sigma_rl_m());
   EXPECT_LT(stated.held_sigma_m[0], 0.5 * unstated.held_sigma_m[0]);
   EXPECT_LT(stated.sigma_rl_m(), 0.75 * unstated.sigma_rl_m());
