@@ -281,7 +281,11 @@ def reading(report):
                 f"seed 1, iterative: -0.22 / -0.085 / -0.036 mm at "
                 f"σ_GPS 3 / 1 / 0.3 m, measured with `odocal simulate --ideal --wear-rl 1.5 "
                 f"--wear-rr 1 --gnss-sigma S` and `odocal calibrate`; the RTS-smoothed reference, `--reference smoother`, "
-                f"cuts it to ~0.1 mm, docs/calibration.md).")
+                f"cuts it to ~0.1 mm, docs/calibration.md). Most of it is that filter's IMU held "
+                f"from each sample to the next, half a sample late in every turn: interpolated "
+                f"between samples the offset was -0.06 / -0.02 / +0.08 mm on these runs "
+                f"(docs/batch-calibration.md, \"The gyro's turn over a keyframe interval\"; not "
+                f"landed).")
         report.write(
             f"- **Far from the limit.** The data allow σ ≈ {it['crlb_sigma_mm']:.3f} mm per "
             f"wheel; the methods' RMS errors are {it['rms_over_crlb']:.0f}× "
