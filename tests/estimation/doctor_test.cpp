@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -109,16 +110,9 @@ TEST(DoctorRealisticDrive, AnAccelerometerOffsetIsSeenAtStandstill) {
 
 // Every CSV of a log directory without its rows stamped before `from_s` (the first column).
 void drop_rows_before(const fs::path& log, double from_s) {
-  for (const fs::directory_entry& entry : fs::directory_iterator(log)) {
-    if (entry.path().extension() != ".csv") continue;
-    std::istringstream in(read_text_file(entry.path().string()));
-    std::string line, kept;
-    std::getline(in, line);
-    kept = line + "\n";
-    while (std::getline(in, line))
-      if (std::stod(line.substr(0, line.find(','))) >= from_s) kept += line + "\n";
-    std::ofstream(entry.path()) << kept;
-  }
+  for (const fs::directory_entry& entry : fs::directory_iterator(log))
+    if (entry.path().extension() == ".csv")
+      testing::drop_rows_between(entry.path(), -std::numeric_limits<double>::infinity(), from_s);
 }
 
 // The built-in circuit stands 1.2 s at its start; cut to its last 0.3 s, too little to read the

@@ -46,6 +46,18 @@ void edit_csv(const fs::path& file, const std::function<void(Row&)>& edit,
   std::ofstream(file) << out;
 }
 
+void drop_rows_between(const fs::path& file, double from_s, double to_s) {
+  std::istringstream in(read_text_file(file.string()));
+  std::string line, out;
+  std::getline(in, line);
+  out = line + "\n";
+  while (std::getline(in, line)) {
+    const double t = std::stod(line.substr(0, line.find(',')));
+    if (t < from_s || t >= to_s) out += line + "\n";
+  }
+  std::ofstream(file) << out;
+}
+
 namespace {
 
 // Multiplies one number in the log's vehicle.yaml.
@@ -72,16 +84,7 @@ std::pair<double, double> time_span(const fs::path& file) {
 // Leaves out the rows of `file` whose time lies in [from, to), given as shares of its span.
 void drop_rows(const fs::path& file, double from_share, double to_share) {
   const auto [first, last] = time_span(file);
-  const double from = first + from_share * (last - first), to = first + to_share * (last - first);
-  std::istringstream in(read_text_file(file.string()));
-  std::string line, out;
-  std::getline(in, line);
-  out = line + "\n";
-  while (std::getline(in, line)) {
-    const double t = std::stod(line.substr(0, line.find(',')));
-    if (t < from || t >= to) out += line + "\n";
-  }
-  std::ofstream(file) << out;
+  drop_rows_between(file, first + from_share * (last - first), first + to_share * (last - first));
 }
 
 // Sets `column` of `count` rows from the middle of `file` on to `value`.

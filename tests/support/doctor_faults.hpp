@@ -19,6 +19,9 @@ using Row = std::map<std::string, double>;
 void edit_csv(const std::filesystem::path& file, const std::function<void(Row&)>& edit,
               std::vector<std::string> header = {});
 
+// Leaves out the rows of a CSV file whose time (its first column) lies in [from_s, to_s).
+void drop_rows_between(const std::filesystem::path& file, double from_s, double to_s);
+
 struct Fault {
   const char* name;
   const char* simulate;  // extra simulate flags
