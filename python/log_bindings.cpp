@@ -45,7 +45,9 @@ void bind_log(py::module_& m) {
       .def_readonly("circumference_rl_m", &VehicleConfig::circumference_rl_m)
       .def_readonly("circumference_rr_m", &VehicleConfig::circumference_rr_m)
       .def_readonly("ticks_per_rev", &VehicleConfig::ticks_per_rev)
-      .def_readonly("wheelbase_m", &VehicleConfig::wheelbase_m);
+      .def_readonly("wheelbase_m", &VehicleConfig::wheelbase_m)
+      .def_readonly("imu_x_m", &VehicleConfig::imu_x_m)
+      .def_readonly("imu_y_m", &VehicleConfig::imu_y_m);
 
   py::class_<WheelStream, std::unique_ptr<WheelStream, py::nodelete>> wheels(
       m, "WheelStream", "Rear wheel revolution increments (paper eq. 2)");

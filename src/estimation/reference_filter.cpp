@@ -79,8 +79,17 @@ class ReferenceEkf {
     return F;
   }
 
+  // Sample k is held until sample k + 1; the yaw rate's change over that hold moves an IMU that
+  // sits off the reference point (vehicle.yaml's imu_x_m, imu_y_m; the fixes are taken as the
+  // rear axle's, as everywhere in layer 1). Its steps add up to the rate's total change, so the
+  // gyro's noise in them does not accumulate in the velocity.
   void set_imu(std::size_t k) {
-    imu_ = {log_.imu->ax_mps2[k], log_.imu->ay_mps2[k], log_.imu->wz_radps[k]};
+    const ImuStream& imu = *log_.imu;
+    double wz_dot = 0.0;
+    if (k + 1 < imu.size() && imu.t_s[k + 1] > imu.t_s[k])
+      wz_dot = (imu.wz_radps[k + 1] - imu.wz_radps[k]) / (imu.t_s[k + 1] - imu.t_s[k]);
+    imu_ = {imu.ax_mps2[k], imu.ay_mps2[k], imu.wz_radps[k], wz_dot,
+            Eigen::Vector2d(log_.vehicle.imu_x_m, log_.vehicle.imu_y_m)};
   }
 
   // The GNSS and heading models select states (reference_position, reference_yaw: H = [0 I 0]),

@@ -276,6 +276,11 @@ SimulatedDrive simulate(const Scenario& scenario) {
   // What its owner knows of the car; the body's numbers are left to the defaults (a calibration
   // is not told the simulated car's load geometry).
   out.nominal_vehicle.body.drivetrain = scenario.dynamics.drivetrain;
+  // Where its IMU is mounted, as an owner knows: the realistic car's at its centre of gravity (the
+  // dynamics' accelerations are the body's there); the ideal mode's reads the rear axle's motion.
+  if (!scenario.ideal)
+    out.nominal_vehicle.imu_x_m =
+        scenario.vehicle.wheelbase_m - scenario.dynamics.cg_to_front_axle_m;
   if (scenario.wheels.output == WheelUnit::kTicks) {
     out.nominal_vehicle.ticks_per_rev = scenario.wheels.ticks_per_rev;
     if (scenario.wheels.counter_bits > 0)

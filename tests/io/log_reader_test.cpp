@@ -9,6 +9,7 @@
 #include <fstream>
 #include <numbers>
 
+#include "../support/run_cli.hpp"
 #include "../support/temp_log_dir.hpp"
 #include "odocal/error.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
@@ -407,6 +408,28 @@ TEST(VehicleConfigIo, ADrivetrainAloneIsStatedWithoutTheBodysNumbers) {
   EXPECT_NE(text.find("drivetrain: all"), std::string::npos) << text;
   EXPECT_EQ(text.find("mass_kg"), std::string::npos) << text;
   EXPECT_EQ(read_vehicle_config(dir.file("vehicle.yaml")).body.drivetrain, Drivetrain::kAll);
+}
+
+TEST(VehicleConfigIo, TheImusMountingIsWrittenWhereStatedAndReadBack) {
+  const TempLogDir dir;
+  VehicleConfig vehicle;
+  vehicle.track_width_m = 1.6;
+  vehicle.circumference_rl_m = vehicle.circumference_rr_m = 2.0;
+  write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
+  EXPECT_EQ(testing::read_text_file(dir.file("vehicle.yaml")).find("imu_"), std::string::npos);
+  vehicle.imu_x_m = 1.45;
+  vehicle.imu_y_m = -0.2;
+  write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
+  const VehicleConfig back = read_vehicle_config(dir.file("vehicle.yaml"));
+  EXPECT_EQ(back.imu_x_m, 1.45);
+  EXPECT_EQ(back.imu_y_m, -0.2);
+}
+
+TEST(LogReaderRejects, ImuMountedOffAnyVehicle) {
+  const TempLogDir dir;
+  dir.write("vehicle.yaml",
+            "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\nimu_x_m: 145\n");
+  expect_input_error(dir, {"vehicle.yaml", 4, "imu_x_m", "out of range"});
 }
 
 TEST(LogReaderRejects, BodyBeyondAnyVehicle) {

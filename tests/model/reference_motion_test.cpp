@@ -35,7 +35,10 @@ TEST(ReferenceMotion, JacobianMatchesNumericalAtZeroNearZeroAndRandomStates) {
     ReferenceState x;
     x << 100 * u(rng), 100 * u(rng), 30 * u(rng), 30 * u(rng), 4 * u(rng), 0.5 * u(rng),
         0.5 * u(rng), 0.05 * u(rng);
-    const ImuSample imu{5 * u(rng), 5 * u(rng), 0.8 * u(rng)};
+    ImuSample imu{5 * u(rng), 5 * u(rng), 0.8 * u(rng)};
+    for (const double dt : {0.001, 0.02, 0.5}) expect_motion_jacobian_matches(x, imu, dt);
+    imu.wz_dot_radps2 = 2 * u(rng);  // an IMU off the reference point
+    imu.lever_arm_m = Eigen::Vector2d(2 * u(rng), 0.5 * u(rng));
     for (const double dt : {0.001, 0.02, 0.5}) expect_motion_jacobian_matches(x, imu, dt);
   }
 }
@@ -64,6 +67,47 @@ TEST(ReferenceMotion, ConstantAccelerationAlongTheHeadingIsExact) {
   EXPECT_NEAR(x(1), start(1) + along * std::sin(yaw), 1e-9);
   EXPECT_NEAR(std::hypot(x(2), x(3)), v0 + a * t, 1e-12);
   EXPECT_DOUBLE_EQ(x(4), yaw);
+}
+
+// The rear axle on a circle of radius R at speed v, the IMU l ahead of it: the IMU's own circle
+// is wider and its acceleration points at the centre, (-w^2 l, v w) in the body frame. Taken at
+// the IMU's place, the reference point stays on the axle's circle; taken as the point's own, the
+// forward -w^2 l brakes it.
+TEST(ReferenceMotion, AnImuAheadOfThePointIsTakenToThePoint) {
+  const double radius = 10.0, v = 5.0, w = v / radius, l = 1.45, dt = 0.01;
+  const auto drive = [&](const Eigen::Vector2d& stated_lever_arm) {
+    ReferenceState x = ReferenceState::Zero();
+    x(2) = v;
+    ImuSample imu{-w * w * l, v * w, w};
+    imu.lever_arm_m = stated_lever_arm;
+    for (int k = 0; k < 300; ++k) x = predict_reference(x, imu, dt);
+    const double t = 300 * dt;
+    return Eigen::Vector2d(x(0) - radius * std::sin(w * t), x(1) - radius * (1.0 - std::cos(w * t)))
+        .norm();
+  };
+  EXPECT_LT(drive(Eigen::Vector2d(l, 0.0)), 0.01);
+  EXPECT_GT(drive(Eigen::Vector2d::Zero()), 0.5);
+}
+
+// A robot pivoting about the reference point, its yaw rate swelling and fading: an IMU l ahead
+// reads -w^2 l forward and dw/dt l to the left, and the point itself does not move. The rate's
+// change is the sample's forward difference, as the filter holds it.
+TEST(ReferenceMotion, APivotAboutThePointLeavesItWhereItIs) {
+  const double l = 0.8, dt = 0.02;
+  const auto rate = [](double t) { return 1.5 * std::sin(0.5 * t); };
+  const auto drive = [&](double stated_l) {
+    ReferenceState x = ReferenceState::Zero();
+    for (int k = 0; k < 300; ++k) {
+      const double t = k * dt, w = rate(t);
+      const double w_dot = (rate(t + dt) - w) / dt;
+      ImuSample imu{-w * w * l, 0.75 * std::cos(0.5 * t) * l, w, w_dot};
+      imu.lever_arm_m = Eigen::Vector2d(stated_l, 0.0);
+      x = predict_reference(x, imu, dt);
+    }
+    return x.head<2>().norm();
+  };
+  EXPECT_LT(drive(l), 0.02);
+  EXPECT_GT(drive(0.0), 0.15);
 }
 
 TEST(ReferenceMotion, BiasesAreSubtractedFromTheImu) {

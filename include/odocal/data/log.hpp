@@ -28,6 +28,10 @@ struct VehicleConfig {
   std::optional<double> circumference_fl_m;
   std::optional<double> circumference_fr_m;
   std::optional<std::string> vehicle_id;  // which vehicle of a fleet (letters, digits, . _ -)
+  // Where imu.csv's sensor sits, forward and left of the rear axle's centre (m). Layer 1 takes
+  // the accelerometer to that point: one ahead of the axle reads each turn's -w^2 x and dw/dt x.
+  double imu_x_m = 0.0;
+  double imu_y_m = 0.0;
   // A calibrated condition-dependent circumference (docs/tyre-model.md); dead reckoning applies
   // it. Absent: the plain model.
   std::optional<TyreModel> tyre_model;

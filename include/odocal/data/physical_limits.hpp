@@ -29,6 +29,8 @@ inline constexpr PhysicalRange kSlipCurveShape{1.0, 2.0};
 // A tyre's cornering stiffness per unit load, 1/rad: a road tyre's 8-30, a racing slick's more.
 inline constexpr PhysicalRange kCorneringStiffnessPerLoad{3.0, 60.0};
 inline constexpr PhysicalRange kAxleForceShare{0.0, 1.0};
+// Where a sensor is mounted from the rear axle's centre: anywhere on a vehicle up to a truck's.
+inline constexpr PhysicalRange kMountingOffsetM{-20.0, 20.0};
 
 // Log streams. Times are seconds on any clock up to 300 years from its zero (Unix time fits);
 // positions are local metres (UTM northings fit); accelerations reach 50 g and rates 50 rad/s

@@ -23,6 +23,11 @@ struct ImuSample {
   double ax_mps2{};
   double ay_mps2{};
   double wz_radps{};
+  // The yaw rate's change over the sample's hold (rad/s^2) and where the IMU sits in the body
+  // frame from the reference point (m): an IMU ahead of the point reads its turn's -w^2 x forward
+  // and dw/dt x to the left, which are not the point's.
+  double wz_dot_radps2{};
+  Eigen::Vector2d lever_arm_m = Eigen::Vector2d::Zero();
 };
 
 // The state dt_s later: p'' = R(yaw_mid) (a - b_a), yaw' = w - b_g, with the acceleration rotated
@@ -48,7 +53,11 @@ inline constexpr int kReferenceYawIndex = 4;
 inline ReferenceState predict_reference(const ReferenceState& x, const ImuSample& imu, double dt_s,
                                         ReferenceJacobian* J_x_x) {
   const double dt = dt_s;
-  const double ax = imu.ax_mps2 - x(5), ay = imu.ay_mps2 - x(6), wz = imu.wz_radps - x(7);
+  const double wz = imu.wz_radps - x(7);
+  const double lx = imu.lever_arm_m.x(), ly = imu.lever_arm_m.y();
+  // The reference point's acceleration: the IMU's less dw/dt x l and w x (w x l) = -w^2 l.
+  const double ax = imu.ax_mps2 - x(5) + imu.wz_dot_radps2 * ly + wz * wz * lx;
+  const double ay = imu.ay_mps2 - x(6) - imu.wz_dot_radps2 * lx + wz * wz * ly;
   const double yaw_mid = x(4) + 0.5 * wz * dt;
   const double c = std::cos(yaw_mid), s = std::sin(yaw_mid);
   const Eigen::Vector2d a_world(c * ax - s * ay, s * ax + c * ay);
@@ -70,8 +79,11 @@ inline ReferenceState predict_reference(const ReferenceState& x, const ImuSample
     J.block<2, 1>(2, 4) = dt * d_a_d_yaw;
     J.block<2, 2>(0, 5) = -0.5 * dt * dt * rotation;
     J.block<2, 2>(2, 5) = -dt * rotation;
-    J.block<2, 1>(0, 7) = -0.25 * dt * dt * dt * d_a_d_yaw;
-    J.block<2, 1>(2, 7) = -0.5 * dt * dt * d_a_d_yaw;
+    // The gyro bias turns the midpoint heading and, through w^2 l, the body-frame acceleration.
+    const Eigen::Vector2d d_a_d_bias =
+        -0.5 * dt * d_a_d_yaw - 2.0 * wz * (rotation * imu.lever_arm_m);
+    J.block<2, 1>(0, 7) = 0.5 * dt * dt * d_a_d_bias;
+    J.block<2, 1>(2, 7) = dt * d_a_d_bias;
     J(4, 7) = -dt;
   }
   return next;
