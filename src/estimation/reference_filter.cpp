@@ -46,7 +46,7 @@ class ReferenceEkf {
     const double dt = t_s - t_s_;
     if (dt <= 0.0) return Covariance::Identity();
     Covariance F;
-    x_ = predict_reference(x_, imu_, dt, &F);
+    x_ = predict_reference(x_, imu_at(0.5 * (t_s_ + t_s)), dt, &F);
     // F = I + E with E on rows 0-4 and columns 2-7 only.
     Coupling E = F.block<5, 6>(0, 2);
     E(2, 0) -= 1.0;
@@ -79,17 +79,35 @@ class ReferenceEkf {
     return F;
   }
 
-  // Sample k is held until sample k + 1; the yaw rate's change over that hold moves an IMU that
-  // sits off the reference point (vehicle.yaml's imu_x_m, imu_y_m; the fixes are taken as the
-  // rear axle's, as everywhere in layer 1). Its steps add up to the rate's total change, so the
-  // gyro's noise in them does not accumulate in the velocity.
+  // Sample k is in effect until sample k + 1, and the readings run linear between the two: held
+  // instead, the gyro's turn would lag by half a sample (the batch's gyro is its trapezoid too).
+  // The yaw rate's slope moves an IMU that sits off the reference point (vehicle.yaml's imu_x_m,
+  // imu_y_m; the fixes are taken as the rear axle's, as everywhere in layer 1); its steps add up
+  // to the rate's total change, so the gyro's noise in them does not accumulate in the velocity.
   void set_imu(std::size_t k) {
     const ImuStream& imu = *log_.imu;
-    double wz_dot = 0.0;
-    if (k + 1 < imu.size() && imu.t_s[k + 1] > imu.t_s[k])
-      wz_dot = (imu.wz_radps[k + 1] - imu.wz_radps[k]) / (imu.t_s[k + 1] - imu.t_s[k]);
-    imu_ = {imu.ax_mps2[k], imu.ay_mps2[k], imu.wz_radps[k], wz_dot,
+    imu_ = {imu.ax_mps2[k], imu.ay_mps2[k], imu.wz_radps[k], 0.0,
             Eigen::Vector2d(log_.vehicle.imu_x_m, log_.vehicle.imu_y_m)};
+    imu_t_s_ = imu.t_s[k];
+    imu_span_s_ = 0.0;
+    if (k + 1 < imu.size() && imu.t_s[k + 1] > imu.t_s[k]) {
+      imu_span_s_ = imu.t_s[k + 1] - imu.t_s[k];
+      imu_slope_ = {(imu.ax_mps2[k + 1] - imu.ax_mps2[k]) / imu_span_s_,
+                    (imu.ay_mps2[k + 1] - imu.ay_mps2[k]) / imu_span_s_,
+                    (imu.wz_radps[k + 1] - imu.wz_radps[k]) / imu_span_s_};
+      imu_.wz_dot_radps2 = imu_slope_.wz_radps;
+    }
+  }
+
+  // The IMU's reading at t_s (a step's middle): the midpoint rule is then exact for the velocity.
+  ImuSample imu_at(double t_s) const {
+    if (imu_span_s_ <= 0.0) return imu_;
+    const double elapsed = std::clamp(t_s - imu_t_s_, 0.0, imu_span_s_);
+    ImuSample reading = imu_;
+    reading.ax_mps2 += elapsed * imu_slope_.ax_mps2;
+    reading.ay_mps2 += elapsed * imu_slope_.ay_mps2;
+    reading.wz_radps += elapsed * imu_slope_.wz_radps;
+    return reading;
   }
 
   // The GNSS and heading models select states (reference_position, reference_yaw: H = [0 I 0]),
@@ -158,7 +176,9 @@ class ReferenceEkf {
   double t_s_{};
   State x_ = State::Zero();
   Covariance P_ = Covariance::Identity();
-  ImuSample imu_;
+  ImuSample imu_;        // the sample in effect
+  ImuSample imu_slope_;  // its readings' change per second until the next
+  double imu_t_s_ = 0.0, imu_span_s_ = 0.0;
 };
 
 // Initial yaw without wheel data: the first heading sample; else the course of a straight-line

@@ -8,6 +8,7 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <random>
+#include <span>
 
 #include "odocal/estimation/circumference_ls.hpp"
 #include "odocal/estimation/odometry_ekf.hpp"
@@ -159,6 +160,36 @@ TEST(ReferenceFilter, WorksWithoutImuAndHeadingFromTheGnssCourse) {
       trajectory_errors(timed(log, reference), reference_from_poses(*log.truth, "truth"));
   EXPECT_LT(errors.mean_position_m, 2.0);
   EXPECT_LT(errors.mean_heading_rad, rad_from_deg(8.0));  // a coarse fallback: docs/calibration.md
+}
+
+// A gyro sample held until the next lags the turn by half a sample: the yaw would trail the truth
+// by w dt / 2 (10 ms of yaw rate at 50 Hz). Read linear between its samples, it does not: the
+// regression of the yaw error on the true yaw rate has no slope (noise-free IMU, ideal circuit).
+TEST(ReferenceFilter, TheYawDoesNotLagTheGyrosTurn) {
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;
+  scenario.route.laps = 1;
+  scenario.imu.acc_sigma_mps2 = 0.0;
+  scenario.imu.yaw_rate_sigma_radps = 0.0;
+  const Log log = simulated_log(sim::simulate(scenario), /*with_truth=*/true);
+  ReferenceOptions options;
+  options.mode = ReferenceMode::kSmoother;
+  const ReferenceTrajectory reference = compute_reference(log, options);
+  const std::span<const double> times = reference.times(log.wheels);
+  const PoseStream& truth = *log.truth;
+  double error_rate = 0.0, rate_rate = 0.0;
+  std::size_t j = 1;
+  for (std::size_t i = 0; i < reference.poses.size(); ++i) {
+    while (j + 1 < truth.size() && truth.t_s[j] < times[i]) ++j;
+    if (j + 1 >= truth.size() || std::abs(truth.t_s[j] - times[i]) > 1e-9) continue;
+    const double rate = angle_difference(truth.pose[j + 1].z(), truth.pose[j - 1].z()) /
+                        (truth.t_s[j + 1] - truth.t_s[j - 1]);
+    error_rate += angle_difference(reference.poses[i].z(), truth.pose[j].z()) * rate;
+    rate_rate += rate * rate;
+  }
+  ASSERT_GT(rate_rate, 0.0);
+  const double lag_s = -error_rate / rate_rate;  // held samples: 0.0107 s; linear: 0.0015 s
+  EXPECT_LT(std::abs(lag_s), 0.003);
 }
 
 // The realistic car's IMU sits at its centre of gravity, 1.45 m ahead of the rear axle whose

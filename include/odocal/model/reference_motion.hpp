@@ -5,7 +5,8 @@
 //
 // State [x, y, vx, vy, yaw, b_ax, b_ay, b_gyro]: position and velocity in the local world frame
 // (m, m/s), yaw (rad, CCW from +x, unwrapped), and the biases of the body-frame accelerometer
-// (m/s^2) and gyro (rad/s). The IMU input is held over each step (zero-order hold).
+// (m/s^2) and gyro (rad/s). The IMU input is constant over each step: the filter gives it the
+// readings at the step's middle, linear between the IMU's samples.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -23,7 +24,7 @@ struct ImuSample {
   double ax_mps2{};
   double ay_mps2{};
   double wz_radps{};
-  // The yaw rate's change over the sample's hold (rad/s^2) and where the IMU sits in the body
+  // The yaw rate's slope to the next sample (rad/s^2) and where the IMU sits in the body
   // frame from the reference point (m): an IMU ahead of the point reads its turn's -w^2 x forward
   // and dw/dt x to the left, which are not the point's.
   double wz_dot_radps2{};
