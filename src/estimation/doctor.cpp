@@ -30,6 +30,7 @@ Diagnosis Doctor::run() {
     check_drive_force_clock();
     if (signs_ok) check_track_width();
     if (signs_ok) check_imu_axes();
+    if (signs_ok) check_imu_place();
     if (signs_ok) check_heading_offset();
     // The wheels were compared with the Doppler speed where there is one: in another unit it
     // makes right wheels look wrong by its factor.

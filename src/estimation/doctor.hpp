@@ -76,6 +76,10 @@ class Doctor {
   // The lateral acceleration in a turn is speed x yaw rate, to the left.
   void check_imu_axes();
 
+  // Where the accelerometer sits: one x ahead of the rear axle reads x dw/dt to the left beyond
+  // the axle's v w, which vehicle.yaml's imu_x_m must state for layer 1 to take it out.
+  void check_imu_place();
+
   // heading.csv against the GNSS course, driving straight: a mount's yaw offset.
   void check_heading_offset();
 

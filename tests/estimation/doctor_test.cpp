@@ -53,7 +53,8 @@ class DoctorMatrix : public ::testing::Test {
 };
 
 TEST_F(DoctorMatrix, CleanSimulatedLogsHaveNoFindingAtAll) {
-  for (const char* flags : {"", "--ideal", "--wheel-output radps", "--gnss-output latlon"}) {
+  for (const char* flags :
+       {"", "--ideal", "--wheel-output radps", "--gnss-output latlon", "--scenario urban"}) {
     const TempLogDir dir;
     const Diagnosis diagnosis = doctor_log(simulated(dir, flags));
     EXPECT_TRUE(diagnosis.findings.empty()) << flags << ": " << checks(diagnosis, false);

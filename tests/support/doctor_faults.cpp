@@ -219,6 +219,16 @@ std::vector<Fault> faults() {
       {"ay negated", "",
        [](const fs::path& log) { edit_csv(log / "imu.csv", [](Row& r) { r["ay"] = -r["ay"]; }); },
        "imu.ay_sign"},
+      // The realistic car's IMU sits at its centre of gravity, 1.45 m ahead of the rear axle; the
+      // ideal one reads the axle's motion. Stated wrong either way, layer 1 misreads its turns.
+      {"IMU's place unstated", "--scenario urban",
+       [](const fs::path& log) { scale_vehicle_value(log, "imu_x_m", 0.0); }, "imu.place",
+       FindingSeverity::kWarning},
+      {"IMU's place stated where it is not", "--scenario urban --ideal",
+       [](const fs::path& log) {
+         std::ofstream(log / "vehicle.yaml", std::ios::app) << "imu_x_m: 1.45\n";
+       },
+       "imu.place", FindingSeverity::kWarning},
       {"ax and ay swapped", "",
        [](const fs::path& log) {
          edit_csv(log / "imu.csv", [](Row& r) { std::swap(r["ax"], r["ay"]); });
