@@ -79,9 +79,9 @@ void Doctor::check_imu_place() {
     return;
   // Over each row's second the accelerometer's mean lateral reading less the wheels' speed times
   // the gyro's mean is x times the gyro's change over that second. Below 8 m/s the rear axle's
-  // side slip changes too little to matter (it biases x by -0.1 to -0.3 m on the simulator's car
-  // at 1.45 m); a yaw misalignment of the IMU leaks its forward reading in, so that is fitted
-  // beside (with the offset).
+  // side slip changes too little to matter (x read 1.20-1.53 m on the simulator's car at 1.45 m,
+  // the lowest on the circuit's slow parts); a yaw misalignment of the IMU leaks its forward
+  // reading in, so that is fitted beside (with the offset).
   constexpr double kMaxSpeedMps = 8.0, kMinSpeedMps = 1.0;
   const auto half = static_cast<std::size_t>(std::lround(0.5 / signals_.step_s));
   const double second_s = 2.0 * static_cast<double>(half) * signals_.step_s;
@@ -109,7 +109,7 @@ void Doctor::check_imu_place() {
   const Eigen::Vector3d fit = solved.solve(right);
   const double dof = static_cast<double>(rows) - 3.0;
   const double variance = std::max(0.0, residual_squares - fit.dot(right)) / dof;
-  // The rows overlap over their second: one in 2 half of them is independent.
+  // The rows overlap over their second: each 2 half of them read one independent second.
   const double sigma = std::sqrt(variance * solved.solve(Eigen::Vector3d::UnitX())(0) * 2.0 *
                                  static_cast<double>(half));
   const double stated = facts_.vehicle.imu_x_m;
