@@ -46,8 +46,15 @@ void bind_log(py::module_& m) {
       .def_readonly("circumference_rr_m", &VehicleConfig::circumference_rr_m)
       .def_readonly("ticks_per_rev", &VehicleConfig::ticks_per_rev)
       .def_readonly("wheelbase_m", &VehicleConfig::wheelbase_m)
-      .def_readonly("imu_x_m", &VehicleConfig::imu_x_m)
-      .def_readonly("imu_y_m", &VehicleConfig::imu_y_m);
+      .def_property_readonly("imu_x_m",
+                             [](const VehicleConfig& v) -> std::optional<double> {
+                               if (!v.imu_position_m) return std::nullopt;
+                               return v.imu_position_m->x();
+                             })
+      .def_property_readonly("imu_y_m", [](const VehicleConfig& v) -> std::optional<double> {
+        if (!v.imu_position_m) return std::nullopt;
+        return v.imu_position_m->y();
+      });
 
   py::class_<WheelStream, std::unique_ptr<WheelStream, py::nodelete>> wheels(
       m, "WheelStream", "Rear wheel revolution increments (paper eq. 2)");

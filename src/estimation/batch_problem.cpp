@@ -73,7 +73,7 @@ BatchProblem::BatchProblem(const Log& log, FittedWheels wheels,
     TyreModel::Vector sum = TyreModel::Vector::Zero();
     for (std::size_t k = reference.first_wheel_index; k < states_.size(); ++k) {
       TyreModel::Vector x = tyre_regressors(states_[k], RearWheel::kLeft, body_);
-      x(kSideSlipCoefficient) = side_slip_regressor(states_[k]);  // its effect in rad
+      x(kSideSlipCoefficient) = side_slip_regressor(states_[k], body_);  // its effect in rad
       sum += x.cwiseAbs2();
     }
     const double n = static_cast<double>(states_.size() - reference.first_wheel_index);

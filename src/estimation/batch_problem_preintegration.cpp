@@ -173,7 +173,7 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
     const std::array<TyreFactor, 2>& factors = seg.tyre_factors[k - seg.first_sample];
     add_tyre(factors[0], 0, 0.5 * n.rev_rl);
     add_tyre(factors[1], 1, 0.5 * n.rev_rr);
-    const double half_square = 0.5 * square(side_slip_regressor(states_[k]));
+    const double half_square = 0.5 * square(side_slip_regressor(states_[k], body_));
     r.half_side_slip_revolutions[0] += 0.5 * n.rev_rl * half_square;
     r.half_side_slip_revolutions[1] += 0.5 * n.rev_rr * half_square;
   }
@@ -215,7 +215,7 @@ std::optional<batch::SpeedResidual> BatchProblem::speed_residual(std::size_t i,
     double lateral = 0.0;
     if (tyre_fitted()) {
       for (std::size_t m = lo + 1; m <= hi; ++m)
-        lateral += side_slip_regressor(states_[seg.first_sample + m]);
+        lateral += side_slip_regressor(states_[seg.first_sample + m], body_);
       lateral /= static_cast<double>(hi - lo);
     }
     r.shares.push_back({interval->weights_s[f], log_.gnss.speed_mps[j], yaw_rate, lateral});

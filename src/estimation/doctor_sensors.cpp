@@ -112,7 +112,7 @@ void Doctor::check_imu_place() {
   // The rows overlap over their second: each 2 half of them read one independent second.
   const double sigma = std::sqrt(variance * solved.solve(Eigen::Vector3d::UnitX())(0) * 2.0 *
                                  static_cast<double>(half));
-  const double stated = facts_.vehicle.imu_x_m;
+  const double stated = facts_.vehicle.imu_position_m.value_or(Eigen::Vector2d::Zero()).x();
   constexpr double kMinGapM = 0.5;
   if (!std::isfinite(sigma) || sigma > 0.15 || std::abs(fit(0) - stated) < kMinGapM ||
       std::abs(fit(0) - stated) < 5.0 * sigma)
@@ -128,11 +128,12 @@ void Doctor::check_imu_place() {
       fmt::format("lateral acceleration less speed x yaw rate against the yaw rate's change, {} "
                   "rows below {:.0f} m/s: x = {:+.2f} +- {:.2f} m",
                   rows, kMaxSpeedMps, fit(0), sigma),
-      stated == 0.0 ? "the IMU is mounted away from the rear axle (at the centre of gravity, under "
-                      "a seat) and vehicle.yaml does not say so: layer 1 takes the accelerations "
-                      "of its turns as the axle's"
-                    : "vehicle.yaml's imu_x_m is not where the IMU is (forward of the rear axle's "
-                      "centre, in metres)",
+      !facts_.vehicle.imu_position_m
+          ? "the IMU is mounted away from the rear axle (at the centre of gravity, under "
+            "a seat) and vehicle.yaml does not say so: layer 1 takes the accelerations "
+            "of its turns as the axle's"
+          : "vehicle.yaml's imu_x_m is not where the IMU is (forward of the rear axle's "
+            "centre, in metres)",
       fmt::format("vehicle.yaml: imu_x_m: {:.1f} (better: measure it on the car)", fit(0)));
 }
 

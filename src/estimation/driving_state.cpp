@@ -236,7 +236,7 @@ WheelStream with_tyre_model(const WheelStream& wheels, const std::vector<Driving
     corrected.rev_rl[k] *= factors.left.value;
     corrected.rev_rr[k] *= factors.right.value;
     if (side_slips)
-      corrected.side_slip_rad[k] = static_cast<float>(side_slip_rad(model, states[k]));
+      corrected.side_slip_rad[k] = static_cast<float>(side_slip_rad(model, states[k], body));
   }
   return corrected;
 }

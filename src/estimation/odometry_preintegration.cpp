@@ -43,7 +43,7 @@ PreintegratedSegment preintegrate(const FittedWheels& wheels, std::size_t first_
       segment.tyre_factors[s] = {factor_rl, factor_rr};
       n.rev_rl *= factor_rl.value;
       n.rev_rr *= factor_rr.value;
-      side_slip_per_coefficient = side_slip_regressor(state);
+      side_slip_per_coefficient = side_slip_regressor(state, tyre->body);
       side_slip = k(kSideSlipCoefficient) * side_slip_per_coefficient;
     }
     OdometryJacobianSideSlip J_side_slip;

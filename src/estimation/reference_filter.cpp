@@ -87,7 +87,7 @@ class ReferenceEkf {
   void set_imu(std::size_t k) {
     const ImuStream& imu = *log_.imu;
     imu_ = {imu.ax_mps2[k], imu.ay_mps2[k], imu.wz_radps[k], 0.0,
-            Eigen::Vector2d(log_.vehicle.imu_x_m, log_.vehicle.imu_y_m)};
+            log_.vehicle.imu_position_m.value_or(Eigen::Vector2d::Zero())};
     imu_t_s_ = imu.t_s[k];
     imu_span_s_ = 0.0;
     if (k + 1 < imu.size() && imu.t_s[k + 1] > imu.t_s[k]) {

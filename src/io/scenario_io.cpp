@@ -156,6 +156,8 @@ void parse_sensors(YamlMap sensors, sim::Scenario& s) {
     imu->read("acc_sigma_mps2", s.imu.acc_sigma_mps2, 0.0, 100.0);
     imu->read("yaw_rate_sigma_radps", s.imu.yaw_rate_sigma_radps, 0.0, 10.0);
     imu->read("gyro_bias_radps", s.imu.gyro_bias_radps, -10.0, 10.0);
+    imu->read("mount_x_m", s.imu.mount_x_m, kMountingOffsetM.min, kMountingOffsetM.max);
+    imu->read("mount_y_m", s.imu.mount_y_m, kMountingOffsetM.min, kMountingOffsetM.max);
     imu->reject_unknown_keys();
   }
   if (auto heading = sensors.map("heading")) {
@@ -427,6 +429,8 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("acc_sigma_mps2", s.imu.acc_sigma_mps2);
   key("yaw_rate_sigma_radps", s.imu.yaw_rate_sigma_radps);
   key("gyro_bias_radps", s.imu.gyro_bias_radps);
+  key("mount_x_m", s.imu.mount_x_m);
+  key("mount_y_m", s.imu.mount_y_m);
   out << YAML::EndMap;
   out << YAML::Key << "heading" << YAML::Value << YAML::BeginMap;
   key("rate_hz", s.heading.rate_hz);

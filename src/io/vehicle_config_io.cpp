@@ -90,8 +90,12 @@ VehicleConfig parse_vehicle_config(YamlMap& map) {
   optional("wheelbase_m", vehicle.wheelbase_m, kWheelbaseM);
   optional("circumference_fl_m", vehicle.circumference_fl_m, kCircumferenceM);
   optional("circumference_fr_m", vehicle.circumference_fr_m, kCircumferenceM);
-  map.read("imu_x_m", vehicle.imu_x_m, kMountingOffsetM.min, kMountingOffsetM.max);
-  map.read("imu_y_m", vehicle.imu_y_m, kMountingOffsetM.min, kMountingOffsetM.max);
+  if (map.has("imu_x_m") || map.has("imu_y_m")) {
+    Eigen::Vector2d imu = Eigen::Vector2d::Zero();
+    map.read("imu_x_m", imu.x(), kMountingOffsetM.min, kMountingOffsetM.max);
+    map.read("imu_y_m", imu.y(), kMountingOffsetM.min, kMountingOffsetM.max);
+    vehicle.imu_position_m = imu;
+  }
   if (auto tyre = map.map("tyre_model")) {
     TyreModel model;
     for (const TyreCoefficient& coefficient : kTyreCoefficients)
@@ -144,8 +148,10 @@ void write_vehicle_config(const VehicleConfig& vehicle, const std::filesystem::p
   if (vehicle.circumference_fr_m) {
     out << YAML::Key << "circumference_fr_m" << YAML::Value << *vehicle.circumference_fr_m;
   }
-  if (vehicle.imu_x_m != 0.0) out << YAML::Key << "imu_x_m" << YAML::Value << vehicle.imu_x_m;
-  if (vehicle.imu_y_m != 0.0) out << YAML::Key << "imu_y_m" << YAML::Value << vehicle.imu_y_m;
+  if (vehicle.imu_position_m) {
+    out << YAML::Key << "imu_x_m" << YAML::Value << vehicle.imu_position_m->x();
+    out << YAML::Key << "imu_y_m" << YAML::Value << vehicle.imu_position_m->y();
+  }
   if (vehicle.tyre_model) {
     const TyreModel& m = *vehicle.tyre_model;
     out << YAML::Key << "tyre_model" << YAML::Value << YAML::BeginMap;

@@ -224,11 +224,24 @@ void simulate_gnss(const GnssSimConfig& config, bool altitude, const MotionTruth
 void simulate_imu_and_heading(const Scenario& scenario, const MotionTruth& truth,
                               std::mt19937_64& rng, SimulatedDrive& out) {
   std::normal_distribution<double> unit(0.0, 1.0);
+  const double mount_x = scenario.imu.mount_x_m, mount_y = scenario.imu.mount_y_m;
   for (double t : sample_times(truth.duration_s(), scenario.imu.rate_hz)) {
     const TruthSample sample = truth.at(t);
+    // An IMU mounted r from the point the truth's accelerations are of reads dw/dt x r and
+    // w x (w x r) = -w^2 r beside them (rigid body).
+    double mount_ax = 0.0, mount_ay = 0.0;
+    if (mount_x != 0.0 || mount_y != 0.0) {
+      constexpr double kStepS = 1e-3;
+      const double w = sample.yaw_rate_radps;
+      const double w_dot = (truth.at(std::min(t + kStepS, truth.duration_s())).yaw_rate_radps -
+                            truth.at(std::max(t - kStepS, 0.0)).yaw_rate_radps) /
+                           (std::min(t + kStepS, truth.duration_s()) - std::max(t - kStepS, 0.0));
+      mount_ax = -w_dot * mount_y - w * w * mount_x;
+      mount_ay = w_dot * mount_x - w * w * mount_y;
+    }
     out.imu.t_s.push_back(t);
-    out.imu.ax_mps2.push_back(sample.ax_mps2 + scenario.imu.acc_sigma_mps2 * unit(rng));
-    out.imu.ay_mps2.push_back(sample.ay_mps2 + scenario.imu.acc_sigma_mps2 * unit(rng));
+    out.imu.ax_mps2.push_back(sample.ax_mps2 + mount_ax + scenario.imu.acc_sigma_mps2 * unit(rng));
+    out.imu.ay_mps2.push_back(sample.ay_mps2 + mount_ay + scenario.imu.acc_sigma_mps2 * unit(rng));
     out.imu.wz_radps.push_back(sample.yaw_rate_radps + scenario.imu.gyro_bias_radps +
                                scenario.imu.yaw_rate_sigma_radps * unit(rng));
   }
@@ -276,11 +289,17 @@ SimulatedDrive simulate(const Scenario& scenario) {
   // What its owner knows of the car; the body's numbers are left to the defaults (a calibration
   // is not told the simulated car's load geometry).
   out.nominal_vehicle.body.drivetrain = scenario.dynamics.drivetrain;
-  // Where its IMU is mounted, as an owner knows: the realistic car's at its centre of gravity (the
-  // dynamics' accelerations are the body's there); the ideal mode's reads the rear axle's motion.
-  if (!scenario.ideal)
-    out.nominal_vehicle.imu_x_m =
-        scenario.vehicle.wheelbase_m - scenario.dynamics.cg_to_front_axle_m;
+  // Where its IMU is mounted, as an owner knows: `imu.mount` from the point whose motion each
+  // mode reads (realistic: the centre of gravity, where the dynamics' accelerations are the
+  // body's; ideal: the rear axle, unstated there when the mount is zero).
+  const Eigen::Vector2d mount(scenario.imu.mount_x_m, scenario.imu.mount_y_m);
+  if (!scenario.ideal) {
+    out.nominal_vehicle.imu_position_m =
+        Eigen::Vector2d(scenario.vehicle.wheelbase_m - scenario.dynamics.cg_to_front_axle_m, 0.0) +
+        mount;
+  } else if (!mount.isZero()) {
+    out.nominal_vehicle.imu_position_m = mount;
+  }
   if (scenario.wheels.output == WheelUnit::kTicks) {
     out.nominal_vehicle.ticks_per_rev = scenario.wheels.ticks_per_rev;
     if (scenario.wheels.counter_bits > 0)

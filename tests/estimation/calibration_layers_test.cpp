@@ -146,7 +146,7 @@ TEST(ReferenceFilter, FusesToWellBelowTheGnssNoiseAndIsConsistent) {
   EXPECT_GT(consistent_fraction(log, filter), 0.98);
   EXPECT_GT(consistent_fraction(log, smoother), 0.98);
   EXPECT_EQ(filter.heading_source, "heading.csv");
-  EXPECT_EQ(log.vehicle.imu_x_m, 0.0);  // the ideal IMU reads the rear axle's motion
+  EXPECT_FALSE(log.vehicle.imu_position_m);  // the ideal IMU reads the rear axle's motion
 }
 
 TEST(ReferenceFilter, WorksWithoutImuAndHeadingFromTheGnssCourse) {
@@ -200,13 +200,14 @@ TEST(ReferenceFilter, TakesTheImuFromWhereVehicleYamlMountsItToTheRearAxle) {
   sim::Scenario scenario = load_scenario("urban");
   scenario.route.laps = 1;
   Log log = simulated_log(sim::simulate(scenario), /*with_truth=*/true);
-  ASSERT_NEAR(log.vehicle.imu_x_m, 1.45, 1e-12);
+  ASSERT_TRUE(log.vehicle.imu_position_m);
+  ASSERT_NEAR(log.vehicle.imu_position_m->x(), 1.45, 1e-12);
   ReferenceOptions options;
   options.mode = ReferenceMode::kSmoother;
   const ReferencePath truth = reference_from_poses(*log.truth, "truth");
   const TrajectoryErrors mounted =
       trajectory_errors(timed(log, compute_reference(log, options)), truth);
-  log.vehicle.imu_x_m = 0.0;
+  log.vehicle.imu_position_m.reset();
   const TrajectoryErrors at_axle =
       trajectory_errors(timed(log, compute_reference(log, options)), truth);
   EXPECT_LT(mounted.mean_position_m, 0.85 * at_axle.mean_position_m);

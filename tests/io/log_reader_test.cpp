@@ -417,12 +417,19 @@ TEST(VehicleConfigIo, TheImusMountingIsWrittenWhereStatedAndReadBack) {
   vehicle.circumference_rl_m = vehicle.circumference_rr_m = 2.0;
   write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
   EXPECT_EQ(testing::read_text_file(dir.file("vehicle.yaml")).find("imu_"), std::string::npos);
-  vehicle.imu_x_m = 1.45;
-  vehicle.imu_y_m = -0.2;
+  vehicle.imu_position_m = Eigen::Vector2d(1.45, -0.2);
   write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
   const VehicleConfig back = read_vehicle_config(dir.file("vehicle.yaml"));
-  EXPECT_EQ(back.imu_x_m, 1.45);
-  EXPECT_EQ(back.imu_y_m, -0.2);
+  ASSERT_TRUE(back.imu_position_m);
+  EXPECT_EQ(back.imu_position_m->x(), 1.45);
+  EXPECT_EQ(back.imu_position_m->y(), -0.2);
+  // One key states the place, the other taken as 0.
+  const TempLogDir one;
+  one.write("vehicle.yaml",
+            "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\nimu_y_m: 0.3\n");
+  const VehicleConfig left = read_vehicle_config(one.file("vehicle.yaml"));
+  ASSERT_TRUE(left.imu_position_m);
+  EXPECT_EQ(*left.imu_position_m, Eigen::Vector2d(0.0, 0.3));
 }
 
 TEST(LogReaderRejects, ImuMountedOffAnyVehicle) {

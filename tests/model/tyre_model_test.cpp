@@ -114,6 +114,29 @@ TEST(TyreModelPhysicalTerms, ALeftTurnMovesLoadToTheRightWheel) {
   EXPECT_NEAR(right(1), -3.0, 1e-6);
 }
 
+TEST(TyreModelPhysicalTerms, AnImuAheadOfTheCentreOfGravityIsTakenBackToIt) {
+  // The simple body's centre of gravity is 1 m ahead of the rear axle. An IMU stated at (2.5,
+  // 0.4) from the axle sits r = (1.5, 0.4) from it: at w = 0.2 and dw/dt = 0.5 it reads
+  // -w^2 r + dw/dt x r = (-0.06 - 0.2, -0.016 + 0.75) beside the body's (2, 3). Taken back to the
+  // centre of gravity, the regressors are the body's own; unstated, the reading is the body's.
+  VehicleBody body = simple_body();
+  DrivingState at_cg = state(15.0, 2.0, 3.0, 0.2);
+  at_cg.yaw_acceleration_radps2 = 0.5f;
+  DrivingState mounted = at_cg;
+  mounted.specific_force_x_mps2 = static_cast<float>(2.0 - 0.2 * 0.2 * 1.5 - 0.5 * 0.4);
+  mounted.specific_force_y_mps2 = static_cast<float>(3.0 + 0.5 * 1.5 - 0.2 * 0.2 * 0.4);
+  EXPECT_NEAR(specific_force_at_cg(mounted, body).x(), mounted.specific_force_x_mps2, 1e-12);
+  body.imu_position_m = Eigen::Vector2d(2.5, 0.4);
+  const Eigen::Vector2d back = specific_force_at_cg(mounted, body);
+  EXPECT_NEAR(back.x(), 2.0, 1e-6);
+  EXPECT_NEAR(back.y(), 3.0, 1e-6);
+  for (const RearWheel wheel : {RearWheel::kLeft, RearWheel::kRight}) {
+    const TyreModel::Vector expected = tyre_regressors(at_cg, wheel, simple_body());
+    EXPECT_LT((tyre_regressors(mounted, wheel, body) - expected).cwiseAbs().maxCoeff(), 1e-5);
+  }
+  EXPECT_NEAR(side_slip_regressor(mounted, body), 3.0, 1e-6);
+}
+
 TEST(TyreModelPhysicalTerms, AForceTheLogGivesIsTheTyresInPlaceOfTheAccelerometers) {
   // Accelerating at 2 m/s^2 in a left turn at 10 m/s (0.3 rad/s): the car of 1500 kg pushes
   // m (2 + f_r g + the cornering drag) through its tyres (no drag on this body). Given that force,

@@ -28,10 +28,11 @@ struct VehicleConfig {
   std::optional<double> circumference_fl_m;
   std::optional<double> circumference_fr_m;
   std::optional<std::string> vehicle_id;  // which vehicle of a fleet (letters, digits, . _ -)
-  // Where imu.csv's sensor sits, forward and left of the rear axle's centre (m). Layer 1 takes
-  // the accelerometer to that point: one ahead of the axle reads each turn's -w^2 x and dw/dt x.
-  double imu_x_m = 0.0;
-  double imu_y_m = 0.0;
+  // Where imu.csv's sensor sits, forward and left of the rear axle's centre (m; vehicle.yaml's
+  // imu_x_m, imu_y_m). Layer 1 takes its readings to the axle and the physical tyre terms to the
+  // centre of gravity: one ahead of a point reads each turn's -w^2 x and dw/dt x beside the
+  // point's. Unstated: layer 1 takes it at the axle, the tyre terms at the centre of gravity.
+  std::optional<Eigen::Vector2d> imu_position_m;
   // A calibrated condition-dependent circumference (docs/tyre-model.md); dead reckoning applies
   // it. Absent: the plain model.
   std::optional<TyreModel> tyre_model;
@@ -42,11 +43,12 @@ struct VehicleConfig {
   OdometryParams nominal_params() const {
     return {circumference_rl_m, circumference_rr_m, track_width_m};
   }
-  // The body with this vehicle's wheelbase (when stated) and rear track.
+  // The body with this vehicle's wheelbase (when stated), rear track and IMU's place.
   VehicleBody body_geometry() const {
     VehicleBody geometry = body;
     geometry.wheelbase_m = wheelbase_m.value_or(body.wheelbase_m);
     geometry.track_width_m = track_width_m;
+    geometry.imu_position_m = imu_position_m;
     return geometry;
   }
 };

@@ -75,6 +75,9 @@ struct VehicleBody {
   // Which axle the drive's share above goes to, and what a coefficient held at zero is taken to
   // be uncertain by (tyre_car_prior.hpp). Unstated: a driven rear axle's, which covers every car.
   std::optional<Drivetrain> drivetrain;
+  // Where the accelerometer sits, forward and left of the rear axle's centre (vehicle.yaml's
+  // imu_x_m, imu_y_m, set by VehicleConfig::body_geometry()); unstated: at the centre of gravity.
+  std::optional<Eigen::Vector2d> imu_position_m;
 };
 
 // What air drag and rolling resistance take per kilogram from a car moving forward at speed_mps
@@ -197,6 +200,20 @@ struct DrivingState {
   bool force_given() const { return std::isfinite(drive_force_n); }
 };
 
+// The accelerometer's specific force at the centre of gravity, forward and left, which the
+// physical terms' load transfer and force are of: an IMU r ahead of it (and left) reads its turn's
+// -w^2 r and dw/dt r beside the body's. The state's w is its mean over +-0.25 s and dw/dt the
+// gyro's over +-0.05 s, so the gyro's noise barely adds. Where vehicle.yaml does not say where the
+// IMU is, its readings are taken as the centre of gravity's.
+inline Eigen::Vector2d specific_force_at_cg(const DrivingState& state, const VehicleBody& body) {
+  const Eigen::Vector2d read(state.specific_force_x_mps2, state.specific_force_y_mps2);
+  if (!body.imu_position_m) return read;
+  const double cg_ahead_of_axle = (1.0 - body.rear_axle_load_share) * body.wheelbase_m;
+  const Eigen::Vector2d r = *body.imu_position_m - Eigen::Vector2d(cg_ahead_of_axle, 0.0);
+  const double w = state.yaw_rate_radps, w_dot = state.yaw_acceleration_radps2;
+  return read + Eigen::Vector2d(w * w * r.x() + w_dot * r.y(), -w_dot * r.x() + w * w * r.y());
+}
+
 enum class RearWheel { kLeft, kRight };
 
 // The rear axle's share of the drive force.
@@ -261,7 +278,7 @@ inline double slip_angle_rad(double force_over_load, double stiffness, const Veh
 inline double cornering_drag_at_mps2(const DrivingState& state, const VehicleBody& body,
                                      double f_x) {
   const double L = body.wheelbase_m, a = body.rear_axle_load_share * L, b = L - a;
-  const double f_y = state.specific_force_y_mps2;
+  const double f_y = specific_force_at_cg(state, body).y();
   const double w = state.yaw_rate_radps, w_dot = state.yaw_acceleration_radps2;
   const double v = std::max(static_cast<double>(state.speed_mps), 1.0);
   const double front = b * (f_y + a * w_dot) / L, rear = a * (f_y - b * w_dot) / L;
@@ -279,7 +296,8 @@ inline double cornering_drag_at_mps2(const DrivingState& state, const VehicleBod
 // this drag, a fixed point that contracts by the drag's few percent per m/s^2 of load shift), so
 // that a given force is never mixed with the accelerometer's forward reading.
 inline double cornering_drag_mps2(const DrivingState& state, const VehicleBody& body) {
-  if (!state.force_given()) return cornering_drag_at_mps2(state, body, state.specific_force_x_mps2);
+  if (!state.force_given())
+    return cornering_drag_at_mps2(state, body, specific_force_at_cg(state, body).x());
   const double pushed =
       state.drive_force_n / body.mass_kg - road_resistance(body, state.speed_mps).total();
   double drag = 0.0;
@@ -306,7 +324,7 @@ inline AxleForces axle_forces(const DrivingState& state, const VehicleBody& body
     const double tractive = state.drive_force_n / body.mass_kg;
     return {tractive, tractive - drag - rolling - cornering};
   }
-  const double f_x = state.specific_force_x_mps2;
+  const double f_x = specific_force_at_cg(state, body).x();
   return {f_x + drag + rolling + cornering, f_x};
 }
 
@@ -324,7 +342,7 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
   // the tyres carry what the accelerometer reads.
   const double L = body.wheelbase_m, h = body.cg_height_m;
   const double tractive = forces.tractive_mps2, f_x = forces.forward_mps2;
-  const double f_y = state.specific_force_y_mps2;
+  const double f_y = specific_force_at_cg(state, body).y();
   const double static_load = 0.5 * kGravityMps2 * body.rear_axle_load_share;
   const double load_change =
       h * f_x / (2.0 * L) - side * body.rear_roll_share * h * f_y / body.track_width_m;
@@ -351,11 +369,14 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
 }
 
 // d beta / d k_side_slip: the lateral specific force.
-inline double side_slip_regressor(const DrivingState& state) { return state.specific_force_y_mps2; }
+inline double side_slip_regressor(const DrivingState& state, const VehicleBody& body) {
+  return specific_force_at_cg(state, body).y();
+}
 
 // The rear axle's side slip angle at this state, rad (left of the heading positive).
-inline double side_slip_rad(const TyreModel& model, const DrivingState& state) {
-  return model.k_side_slip_s2pm * side_slip_regressor(state);
+inline double side_slip_rad(const TyreModel& model, const DrivingState& state,
+                            const VehicleBody& body) {
+  return model.k_side_slip_s2pm * side_slip_regressor(state, body);
 }
 
 // c_i,eff / c_i, and its gradient in the coefficients (the batch linearises about them).

@@ -88,6 +88,9 @@ struct ImuSimConfig {
   double acc_sigma_mps2 = 0.2;
   double yaw_rate_sigma_radps = 0.02;
   double gyro_bias_radps = 0.0;
+  // Where the IMU is mounted, forward and left of the point whose motion the mode's IMU reads
+  // (realistic: the centre of gravity; ideal: the rear axle), m.
+  double mount_x_m = 0.0, mount_y_m = 0.0;
 };
 
 struct HeadingSimConfig {
