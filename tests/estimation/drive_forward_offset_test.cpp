@@ -56,6 +56,22 @@ TEST(DriveForwardOffset, ALapOfTheRealisticCircuitReadsNoOffsetWithinItsSigma) {
   }
 }
 
+// An IMU mounted 1.5 m ahead of the centre of gravity reads each turn's -w^2 x there too: where
+// vehicle.yaml says so, the lap reads no offset; taken as at the centre of gravity, the turns
+// read as one.
+TEST(DriveForwardOffset, AnImuAheadOfTheCentreOfGravityIsMeasuredWhereVehicleYamlMountsIt) {
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.route.laps = 1;
+  scenario.imu.mount_x_m = 1.5;
+  Log log = simulated_log(sim::simulate(scenario));
+  const DriveForwardOffset stated = measured(log, DriveSlope::kClosedLoop);
+  log.vehicle.imu_position_m.reset();
+  const DriveForwardOffset unstated = measured(log, DriveSlope::kClosedLoop);
+  // Seed 1: -0.003 m/s^2 stated, -0.064 unstated (the lap's mean w^2 times 1.5 m), sigma 0.049.
+  EXPECT_LT(std::abs(stated.forward_mps2), stated.sigma_mps2);
+  EXPECT_LT(unstated.forward_mps2, stated.forward_mps2 - 0.04);
+}
+
 TEST(DriveForwardOffset, AnOffsetShiftsTheMeasureByItselfAndIsRemovedBeyondItsSigma) {
   const Log clean = lap("circuit", 0.0);
   const Log pitched = lap("circuit", -0.3);
