@@ -4,8 +4,9 @@
 // reference pose on the wheel time base. No wheel data enters this layer.
 //
 // State [x, y, vx, vy, yaw, accelerometer biases x and y, gyro bias]. Prediction integrates the
-// body acceleration rotated into the world frame and the yaw rate (zero-order hold of the latest
-// IMU sample); GNSS updates x, y; heading updates yaw (wrapped innovation). Without imu.csv the
+// body acceleration rotated into the world frame and the yaw rate (each step at the IMU's reading
+// at its middle, linear between samples; taken to the rear axle from where vehicle.yaml mounts the
+// IMU); GNSS updates x, y; heading updates yaw (wrapped innovation). Without imu.csv the
 // prediction is constant velocity with acceleration noise. Without heading.csv yaw is corrected by
 // the GNSS course when moving. GNSS Doppler speed (speed_mps), when the file has it, updates the
 // speed |v|: it fixes the along-track scale of the reference far better than position differences
