@@ -95,7 +95,6 @@ class ReferenceEkf {
       imu_slope_ = {(imu.ax_mps2[k + 1] - imu.ax_mps2[k]) / imu_span_s_,
                     (imu.ay_mps2[k + 1] - imu.ay_mps2[k]) / imu_span_s_,
                     (imu.wz_radps[k + 1] - imu.wz_radps[k]) / imu_span_s_};
-      imu_.wz_dot_radps2 = imu_slope_.wz_radps;
     }
   }
 
@@ -107,6 +106,7 @@ class ReferenceEkf {
     reading.ax_mps2 += elapsed * imu_slope_.ax_mps2;
     reading.ay_mps2 += elapsed * imu_slope_.ay_mps2;
     reading.wz_radps += elapsed * imu_slope_.wz_radps;
+    reading.wz_dot_radps2 = imu_slope_.wz_radps;
     return reading;
   }
 

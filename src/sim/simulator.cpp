@@ -232,10 +232,11 @@ void simulate_imu_and_heading(const Scenario& scenario, const MotionTruth& truth
     double mount_ax = 0.0, mount_ay = 0.0;
     if (mount_x != 0.0 || mount_y != 0.0) {
       constexpr double kStepS = 1e-3;
+      const double before = std::max(t - kStepS, 0.0);
+      const double after = std::min(t + kStepS, truth.duration_s());
       const double w = sample.yaw_rate_radps;
-      const double w_dot = (truth.at(std::min(t + kStepS, truth.duration_s())).yaw_rate_radps -
-                            truth.at(std::max(t - kStepS, 0.0)).yaw_rate_radps) /
-                           (std::min(t + kStepS, truth.duration_s()) - std::max(t - kStepS, 0.0));
+      const double w_dot =
+          (truth.at(after).yaw_rate_radps - truth.at(before).yaw_rate_radps) / (after - before);
       mount_ax = -w_dot * mount_y - w * w * mount_x;
       mount_ay = w_dot * mount_x - w * w * mount_y;
     }

@@ -383,11 +383,17 @@ TEST(VehicleConfigIo, WriteThenReadRoundTrips) {
   EXPECT_EQ(read.body_geometry().track_width_m, 1.58);
 }
 
-TEST(VehicleConfigIo, NoBodyKeyWhenTheBodyIsTheDefault) {
-  const TempLogDir dir;
+// The three required keys alone: a 1.6 m track and 2 m circumferences.
+VehicleConfig plain_vehicle() {
   VehicleConfig vehicle;
   vehicle.track_width_m = 1.6;
   vehicle.circumference_rl_m = vehicle.circumference_rr_m = 2.0;
+  return vehicle;
+}
+
+TEST(VehicleConfigIo, NoBodyKeyWhenTheBodyIsTheDefault) {
+  const TempLogDir dir;
+  VehicleConfig vehicle = plain_vehicle();
   write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
   std::ifstream written(dir.file("vehicle.yaml"));
   const std::string text((std::istreambuf_iterator<char>(written)), {});
@@ -398,9 +404,7 @@ TEST(VehicleConfigIo, NoBodyKeyWhenTheBodyIsTheDefault) {
 
 TEST(VehicleConfigIo, ADrivetrainAloneIsStatedWithoutTheBodysNumbers) {
   const TempLogDir dir;
-  VehicleConfig vehicle;
-  vehicle.track_width_m = 1.6;
-  vehicle.circumference_rl_m = vehicle.circumference_rr_m = 2.0;
+  VehicleConfig vehicle = plain_vehicle();
   vehicle.body.drivetrain = Drivetrain::kAll;
   write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
   std::ifstream written(dir.file("vehicle.yaml"));
@@ -412,9 +416,7 @@ TEST(VehicleConfigIo, ADrivetrainAloneIsStatedWithoutTheBodysNumbers) {
 
 TEST(VehicleConfigIo, TheImusMountingIsWrittenWhereStatedAndReadBack) {
   const TempLogDir dir;
-  VehicleConfig vehicle;
-  vehicle.track_width_m = 1.6;
-  vehicle.circumference_rl_m = vehicle.circumference_rr_m = 2.0;
+  VehicleConfig vehicle = plain_vehicle();
   write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
   EXPECT_EQ(testing::read_text_file(dir.file("vehicle.yaml")).find("imu_"), std::string::npos);
   vehicle.imu_position_m = Eigen::Vector2d(1.45, -0.2);
