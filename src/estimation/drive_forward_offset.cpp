@@ -104,9 +104,8 @@ std::optional<DriveForwardOffset> drive_forward_offset(const DriveForwardSums& s
     return std::nullopt;
   const double T = sums.duration_s;
   // ax = dv/dt - w (vy_rear + w b) + offset, with vy_rear = k ay v and v w = ay, b the IMU's
-  // place ahead of the rear axle: vehicle.yaml's imu_x_m, else the centre of gravity's.
-  const double b = body.imu_position_m ? body.imu_position_m->x()
-                                       : (1.0 - body.rear_axle_load_share) * body.wheelbase_m;
+  // place ahead of the rear axle.
+  const double b = accelerometer_position_m(body).x();
   // A car's rear side slip per lateral acceleration, known to its own size (tyre_car_prior.hpp).
   const double side_slip = -1.0 / (kGravityMps2 * kCarCorneringStiffnessPerLoad);
   const double turn_squared = sums.turn_squared / T, lateral_squared = sums.lateral_squared / T;

@@ -200,16 +200,26 @@ struct DrivingState {
   bool force_given() const { return std::isfinite(drive_force_n); }
 };
 
+// The centre of gravity's distance ahead of the rear axle, from the axles' loads at rest.
+inline double cg_ahead_of_rear_axle_m(const VehicleBody& body) {
+  return (1.0 - body.rear_axle_load_share) * body.wheelbase_m;
+}
+
+// Where the accelerometer sits, from the rear axle's centre (forward, left): vehicle.yaml's
+// imu_x_m and imu_y_m, else at the centre of gravity, where an unstated IMU's readings are taken.
+inline Eigen::Vector2d accelerometer_position_m(const VehicleBody& body) {
+  return body.imu_position_m.value_or(Eigen::Vector2d(cg_ahead_of_rear_axle_m(body), 0.0));
+}
+
 // The accelerometer's specific force at the centre of gravity, forward and left, which the
 // physical terms' load transfer and force are of: an IMU r ahead of it (and left) reads its turn's
 // -w^2 r and dw/dt r beside the body's. The state's w is its mean over +-0.25 s and dw/dt the
-// gyro's over +-0.05 s, so the gyro's noise barely adds. Where vehicle.yaml does not say where the
-// IMU is, its readings are taken as the centre of gravity's.
+// gyro's over +-0.05 s, so the gyro's noise barely adds.
 inline Eigen::Vector2d specific_force_at_cg(const DrivingState& state, const VehicleBody& body) {
   const Eigen::Vector2d read(state.specific_force_x_mps2, state.specific_force_y_mps2);
-  if (!body.imu_position_m) return read;
-  const double cg_ahead_of_axle = (1.0 - body.rear_axle_load_share) * body.wheelbase_m;
-  const Eigen::Vector2d r = *body.imu_position_m - Eigen::Vector2d(cg_ahead_of_axle, 0.0);
+  if (!body.imu_position_m) return read;  // taken as at the centre of gravity
+  const Eigen::Vector2d r =
+      accelerometer_position_m(body) - Eigen::Vector2d(cg_ahead_of_rear_axle_m(body), 0.0);
   const double w = state.yaw_rate_radps, w_dot = state.yaw_acceleration_radps2;
   return read + Eigen::Vector2d(w * w * r.x() + w_dot * r.y(), -w_dot * r.x() + w * w * r.y());
 }
@@ -275,10 +285,9 @@ inline double slip_angle_rad(double force_over_load, double stiffness, const Veh
 // kink the force the accelerometer then leaves to the rear tyres is within 0.02 m/s^2 of the
 // simulator's, from 0.12 with F_yf = m b f_y / L along L w / v (docs/tyre-model.md, "The front
 // tyres' steer").
-inline double cornering_drag_at_mps2(const DrivingState& state, const VehicleBody& body,
-                                     double f_x) {
+inline double cornering_drag_at_mps2(const DrivingState& state, const VehicleBody& body, double f_x,
+                                     double f_y) {
   const double L = body.wheelbase_m, a = body.rear_axle_load_share * L, b = L - a;
-  const double f_y = specific_force_at_cg(state, body).y();
   const double w = state.yaw_rate_radps, w_dot = state.yaw_acceleration_radps2;
   const double v = std::max(static_cast<double>(state.speed_mps), 1.0);
   const double front = b * (f_y + a * w_dot) / L, rear = a * (f_y - b * w_dot) / L;
@@ -295,37 +304,41 @@ inline double cornering_drag_at_mps2(const DrivingState& state, const VehicleBod
 // tyres' force, the body's acceleration that force leaves (the force less the resistances and
 // this drag, a fixed point that contracts by the drag's few percent per m/s^2 of load shift), so
 // that a given force is never mixed with the accelerometer's forward reading.
-inline double cornering_drag_mps2(const DrivingState& state, const VehicleBody& body) {
-  if (!state.force_given())
-    return cornering_drag_at_mps2(state, body, specific_force_at_cg(state, body).x());
+inline double cornering_drag_mps2(const DrivingState& state, const VehicleBody& body,
+                                  const Eigen::Vector2d& at_cg) {
+  if (!state.force_given()) return cornering_drag_at_mps2(state, body, at_cg.x(), at_cg.y());
   const double pushed =
       state.drive_force_n / body.mass_kg - road_resistance(body, state.speed_mps).total();
   double drag = 0.0;
   for (int pass = 0; pass < 8; ++pass) {
-    const double next = cornering_drag_at_mps2(state, body, pushed - drag);
+    const double next = cornering_drag_at_mps2(state, body, pushed - drag, at_cg.y());
     if (std::abs(next - drag) < 1e-9) return next;
     drag = next;
   }
   return drag;
 }
+inline double cornering_drag_mps2(const DrivingState& state, const VehicleBody& body) {
+  return cornering_drag_mps2(state, body, specific_force_at_cg(state, body));
+}
 
 // What both rear wheels' regressors share at one state, per vehicle mass: the forward force the
-// tyres transmit, and the body's forward acceleration that it leaves (which moves the loads).
+// tyres transmit, the body's forward acceleration that it leaves (which moves the loads), and its
+// lateral specific force at the centre of gravity.
 struct AxleForces {
-  double tractive_mps2, forward_mps2;
+  double tractive_mps2, forward_mps2, lateral_mps2;
 };
 inline AxleForces axle_forces(const DrivingState& state, const VehicleBody& body) {
   const RoadResistance road = road_resistance(body, state.speed_mps);
   const double drag = road.drag_mps2, rolling = road.rolling_mps2;
-  const double cornering = cornering_drag_mps2(state, body);
+  const Eigen::Vector2d at_cg = specific_force_at_cg(state, body);
+  const double cornering = cornering_drag_mps2(state, body, at_cg);
   // A force the log gives is the tyres' own, without the accelerometer's noise; what is left of
   // it beyond the resistances accelerates the body and moves its load.
   if (state.force_given()) {
     const double tractive = state.drive_force_n / body.mass_kg;
-    return {tractive, tractive - drag - rolling - cornering};
+    return {tractive, tractive - drag - rolling - cornering, at_cg.y()};
   }
-  const double f_x = specific_force_at_cg(state, body).x();
-  return {f_x + drag + rolling + cornering, f_x};
+  return {at_cg.x() + drag + rolling + cornering, at_cg.x(), at_cg.y()};
 }
 
 // d(c_i,eff / c_i) / d coefficients at this state, for one wheel (zero for the side slip), given
@@ -342,7 +355,7 @@ inline TyreModel::Vector tyre_regressors(const DrivingState& state, RearWheel wh
   // the tyres carry what the accelerometer reads.
   const double L = body.wheelbase_m, h = body.cg_height_m;
   const double tractive = forces.tractive_mps2, f_x = forces.forward_mps2;
-  const double f_y = specific_force_at_cg(state, body).y();
+  const double f_y = forces.lateral_mps2;
   const double static_load = 0.5 * kGravityMps2 * body.rear_axle_load_share;
   const double load_change =
       h * f_x / (2.0 * L) - side * body.rear_roll_share * h * f_y / body.track_width_m;
