@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<ReferenceOptions> ReferenceOptions::fields() {
   using O = ReferenceOptions;
-  static const std::array<OptionField<O>, 19> kFields{{
+  static const std::array<OptionField<O>, 23> kFields{{
       {"mode", "", 0, 0, "filter (the paper's causal filter) or smoother (off-line RTS pass)",
        enum_member<&O::mode>()},
       {"gnss_sigma_m", "m", 1e-6, 1e4, "GNSS horizontal 1-sigma when gnss.csv has no sigma_m",
@@ -24,8 +24,21 @@ OptionTable<ReferenceOptions> ReferenceOptions::fields() {
        "without imu.csv: white acceleration spectral density", &O::no_imu_acc_psd},
       {"no_imu_yaw_rate_psd", "rad^2/s", 1e-6, 100.0,
        "without imu.csv: white yaw-rate spectral density", &O::no_imu_yaw_rate_psd},
+      {"lateral_velocity_sigma_mps", "m/s", 0.0, 100.0,
+       "the rear axle's velocity across its heading beyond the side slip, 1-sigma per GNSS fix; "
+       "0: off (the paper's layer 1)",
+       &O::lateral_velocity_sigma_mps},
+      {"lateral_velocity_min_speed_mps", "m/s", 0.0, 100.0,
+       "no lateral-velocity update below this speed", &O::lateral_velocity_min_speed_mps},
+      {"lateral_velocity_max_turn_radps", "rad/s", 0.0, 10.0,
+       "no lateral-velocity update where the gyro turns faster (side slip, the antenna's place)",
+       &O::lateral_velocity_max_turn_radps},
+      {"lateral_velocity_max_lateral_mps2", "m/s^2", 0.0, 100.0,
+       "no lateral-velocity update where speed times the gyro's turn exceeds this",
+       &O::lateral_velocity_max_lateral_mps2},
       {"course_min_speed_mps", "m/s", 0.0, 100.0,
-       "without heading.csv: the GNSS course corrects yaw above this speed",
+       "without heading.csv, where the lateral-velocity update does not apply: the GNSS course "
+       "corrects yaw above this speed",
        &O::course_min_speed_mps},
       {"course_sigma_rad", "rad", 1e-6, 10.0, "1-sigma of the GNSS course as a heading",
        &O::course_sigma_rad},

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "../support/numerical_jacobian.hpp"
@@ -129,8 +130,9 @@ TEST(ReferenceMeasurements, JacobiansMatchNumerical) {
                                 [](const ReferenceState& s) { return reference_position(s); }, x))
                   .norm(),
               1e-9);
-    ReferenceRowJacobian J_speed, J_yaw;
+    ReferenceRowJacobian J_speed, J_yaw, J_lateral;
     reference_speed(x, &J_speed);
+    reference_lateral_velocity(x, &J_lateral);
     reference_yaw(x, &J_yaw);
     const auto speed = [](const ReferenceState& s) {
       return Eigen::Matrix<double, 1, 1>(reference_speed(s));
@@ -140,7 +142,20 @@ TEST(ReferenceMeasurements, JacobiansMatchNumerical) {
     };
     EXPECT_LT((J_speed - numerical_jacobian<1, 8>(speed, x)).norm(), 1e-8);
     EXPECT_LT((J_yaw - numerical_jacobian<1, 8>(yaw, x)).norm(), 1e-9);
+    const auto lateral = [](const ReferenceState& s) {
+      return Eigen::Matrix<double, 1, 1>(reference_lateral_velocity(s));
+    };
+    EXPECT_LT((J_lateral - numerical_jacobian<1, 8>(lateral, x)).norm(), 1e-8);
   }
+}
+
+TEST(ReferenceMeasurements, TheLateralVelocityIsTheVelocityAcrossTheHeading) {
+  ReferenceState x = ReferenceState::Zero();
+  x(2) = 3.0;                     // moving east at 3 m/s ...
+  x(4) = 0.5 * std::numbers::pi;  // ... while pointing north: 3 m/s to the right
+  EXPECT_NEAR(reference_lateral_velocity(x), -3.0, 1e-12);
+  x(4) = 0.0;
+  EXPECT_NEAR(reference_lateral_velocity(x), 0.0, 1e-12);
 }
 
 }  // namespace

@@ -7,10 +7,13 @@
 // body acceleration rotated into the world frame and the yaw rate (each step at the IMU's reading
 // at its middle, linear between samples; taken to the rear axle from where vehicle.yaml mounts the
 // IMU); GNSS updates x, y; heading updates yaw (wrapped innovation). Without imu.csv the
-// prediction is constant velocity with acceleration noise. Without heading.csv yaw is corrected by
-// the GNSS course when moving. GNSS Doppler speed (speed_mps), when the file has it, updates the
-// speed |v|: it fixes the along-track scale of the reference far better than position differences
-// of noisy fixes.
+// prediction is constant velocity with acceleration noise. At each GNSS fix, driving nearly
+// straight, the rear axle's velocity across its heading is held to zero, within the side slip a
+// car's tyres may have there (the non-holonomic constraint: it ties yaw to the velocity's
+// course, velocity to yaw); at the fixes where it does not apply and there is no
+// heading.csv, yaw is corrected by the GNSS course when moving instead. GNSS Doppler speed
+// (speed_mps), when the file has it, updates the speed |v|: it fixes the along-track scale of the
+// reference far better than position differences of noisy fixes.
 
 #include <array>
 #include <span>
@@ -42,6 +45,13 @@ struct ReferenceOptions {
   // model (m^2/s^3, rad^2/s), enough for ~7 m/s^2 and ~0.5 rad/s changing within a second.
   double no_imu_acc_psd = 25.0;
   double no_imu_yaw_rate_psd = 0.25;
+  // The rear axle's velocity across its heading beyond its side slip, 1-sigma per GNSS
+  // fix, at or above the speed and below the turn given; 0: off (the paper's layer 1). Where it
+  // does not apply and there is no heading.csv, the GNSS course corrects yaw.
+  double lateral_velocity_sigma_mps = 0.05;
+  double lateral_velocity_min_speed_mps = 5.0;
+  double lateral_velocity_max_turn_radps = 0.05;   // the gyro's, less its bias
+  double lateral_velocity_max_lateral_mps2 = 0.2;  // v times that turn
   double course_min_speed_mps = 3.0;  // GNSS-course pseudo-heading only above this speed
   double course_sigma_rad = 0.1;
   double gnss_gate_chi2 = 0.0;              // > 0: reject GNSS fixes whose NIS exceeds this (2 dof)

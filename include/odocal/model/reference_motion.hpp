@@ -46,6 +46,11 @@ inline constexpr int kReferencePositionIndex = 0;
 // GNSS Doppler speed over ground: h(x) = |v|. Undefined at |v| = 0 (callers gate on speed).
 inline double reference_speed(const ReferenceState& x, ReferenceRowJacobian* J_z_x = nullptr);
 
+// The velocity across the heading, left positive: h(x) = -sin(yaw) vx + cos(yaw) vy. A car's
+// rear axle moves along its heading up to its side slip (the non-holonomic constraint).
+inline double reference_lateral_velocity(const ReferenceState& x,
+                                         ReferenceRowJacobian* J_z_x = nullptr);
+
 // An absolute heading (heading.csv, or the velocity's course as a pseudo-measurement): h(x) = yaw;
 // J_z_x = e_4 (the state at kReferenceYawIndex).
 inline double reference_yaw(const ReferenceState& x, ReferenceRowJacobian* J_z_x = nullptr);
@@ -107,6 +112,17 @@ inline double reference_speed(const ReferenceState& x, ReferenceRowJacobian* J_z
     (*J_z_x)(3) = x(3) / speed;
   }
   return speed;
+}
+
+inline double reference_lateral_velocity(const ReferenceState& x, ReferenceRowJacobian* J_z_x) {
+  const double c = std::cos(x(4)), s = std::sin(x(4));
+  if (J_z_x != nullptr) {
+    J_z_x->setZero();
+    (*J_z_x)(2) = -s;
+    (*J_z_x)(3) = c;
+    (*J_z_x)(4) = -c * x(2) - s * x(3);
+  }
+  return -s * x(2) + c * x(3);
 }
 
 inline double reference_yaw(const ReferenceState& x, ReferenceRowJacobian* J_z_x) {
