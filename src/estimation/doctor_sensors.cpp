@@ -78,63 +78,81 @@ void Doctor::check_imu_place() {
       has("imu.yaw_sign") || has("imu.yaw_unit"))
     return;
   // Over each row's second the accelerometer's mean lateral reading less the wheels' speed times
-  // the gyro's mean is x times the gyro's change over that second. Below 8 m/s the rear axle's
-  // side slip changes too little to matter (x read 1.20-1.53 m on the simulator's car at 1.45 m,
-  // the lowest on the circuit's slow parts); a yaw misalignment of the IMU leaks its forward
-  // reading in, so that is fitted beside (with the offset).
+  // the gyro's mean is x times the gyro's change over that second, less y times the gyro's
+  // square (an IMU left of the axle reads its turns' centripetal -w^2 y). Below 8 m/s the rear
+  // axle's side slip changes too little to matter (x read 1.20-1.53 m on the simulator's car at
+  // 1.45 m, the lowest on the circuit's slow parts); a yaw misalignment of the IMU leaks its
+  // forward reading in, so that is fitted beside (with the offset).
   constexpr double kMaxSpeedMps = 8.0, kMinSpeedMps = 1.0;
   const auto half = static_cast<std::size_t>(std::lround(0.5 / signals_.step_s));
   const double second_s = 2.0 * static_cast<double>(half) * signals_.step_s;
-  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d right = Eigen::Vector3d::Zero();
+  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d right = Eigen::Vector4d::Zero();
   double residual_squares = 0.0;
   std::size_t rows = 0;
   for (std::size_t k = half; k + half < signals_.size(); ++k) {
     const double speed = 0.5 * (signals_.speed_rl_mps[k] + signals_.speed_rr_mps[k]);
+    const double turn = signals_.gyro_radps[k];
     const double turn_change =
         (signals_.gyro_radps[k + half] - signals_.gyro_radps[k - half]) / second_s;
-    const double excess = signals_.ay_mps2[k] - speed * signals_.gyro_radps[k];
+    const double excess = signals_.ay_mps2[k] - speed * turn;
     if (!(speed > kMinSpeedMps && speed < kMaxSpeedMps) || !std::isfinite(turn_change) ||
         !std::isfinite(excess) || !std::isfinite(signals_.ax_mps2[k]))
       continue;
-    const Eigen::Vector3d row(turn_change, signals_.ax_mps2[k], 1.0);
+    const Eigen::Vector4d row(turn_change, -turn * turn, signals_.ax_mps2[k], 1.0);
     normal += row * row.transpose();
     right += row * excess;
     residual_squares += excess * excess;
     ++rows;
   }
   if (rows < 100) return;
-  const Eigen::LDLT<Eigen::Matrix3d> solved(normal);
+  const Eigen::LDLT<Eigen::Matrix4d> solved(normal);
   if (solved.info() != Eigen::Success) return;
-  const Eigen::Vector3d fit = solved.solve(right);
-  const double dof = static_cast<double>(rows) - 3.0;
+  const Eigen::Vector4d fit = solved.solve(right);
+  const double dof = static_cast<double>(rows) - 4.0;
   const double variance = std::max(0.0, residual_squares - fit.dot(right)) / dof;
   // The rows overlap over their second: each 2 half of them read one independent second.
-  const double sigma = std::sqrt(variance * solved.solve(Eigen::Vector3d::UnitX())(0) * 2.0 *
-                                 static_cast<double>(half));
-  const double stated = facts_.vehicle.imu_position_m.value_or(Eigen::Vector2d::Zero()).x();
+  const auto sigma_of = [&](int i) {
+    return std::sqrt(variance * solved.solve(Eigen::Vector4d::Unit(i))(i) * 2.0 *
+                     static_cast<double>(half));
+  };
+  const Eigen::Vector2d stated = facts_.vehicle.imu_position_m.value_or(Eigen::Vector2d::Zero());
+  const Eigen::Vector2d read(fit(0), fit(1)), sigma(sigma_of(0), sigma_of(1));
   constexpr double kMinGapM = 0.5;
-  if (!std::isfinite(sigma) || sigma > 0.15 || std::abs(fit(0) - stated) < kMinGapM ||
-      std::abs(fit(0) - stated) < 5.0 * sigma)
-    return;
-  const std::string place = std::abs(fit(0)) < 0.25
-                                ? std::string("at the rear axle")
-                                : fmt::format("{:.1f} m {} the rear axle", std::abs(fit(0)),
-                                              fit(0) > 0.0 ? "ahead of" : "behind");
+  const auto stands_out = [&](int i) {
+    const double gap = std::abs(read(i) - stated(i));
+    return std::isfinite(sigma(i)) && sigma(i) <= 0.15 && gap >= kMinGapM && gap >= 5.0 * sigma(i);
+  };
+  if (!stands_out(0) && !stands_out(1)) return;
+  const auto along = [](double value, const char* positive, const char* negative) {
+    return std::abs(value) < 0.25
+               ? std::string()
+               : fmt::format("{:.1f} m {}", std::abs(value), value > 0.0 ? positive : negative);
+  };
+  std::string place = along(read.x(), "ahead of", "behind");
+  const std::string side = along(read.y(), "left of", "right of");
+  if (!place.empty() && !side.empty()) place += " and ";
+  place += side;
+  place = place.empty() ? "at the rear axle" : place + " the rear axle";
+  const bool side_only = !stands_out(0);
   add("imu.place", FindingSeverity::kWarning,
       fmt::format("imu.csv's accelerometer reads the turns as an IMU {} would; vehicle.yaml has "
-                  "imu_x_m {:.2f} m",
-                  place, stated),
-      fmt::format("lateral acceleration less speed x yaw rate against the yaw rate's change, {} "
-                  "rows below {:.0f} m/s: x = {:+.2f} +- {:.2f} m",
-                  rows, kMaxSpeedMps, fit(0), sigma),
+                  "imu_x_m {:.2f} m, imu_y_m {:.2f} m",
+                  place, stated.x(), stated.y()),
+      fmt::format("lateral acceleration less speed x yaw rate against the yaw rate's change and "
+                  "its square, {} rows below {:.0f} m/s: x = {:+.2f} +- {:.2f} m, y = {:+.2f} "
+                  "+- {:.2f} m",
+                  rows, kMaxSpeedMps, read.x(), sigma.x(), read.y(), sigma.y()),
       !facts_.vehicle.imu_position_m
           ? "the IMU is mounted away from the rear axle (at the centre of gravity, under "
             "a seat) and vehicle.yaml does not say so: layer 1 takes the accelerations "
             "of its turns as the axle's"
-          : "vehicle.yaml's imu_x_m is not where the IMU is (forward of the rear axle's "
-            "centre, in metres)",
-      fmt::format("vehicle.yaml: imu_x_m: {:.1f} (better: measure it on the car)", fit(0)));
+      : side_only ? "vehicle.yaml's imu_y_m is not where the IMU is (left of the rear axle's "
+                    "centre, in metres)"
+                  : "vehicle.yaml's imu_x_m is not where the IMU is (forward of the rear "
+                    "axle's centre, in metres)",
+      fmt::format("vehicle.yaml: imu_x_m: {:.1f}, imu_y_m: {:.1f} (better: measure it on the car)",
+                  read.x(), read.y()));
 }
 
 void Doctor::check_heading_offset() {
