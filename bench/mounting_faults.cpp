@@ -7,7 +7,8 @@
 // detections off. Printed per variant: usable results, their errors beyond 3 reported sigma (the
 // confident wrong answers), the share of all errors inside 3 sigma, and what was found; and the
 // logs `odocal doctor` blocks (a mis-mounted sensor is not an input mistake it should block: the
-// batch finds it). `--gnss-sigma` sets the fixes' white noise (the scenario's 3 m by default;
+// batch finds it), and how often its gnss.place reads the side of the Doppler logs' antenna.
+// `--gnss-sigma` sets the fixes' white noise (the scenario's 3 m by default;
 // 0.02 for RTK); `--doctor-only` skips the calibrations.
 //
 //   build/bench/odocal_mounting_faults [--runs 40] [--only N] [--report] [--gnss-sigma S]
@@ -20,6 +21,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <string_view>
 
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/log_diagnosis.hpp"
@@ -113,11 +115,17 @@ struct Found {
   }
 };
 
-std::string blocking_checks(const Diagnosis& diagnosis) {
+std::string checks_of(const Diagnosis& diagnosis, FindingSeverity severity) {
   std::string checks;
   for (const Finding& f : diagnosis.findings)
-    if (f.severity == FindingSeverity::kBlocking) checks += (checks.empty() ? "" : " ") + f.check;
+    if (f.severity == severity) checks += (checks.empty() ? "" : " ") + f.check;
   return checks;
+}
+
+bool has_check(const Diagnosis& diagnosis, std::string_view check) {
+  for (const Finding& f : diagnosis.findings)
+    if (f.check == check) return true;
+  return false;
 }
 
 }  // namespace
@@ -140,8 +148,8 @@ int main(int argc, char** argv) {
   blind.detect_mounting = blind.detect_latency = false;
   Tally with_detection, without_detection;
   // What matters: an antenna 0.1 m or more to a side, a heading 0.01 rad off, any latency drawn.
-  Found lever_found, heading_found, latency_found;
-  int diagnosed = 0;
+  Found lever_found, heading_found, latency_found, side_found;
+  int diagnosed = 0, side_false = 0;
   std::map<std::string, int> blocked_by;  // the doctor's blocking checks, by logs
   for (int run = 1; run <= runs; ++run) {
     if (only > 0 && run != only) continue;
@@ -149,12 +157,21 @@ int main(int argc, char** argv) {
     const sim::SimulatedDrive drive =
         sim::simulate(urban(static_cast<std::uint64_t>(run), faults, gnss_sigma_m));
     const Log log = simulated_log(drive);
-    const std::string blocks = blocking_checks(diagnose_log(log));
+    const Diagnosis diagnosis = diagnose_log(log);
+    const std::string blocks = checks_of(diagnosis, FindingSeverity::kBlocking);
     ++diagnosed;
     ++blocked_by[blocks.empty() ? "nothing" : blocks];
+    // The doctor's gnss.place reads the antenna's side from a Doppler column: found where it is
+    // 0.2 m or more to a side, said wrongly where it is within 0.1 m of the centreline.
+    if (faults.doppler) {
+      const double side_m = faults.lever ? std::abs(faults.y_m) : 0.0;
+      side_found.add(side_m >= 0.2, has_check(diagnosis, "gnss.place"));
+      side_false += side_m < 0.1 && has_check(diagnosis, "gnss.place");
+    }
     if (doctor_only) {
-      fmt::print(stderr, "run {:>2}: {:<62} doctor blocks {}\n", run, describe(faults),
-                 blocks.empty() ? "nothing" : blocks);
+      const std::string warns = checks_of(diagnosis, FindingSeverity::kWarning);
+      fmt::print(stderr, "run {:>2}: {:<62} doctor blocks {}; warns {}\n", run, describe(faults),
+                 blocks.empty() ? "nothing" : blocks, warns.empty() ? "nothing" : warns);
       continue;
     }
     const BatchSummary s = calibrate_batch(log, shipped);
@@ -176,7 +193,10 @@ int main(int argc, char** argv) {
   }
   fmt::print("odocal doctor on the {} logs blocks:", diagnosed);
   for (const auto& [checks, logs] : blocked_by) fmt::print(" {} {};", checks, logs);
-  fmt::print("\n");
+  fmt::print(
+      "\nits gnss.place on the Doppler logs: {}/{} antennas 0.2 m or more to a side found, "
+      "{} said of one within 0.1 m of the centreline\n",
+      side_found.found, side_found.present, side_false);
   if (doctor_only) return 0;
   fmt::print(
       "{} runs of the built-in urban drive (realistic, rear-driven), each fault drawn with "

@@ -36,6 +36,14 @@ void column(py::class_<Stream, Owner>& cls, const char* name, std::vector<double
       doc);
 }
 
+// A sensor's place in vehicle.yaml, one coordinate of it (None where unstated).
+auto mounted_coordinate(std::optional<Eigen::Vector2d> VehicleConfig::*place, int coordinate) {
+  return [place, coordinate](const VehicleConfig& v) -> std::optional<double> {
+    if (!(v.*place)) return std::nullopt;
+    return (*(v.*place))(coordinate);
+  };
+}
+
 }  // namespace
 
 void bind_log(py::module_& m) {
@@ -46,15 +54,10 @@ void bind_log(py::module_& m) {
       .def_readonly("circumference_rr_m", &VehicleConfig::circumference_rr_m)
       .def_readonly("ticks_per_rev", &VehicleConfig::ticks_per_rev)
       .def_readonly("wheelbase_m", &VehicleConfig::wheelbase_m)
-      .def_property_readonly("imu_x_m",
-                             [](const VehicleConfig& v) -> std::optional<double> {
-                               if (!v.imu_position_m) return std::nullopt;
-                               return v.imu_position_m->x();
-                             })
-      .def_property_readonly("imu_y_m", [](const VehicleConfig& v) -> std::optional<double> {
-        if (!v.imu_position_m) return std::nullopt;
-        return v.imu_position_m->y();
-      });
+      .def_property_readonly("imu_x_m", mounted_coordinate(&VehicleConfig::imu_position_m, 0))
+      .def_property_readonly("imu_y_m", mounted_coordinate(&VehicleConfig::imu_position_m, 1))
+      .def_property_readonly("gnss_x_m", mounted_coordinate(&VehicleConfig::gnss_position_m, 0))
+      .def_property_readonly("gnss_y_m", mounted_coordinate(&VehicleConfig::gnss_position_m, 1));
 
   py::class_<WheelStream, std::unique_ptr<WheelStream, py::nodelete>> wheels(
       m, "WheelStream", "Rear wheel revolution increments (paper eq. 2)");

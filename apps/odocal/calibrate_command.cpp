@@ -105,10 +105,15 @@ void run_calibrate(const CalibrateArgs& args) {
     write_output_file(args.json_file, json.dump(2) + "\n");
   }
   if (!result.usable()) throw NotUsableResult(result.message);
-  if (!args.vehicle_out.empty())
-    write_calibrated_vehicle(log.vehicle, result.estimate, args.vehicle_out, result.tyre_model);
+  const auto* batch = std::get_if<BatchSummary>(&summary);
+  if (!args.vehicle_out.empty()) {
+    // The antenna where the batch found it: layer 1 and the next calibration take it from there.
+    VehicleConfig found = log.vehicle;
+    if (const auto antenna = batch ? fitted_antenna_place(*batch) : std::nullopt)
+      found.gnss_position_m = antenna;
+    write_calibrated_vehicle(found, result.estimate, args.vehicle_out, result.tyre_model);
+  }
   if (!args.ros2_out.empty()) {
-    const auto* batch = std::get_if<BatchSummary>(&summary);
     write_ros2_diff_drive_parameters(log.vehicle, result.estimate, args.ros2_out, result.tyre_model,
                                      batch ? batch->reference_circumference : std::nullopt);
   }

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <optional>
 
@@ -19,6 +20,7 @@
 #include "calibration_run.hpp"
 #include "doppler_scale.hpp"
 #include "odocal/error.hpp"
+#include "second_fit.hpp"
 
 namespace odocal {
 
@@ -165,11 +167,34 @@ BatchSummary calibrate_as_configured(const Log& log, CalibrationRun& run,
   return summary;
 }
 
+// A stated antenna and a configured lever arm this close are one place (the yaml's rounding).
+constexpr double kAntennaPlacesAgreeM = 1e-3;
+
+// The options with the antenna where vehicle.yaml states it (gnss_x_m, gnss_y_m), which layer 1
+// measures through too. A config's lever arm beside it must agree: two places for one antenna
+// would have layer 1 and the batch fit different cars.
+BatchOptions with_stated_antenna(BatchOptions options, const Log& log) {
+  if (!log.vehicle.gnss_position_m) return options;
+  const Eigen::Vector2d stated = *log.vehicle.gnss_position_m;
+  const Eigen::Vector2d configured(options.lever_arm_x_m, options.lever_arm_y_m);
+  if (!configured.isZero() && (configured - stated).norm() > kAntennaPlacesAgreeM) {
+    throw InputError(
+        {(std::filesystem::path(log.source) / "vehicle.yaml").string(), 0, "gnss_x_m"},
+        fmt::format("the antenna stated at ({:+.3f}, {:+.3f}) m, but the batch's lever_arm_x_m, "
+                    "lever_arm_y_m say ({:+.3f}, {:+.3f}) m: state it in one place",
+                    stated.x(), stated.y(), configured.x(), configured.y()));
+  }
+  options.lever_arm_x_m = stated.x();
+  options.lever_arm_y_m = stated.y();
+  return options;
+}
+
 }  // namespace
 
-BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
+BatchSummary calibrate_batch(const Log& log, const BatchOptions& configured,
                              const CalibrationOptions& common) {
-  require_valid("batch", options.validate());
+  require_valid("batch", configured.validate());
+  const BatchOptions options = with_stated_antenna(configured, log);
   BatchSummary unfitted;
   CalibrationRun run(log, common, CalibrationMethod::kBatch, unfitted);
   run.smooth_batch_heading(options.heading_tick_smoothing_s);
@@ -184,6 +209,13 @@ BatchSummary calibrate_batch(const Log& log, const BatchOptions& options,
   batch::Calibrated result = batch::detect_latency(calibrate, std::move(mounted), first, options,
                                                    common.judge_model_adequacy);
   return batch::detect_heading_after(calibrate, std::move(result), first);
+}
+
+std::optional<Eigen::Vector2d> fitted_antenna_place(const BatchSummary& summary) {
+  const EstimatedParameter* x = batch::estimated_parameter(summary, "lever_arm_x_m");
+  const EstimatedParameter* y = batch::estimated_parameter(summary, "lever_arm_y_m");
+  if (!x || !y || !x->identified || !y->identified) return std::nullopt;
+  return Eigen::Vector2d(x->value, y->value);
 }
 
 }  // namespace odocal

@@ -39,6 +39,8 @@ Diagnosis Doctor::run() {
         return f.check.starts_with("vehicle.") ||
                (f.check.starts_with("wheels.") && f.check.ends_with("_unit"));
       });
+    } else if (signs_ok) {
+      check_gnss_place();
     }
     // A mirrored GNSS track (lat/lon swapped) also scales its distances by direction: the
     // wheel ratios then say nothing about units or circumferences.

@@ -2,7 +2,8 @@
 // The doctor (docs/doctor.md): every check of a log's facts and signals, each adding findings
 // with their evidence, cause and fix. Its checks live by stream: doctor_streams.cpp (spans, gaps,
 // repeats, altitude), doctor_wheels.cpp (units, signs, yaw rates, track width), doctor_clocks.cpp
-// (clock offsets), doctor_sensors.cpp (IMU axes, Doppler unit, standstill biases).
+// (clock offsets), doctor_sensors.cpp (IMU axes, Doppler unit, standstill biases),
+// doctor_antenna.cpp (the GNSS antenna's place).
 
 #include <algorithm>
 #include <cstddef>
@@ -87,6 +88,10 @@ class Doctor {
   // (a chord cuts a turn short) above 5 m/s (the positions' noise then biases their speed by well
   // under a per cent). Returns whether it found the column in another unit.
   bool check_doppler_unit();
+
+  // Where the GNSS antenna sits across the car: one y left of the rear axle's centre runs y w
+  // slower in a left turn, which its Doppler speed shows (doctor_antenna.cpp).
+  void check_gnss_place();
 
   void check_gnss_repeats();
 

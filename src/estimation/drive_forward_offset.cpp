@@ -106,8 +106,8 @@ std::optional<DriveForwardOffset> drive_forward_offset(const DriveForwardSums& s
   // ax = dv/dt - w (vy_rear + w b) + offset, with vy_rear = k ay v and v w = ay, b the IMU's
   // place ahead of the rear axle.
   const double b = accelerometer_position_m(body).x();
-  // A car's rear side slip per lateral acceleration, known to its own size (tyre_car_prior.hpp).
-  const double side_slip = -1.0 / (kGravityMps2 * kCarCorneringStiffnessPerLoad);
+  // A car's rear side slip, known to its own size (tyre_car_prior.hpp).
+  const double side_slip = kCarSideSlipPerLateralS2pm;
   const double turn_squared = sums.turn_squared / T, lateral_squared = sums.lateral_squared / T;
   DriveForwardOffset offset;
   offset.duration_s = T;

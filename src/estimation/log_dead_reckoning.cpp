@@ -11,26 +11,39 @@
 #include "odocal/estimation/prepared_blocks.hpp"
 #include "odocal/estimation/start_pose.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/model/mounted_position.hpp"
 
 namespace odocal {
 namespace {
 
 // Where the odometry chain breaks (a wheel gap), dead reckoning restarts from the reference: the
-// truth pose, else the GNSS position there with heading.csv's heading (else the dead-reckoned
-// one).
+// truth pose, else the GNSS position there (the antenna's: taken back to the axle) with
+// heading.csv's heading (else the dead-reckoned one).
 Pose2 restart_pose(const Log& log, double t_s, const Pose2& carried) {
   if (log.truth) {
     if (const auto pose = interpolate_pose(*log.truth, t_s)) return *pose;
   }
   Pose2 pose = carried;
-  const auto x = interpolate_linear(log.gnss.t_s, log.gnss.x_m, t_s);
-  const auto y = interpolate_linear(log.gnss.t_s, log.gnss.y_m, t_s);
-  if (x && y) pose.head<2>() = Eigen::Vector2d(*x, *y);
   if (log.heading) {
     if (const auto heading = interpolate_angle(log.heading->t_s, log.heading->heading_rad, t_s))
       pose.z() = carried.z() + angle_difference(*heading, carried.z());
   }
+  const auto x = interpolate_linear(log.gnss.t_s, log.gnss.x_m, t_s);
+  const auto y = interpolate_linear(log.gnss.t_s, log.gnss.y_m, t_s);
+  if (x && y) {
+    const Eigen::Vector2d antenna = log.vehicle.gnss_position_m.value_or(Eigen::Vector2d::Zero());
+    pose.head<2>() = Eigen::Vector2d(*x, *y) - (mounted_position(pose, antenna) - pose.head<2>());
+  }
   return pose;
+}
+
+// The dead-reckoned poses moved to the antenna, which the fixes are of (vehicle.yaml's gnss_x_m,
+// gnss_y_m), for comparing with them.
+PoseStream at_antenna(PoseStream trajectory, const VehicleConfig& vehicle) {
+  if (!vehicle.gnss_position_m) return trajectory;
+  for (Pose2& pose : trajectory.pose)
+    pose.head<2>() = mounted_position(pose, *vehicle.gnss_position_m);
+  return trajectory;
 }
 
 ReferencePath reference_of(const Log& log, bool truth) {
@@ -103,7 +116,8 @@ LogDeadReckoning dead_reckon_log(LogBlockSource& source, const LogDeadReckoningO
     const PoseStream trajectory =
         dead_reckon(piece, run.params, start,
                     [&](double t_s, const Pose2& at) { return restart_pose(context, t_s, at); });
-    errors.add(trajectory, reference_of(context, truth_reference));
+    errors.add(truth_reference ? trajectory : at_antenna(trajectory, context.vehicle),
+               reference_of(context, truth_reference));
     for (std::size_t k = carried ? 1 : 0; k < trajectory.size(); ++k)
       on_pose(trajectory.t_s[k], trajectory.pose[k]);
     run.distance_m +=

@@ -184,7 +184,9 @@ std::string first_look_report(const BatchSummary::MountingDetection& detection) 
         detection.by_gnss_noise
             ? fmt::format(", which leaves the fixes {:.1f} times", detection.gnss_sigma_scale_with)
             : std::string()));
-    fixes.push_back("lever_arm_x_m and lever_arm_y_m (or estimate_lever_arm: true)");
+    fixes.push_back(
+        "vehicle.yaml's gnss_x_m and gnss_y_m, which layer 1 reads too (or estimate_lever_arm: "
+        "true)");
   }
   if (heading_first) {
     seen.push_back(fmt::format(

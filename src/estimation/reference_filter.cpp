@@ -27,8 +27,15 @@ constexpr int kStates = kReferenceStates;
 using State = ReferenceState;
 using Covariance = ReferenceJacobian;
 using Coupling = Eigen::Matrix<double, 5, 6>;  // the transition's off-identity block
-// How far from the rear axle a car's GNSS antenna may sit, forward: a roof's length.
+// How far from the rear axle a car's GNSS antenna may sit, forward: a roof's length; and how far
+// from its stated place (vehicle.yaml's gnss_x_m) a measured one may be.
 constexpr double kAntennaPlaceSigmaM = 1.5;
+constexpr double kStatedAntennaPlaceSigmaM = 0.1;
+// The antenna's place, where vehicle.yaml states one off the axle.
+std::optional<Eigen::Vector2d> stated_antenna(const VehicleConfig& vehicle) {
+  if (!vehicle.gnss_position_m || vehicle.gnss_position_m->isZero()) return std::nullopt;
+  return vehicle.gnss_position_m;
+}
 // The lateral-velocity update waits until the velocity is known to this share of the speed.
 constexpr double kLinearVelocityShare = 0.1;
 
@@ -36,9 +43,11 @@ class ReferenceEkf {
  public:
   ReferenceEkf(const Log& log, const ReferenceOptions& options) : log_(log), options_(options) {}
 
-  void initialise(double t_s, const Eigen::Vector2d& position, double yaw_rad, double yaw_sigma) {
+  // At the first fix: the axle is where the antenna's place at this yaw puts it.
+  void initialise(double t_s, const Eigen::Vector2d& fix, double yaw_rad, double yaw_sigma) {
     t_s_ = t_s;
-    x_ << position, 0.0, 0.0, yaw_rad, 0.0, 0.0, 0.0;
+    x_ << fix, 0.0, 0.0, yaw_rad, 0.0, 0.0, 0.0;
+    if (antenna_m_) x_.head<2>() -= reference_antenna_position(x_, *antenna_m_) - fix;
     P_ = Covariance::Zero();
     // Without an IMU the biases have no input to act on: zero variance freezes them at zero.
     const double acc_bias = log_.imu ? square(options_.acc_bias_sigma_mps2) : 0.0;
@@ -117,34 +126,37 @@ class ReferenceEkf {
   }
 
   // The GNSS and heading models select states (reference_position, reference_yaw: H = [0 I 0]),
-  // so their updates take P's rows and columns directly (joseph_update_selected).
+  // so their updates take P's rows and columns directly (joseph_update_selected). A stated antenna
+  // off the axle (vehicle.yaml's gnss_x_m, gnss_y_m) adds the yaw's column.
   ODOCAL_HOT_LOOP bool update_gnss(std::size_t k) {
-    const Eigen::Vector2d innovation =
-        Eigen::Vector2d(log_.gnss.x_m[k], log_.gnss.y_m[k]) - reference_position(x_);
+    const Eigen::Vector2d fix(log_.gnss.x_m[k], log_.gnss.y_m[k]);
     const Eigen::Matrix2d R = square(gnss_sigma(k)) * Eigen::Matrix2d::Identity();
+    if (antenna_m_) return update_antenna_position(fix, R);
+    const Eigen::Vector2d innovation = fix - reference_position(x_);
     // H P H^T and P H^T are P's top-left block and first two columns (H = [I 0]).
     const Eigen::Matrix2d S = P_.topLeftCorner<2, 2>() + R;
     // S >= R = sigma^2 I is well conditioned: the closed-form inverse is as accurate as a
     // Cholesky solve, without the latter's dynamic-size kernels for the 2x8 right-hand side.
     const Eigen::Matrix2d S_inverse = S.inverse();
-    if (options_.gnss_gate_chi2 > 0.0 &&
-        innovation.dot(S_inverse * innovation) > options_.gnss_gate_chi2) {
-      return false;
-    }
+    if (!within_gate(innovation, S_inverse)) return false;
     const Eigen::Matrix<double, kStates, 2> K = P_.leftCols<2>().lazyProduct(S_inverse);
     x_ += K * innovation;
     P_ = joseph_update_selected(P_, K, kReferencePositionIndex, R);
     return true;
   }
 
-  // Doppler speed over ground.
+  // Doppler speed over ground, of the antenna: the turn is the gyro's at the fix.
   ODOCAL_HOT_LOOP void update_speed(double measured_mps) {
     if (x_.segment<2>(2).norm() < options_.gnss_speed_min_mps ||
         measured_mps < options_.gnss_speed_min_mps) {
       return;
     }
     ReferenceRowJacobian H;
-    const double innovation = measured_mps - reference_speed(x_, &H);
+    const double predicted =
+        antenna_m_
+            ? reference_antenna_speed(x_, *antenna_m_, log_.imu ? imu_at(t_s_).wz_radps : 0.0, &H)
+            : reference_speed(x_, &H);
+    const double innovation = measured_mps - predicted;
     const double R = square(options_.gnss_speed_sigma_mps);
     const double S = H.lazyProduct(P_).dot(H) + R;
     const Eigen::Matrix<double, kStates, 1> K = P_.lazyProduct(H.transpose()) / S;
@@ -191,10 +203,10 @@ class ReferenceEkf {
     if (square(kLinearVelocityShare * speed) < P_(2, 2) + P_(3, 3)) return false;
     ReferenceRowJacobian H;
     const double lateral = reference_lateral_velocity(x_, &H);
-    const double side_slip_per_lateral = -1.0 / (kGravityMps2 * kCarCorneringStiffnessPerLoad);
-    const double R = square(options_.lateral_velocity_sigma_mps) +
-                     square(side_slip_per_lateral * speed * speed * turn_radps) +
-                     square(kAntennaPlaceSigmaM * turn_radps);
+    const double R =
+        square(options_.lateral_velocity_sigma_mps) +
+        square(kCarSideSlipPerLateralS2pm * speed * speed * turn_radps) +
+        square((antenna_m_ ? kStatedAntennaPlaceSigmaM : kAntennaPlaceSigmaM) * turn_radps);
     const double S = H.lazyProduct(P_).dot(H) + R;
     const Eigen::Matrix<double, kStates, 1> K = P_.lazyProduct(H.transpose()) / S;
     x_ -= K * lateral;
@@ -207,12 +219,29 @@ class ReferenceEkf {
 
  private:
   static double square(double v) { return v * v; }
+  bool within_gate(const Eigen::Vector2d& innovation, const Eigen::Matrix2d& S_inverse) const {
+    return !(options_.gnss_gate_chi2 > 0.0) ||
+           innovation.dot(S_inverse * innovation) <= options_.gnss_gate_chi2;
+  }
+  bool update_antenna_position(const Eigen::Vector2d& fix, const Eigen::Matrix2d& R) {
+    Eigen::Matrix<double, 2, kStates> H;
+    const Eigen::Vector2d innovation = fix - reference_antenna_position(x_, *antenna_m_, &H);
+    const Eigen::Matrix<double, kStates, 2> PHt = P_.lazyProduct(H.transpose());
+    const Eigen::Matrix2d S_inverse = (H.lazyProduct(PHt) + R).inverse();
+    if (!within_gate(innovation, S_inverse)) return false;
+    const Eigen::Matrix<double, kStates, 2> K = PHt * S_inverse;
+    x_ += K * innovation;
+    P_ = joseph_update_thin(P_, K, H, R);
+    return true;
+  }
   double gnss_sigma(std::size_t k) const {
     return log_.gnss.sigma_m.empty() ? options_.gnss_sigma_m : log_.gnss.sigma_m[k];
   }
 
   const Log& log_;
   const ReferenceOptions& options_;
+  // The antenna's place where vehicle.yaml states one off the axle; else the fixes are the axle's.
+  std::optional<Eigen::Vector2d> antenna_m_ = stated_antenna(log_.vehicle);
   double t_s_{};
   State x_ = State::Zero();
   Covariance P_ = Covariance::Identity();

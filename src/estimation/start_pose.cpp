@@ -10,6 +10,7 @@
 #include "odocal/estimation/dead_reckoning.hpp"
 #include "odocal/estimation/interpolation.hpp"
 #include "odocal/model/angle.hpp"
+#include "odocal/model/mounted_position.hpp"
 
 namespace odocal {
 namespace {
@@ -71,12 +72,15 @@ Pose2 start_pose_from_gnss(const Log& log, const OdometryParams& params,
         "no GNSS fix within {} s after the first wheel sample ({} s): cannot place the start",
         options.window_s, t0));
   }
+  // The fixes are the antenna's: matched with where the odometry puts it (vehicle.yaml's
+  // gnss_x_m, gnss_y_m; else the axle).
+  const Eigen::Vector2d antenna = log.vehicle.gnss_position_m.value_or(Eigen::Vector2d::Zero());
   Eigen::Matrix2Xd source(2, fixes.size());
   Eigen::Matrix2Xd target(2, fixes.size());
   for (std::size_t i = 0; i < fixes.size(); ++i) {
     const std::size_t k = fixes[i];
     const Eigen::Index column = static_cast<Eigen::Index>(i);
-    source.col(column) = interpolate_pose(odometry, log.gnss.t_s[k])->head<2>();
+    source.col(column) = mounted_position(*interpolate_pose(odometry, log.gnss.t_s[k]), antenna);
     target.col(column) = Eigen::Vector2d(log.gnss.x_m[k], log.gnss.y_m[k]);
   }
   const auto spread_m = [](const Eigen::Matrix2Xd& points) {

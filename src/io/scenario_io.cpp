@@ -116,6 +116,7 @@ void parse_sensors(YamlMap sensors, sim::Scenario& s) {
     gnss->read("latency_s", s.gnss.latency_s, 0.0, 10.0);
     gnss->read("lever_arm_x_m", s.gnss.lever_arm_x_m, -100.0, 100.0);
     gnss->read("lever_arm_y_m", s.gnss.lever_arm_y_m, -100.0, 100.0);
+    gnss->read("lever_arm_stated", s.gnss.lever_arm_stated);
     gnss->read("altitude_sigma_m", s.gnss.altitude_sigma_m, -1.0, 1e3);
     gnss->read("speed_sigma_mps", s.gnss.speed_sigma_mps, -1.0, 100.0);
     const auto outages = gnss->sequence("outages");
@@ -407,6 +408,7 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("latency_s", s.gnss.latency_s);
   key("lever_arm_x_m", s.gnss.lever_arm_x_m);
   key("lever_arm_y_m", s.gnss.lever_arm_y_m);
+  key("lever_arm_stated", s.gnss.lever_arm_stated);
   key("altitude_sigma_m", s.gnss.altitude_sigma_m);
   key("speed_sigma_mps", s.gnss.speed_sigma_mps);
   out << YAML::Key << "outages" << YAML::Value << YAML::BeginSeq;

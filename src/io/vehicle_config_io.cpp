@@ -43,6 +43,24 @@ constexpr std::array<BodyField, 13> kBodyFields{{
     {"lateral_curve_shape", &VehicleBody::lateral_curve_shape, kSlipCurveShape},
 }};
 
+// A sensor's place forward and left of the rear axle's centre, where either key is given (the
+// other then zero).
+std::optional<Eigen::Vector2d> mounting_position(detail::YamlMap& map, const char* x_key,
+                                                 const char* y_key) {
+  if (!map.has(x_key) && !map.has(y_key)) return std::nullopt;
+  Eigen::Vector2d place = Eigen::Vector2d::Zero();
+  map.read(x_key, place.x(), kMountingOffsetM.min, kMountingOffsetM.max);
+  map.read(y_key, place.y(), kMountingOffsetM.min, kMountingOffsetM.max);
+  return place;
+}
+
+void write_mounting_position(YAML::Emitter& out, const std::optional<Eigen::Vector2d>& place,
+                             const char* x_key, const char* y_key) {
+  if (!place) return;
+  out << YAML::Key << x_key << YAML::Value << place->x();
+  out << YAML::Key << y_key << YAML::Value << place->y();
+}
+
 }  // namespace
 
 namespace detail {
@@ -90,12 +108,8 @@ VehicleConfig parse_vehicle_config(YamlMap& map) {
   optional("wheelbase_m", vehicle.wheelbase_m, kWheelbaseM);
   optional("circumference_fl_m", vehicle.circumference_fl_m, kCircumferenceM);
   optional("circumference_fr_m", vehicle.circumference_fr_m, kCircumferenceM);
-  if (map.has("imu_x_m") || map.has("imu_y_m")) {
-    Eigen::Vector2d imu = Eigen::Vector2d::Zero();
-    map.read("imu_x_m", imu.x(), kMountingOffsetM.min, kMountingOffsetM.max);
-    map.read("imu_y_m", imu.y(), kMountingOffsetM.min, kMountingOffsetM.max);
-    vehicle.imu_position_m = imu;
-  }
+  vehicle.imu_position_m = mounting_position(map, "imu_x_m", "imu_y_m");
+  vehicle.gnss_position_m = mounting_position(map, "gnss_x_m", "gnss_y_m");
   if (auto tyre = map.map("tyre_model")) {
     TyreModel model;
     for (const TyreCoefficient& coefficient : kTyreCoefficients)
@@ -148,10 +162,8 @@ void write_vehicle_config(const VehicleConfig& vehicle, const std::filesystem::p
   if (vehicle.circumference_fr_m) {
     out << YAML::Key << "circumference_fr_m" << YAML::Value << *vehicle.circumference_fr_m;
   }
-  if (vehicle.imu_position_m) {
-    out << YAML::Key << "imu_x_m" << YAML::Value << vehicle.imu_position_m->x();
-    out << YAML::Key << "imu_y_m" << YAML::Value << vehicle.imu_position_m->y();
-  }
+  write_mounting_position(out, vehicle.imu_position_m, "imu_x_m", "imu_y_m");
+  write_mounting_position(out, vehicle.gnss_position_m, "gnss_x_m", "gnss_y_m");
   if (vehicle.tyre_model) {
     const TyreModel& m = *vehicle.tyre_model;
     out << YAML::Key << "tyre_model" << YAML::Value << YAML::BeginMap;

@@ -301,6 +301,10 @@ SimulatedDrive simulate(const Scenario& scenario) {
   } else if (!mount.isZero()) {
     out.nominal_vehicle.imu_position_m = mount;
   }
+  if (scenario.gnss.lever_arm_stated) {
+    out.nominal_vehicle.gnss_position_m =
+        Eigen::Vector2d(scenario.gnss.lever_arm_x_m, scenario.gnss.lever_arm_y_m);
+  }
   if (scenario.wheels.output == WheelUnit::kTicks) {
     out.nominal_vehicle.ticks_per_rev = scenario.wheels.ticks_per_rev;
     if (scenario.wheels.counter_bits > 0)

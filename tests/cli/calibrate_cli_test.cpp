@@ -7,6 +7,9 @@
 
 #include "../support/run_cli.hpp"
 #include "../support/temp_log_dir.hpp"
+#include "odocal/io/scenario_io.hpp"
+#include "odocal/io/vehicle_config_io.hpp"
+#include "odocal/sim/scenario.hpp"
 
 namespace odocal {
 namespace {
@@ -217,6 +220,36 @@ TEST(ImportCli, ImportsAndSummarisesOrExitsTwoOnABadMap) {
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("'streams.wheels': required stream is missing"), std::string::npos)
       << bad.err;
+}
+
+// An antenna 0.5 m left of the axle that vehicle.yaml does not state: the batch finds it in the
+// fixes and the Doppler speed (detect_mounting), and the calibrated vehicle.yaml states it, so
+// that layer 1 and the next calibration take it from there.
+TEST(CalibrateCliAntenna, TheCalibratedVehicleYamlStatesTheAntennaWhereTheBatchFoundIt) {
+  const TempLogDir dir;
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.gnss.speed_sigma_mps = 0.05;
+  scenario.gnss.lever_arm_y_m = 0.5;
+  dir.write("urban-antenna.yaml", scenario_to_yaml(scenario));
+  ASSERT_EQ(
+      run_cli("simulate --scenario " + dir.file("urban-antenna.yaml") + " --out " + dir.file("log"))
+          .status,
+      0);
+  const std::string vehicle = dir.file("calibrated.yaml");
+  const auto run =
+      run_cli("calibrate " + dir.file("log") + " --method batch --vehicle-out " + vehicle);
+  ASSERT_EQ(run.status, 0) << run.out << run.err;
+  const VehicleConfig calibrated = read_vehicle_config(vehicle);
+  ASSERT_TRUE(calibrated.gnss_position_m) << read_text_file(vehicle);
+  EXPECT_NEAR(calibrated.gnss_position_m->y(), 0.5, 0.05);
+  EXPECT_NEAR(calibrated.gnss_position_m->x(), 0.0, 0.2);
+  EXPECT_NE(run.out.find("mounting     the fit without them"), std::string::npos) << run.out;
+  // Calibrated again from there, the antenna is held where it was found: nothing to look for.
+  std::filesystem::copy_file(vehicle, dir.file("log/vehicle.yaml"),
+                             std::filesystem::copy_options::overwrite_existing);
+  const auto again = run_cli("calibrate " + dir.file("log") + " --method batch");
+  ASSERT_EQ(again.status, 0) << again.out << again.err;
+  EXPECT_EQ(again.out.find("mounting     the fit without them"), std::string::npos) << again.out;
 }
 
 }  // namespace

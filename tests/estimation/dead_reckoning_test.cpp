@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -127,6 +128,27 @@ TEST(StartPose, FromGnssAlignsOdometryOnATightCircle) {
   start = start_pose_from_gnss(circle_log(circle, 3.0), kTrue);
   EXPECT_LT(start.head<2>().norm(), 1.2);
   EXPECT_LT(std::abs(start.z()), 0.08);
+}
+
+// The fixes of an antenna 1.5 m ahead and 0.4 m right of the axle, which vehicle.yaml states: the
+// start is the axle's, not the antenna's.
+TEST(StartPose, FromGnssTakesAStatedAntennaBackToTheAxle) {
+  const Circle circle = make_circle(20.0);
+  const Eigen::Vector2d antenna(1.5, -0.4);
+  Log log = circle_log(circle, 0.0);
+  for (std::size_t k = 0; k < log.gnss.size(); ++k) {
+    const Pose2 pose = *interpolate_pose(circle.truth, log.gnss.t_s[k]);
+    const Eigen::Vector2d at = pose.head<2>() + Eigen::Rotation2Dd(pose.z()) * antenna;
+    log.gnss.x_m[k] = at.x();
+    log.gnss.y_m[k] = at.y();
+  }
+  log.vehicle.gnss_position_m = antenna;
+  Pose2 start = start_pose_from_gnss(log, kTrue);
+  EXPECT_LT(start.head<2>().norm(), 1e-3);
+  EXPECT_LT(std::abs(start.z()), 1e-4);
+  log.vehicle.gnss_position_m.reset();  // taken as the axle's: the start lands near the antenna
+  start = start_pose_from_gnss(log, kTrue);
+  EXPECT_GT(start.head<2>().norm(), 1.0);
 }
 
 TEST(StartPose, StandingStillFallsBackToTheHeadingStream) {

@@ -54,7 +54,8 @@ class DoctorMatrix : public ::testing::Test {
 
 TEST_F(DoctorMatrix, CleanSimulatedLogsHaveNoFindingAtAll) {
   for (const char* flags :
-       {"", "--ideal", "--wheel-output radps", "--gnss-output latlon", "--scenario urban"}) {
+       {"", "--ideal", "--wheel-output radps", "--gnss-output latlon", "--scenario urban",
+        "--scenario urban --gnss-speed-sigma 0.05", "--gnss-speed-sigma 0.05"}) {
     const TempLogDir dir;
     const Diagnosis diagnosis = doctor_log(simulated(dir, flags));
     EXPECT_TRUE(diagnosis.findings.empty()) << flags << ": " << checks(diagnosis, false);

@@ -118,5 +118,32 @@ TEST(LogDeadReckoning, AForwardOffsetMeasuredOverTheWholeLogFirstIsRemovedFromEv
   EXPECT_EQ(even.trajectory.t_s, once.trajectory.t_s);
 }
 
+// Against fixes of an antenna 1.5 m ahead and 0.4 m right of the axle that vehicle.yaml states,
+// the dead-reckoned axle is moved to the antenna: the error is the odometry's, not the mounting's.
+TEST(LogDeadReckoning, ComparesTheFixesWithTheStatedAntennasPlace) {
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.ideal = true;
+  scenario.route.laps = 1;
+  scenario.gnss.sigma_m = 0.02;
+  scenario.gnss.lever_arm_x_m = 1.5;
+  scenario.gnss.lever_arm_y_m = -0.4;
+  scenario.gnss.lever_arm_stated = true;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  Log log = simulated_log(drive);
+  ASSERT_FALSE(log.truth);
+  LogDeadReckoningOptions options;
+  options.circumference_rl_m = drive.true_params.circumference_rl_m;
+  options.circumference_rr_m = drive.true_params.circumference_rr_m;
+  options.track_width_m = drive.true_params.track_width_m;
+  InMemoryLogSource stated_source(log);
+  const DeadReckoned stated = dead_reckoned(stated_source, options);
+  log.vehicle.gnss_position_m.reset();
+  InMemoryLogSource axle_source(log);
+  const DeadReckoned axle = dead_reckoned(axle_source, options);
+  // Measured: 0.05 m stated, 2.1 m taken as the axle's.
+  EXPECT_LT(stated.result.errors.mean_position_m, 0.2) << axle.result.errors.mean_position_m;
+  EXPECT_GT(axle.result.errors.mean_position_m, 1.0);
+}
+
 }  // namespace
 }  // namespace odocal

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "odocal/error.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
@@ -101,6 +102,50 @@ TEST(MountingDetection, AnAntennaAheadOfTheAxleIsFoundAndAsStatedFitsAsOnTheAxle
   EXPECT_EQ(stated.termination, Termination::kConverged) << stated.full_report();
   EXPECT_LT(stated.doppler_sigma_scale, 1.2) << stated.full_report();
   EXPECT_LT(std::abs(error_rl(stated, drive)), 2.0 * stated.sigma_rl_m()) << stated.full_report();
+}
+
+// vehicle.yaml's gnss_x_m, gnss_y_m state the antenna for layer 1 and the batch alike: the batch
+// holds its lever arm there as if the configuration had said it, and refuses a configuration that
+// puts the same antenna elsewhere.
+TEST(MountingDetection, AnAntennaStatedInVehicleYamlIsHeldThereAndNotStatedTwice) {
+  const sim::SimulatedDrive drive = urban_drive({.ahead_m = 1.5, .left_m = 0.3});
+  Log log = simulated_log(drive);
+  log.vehicle.gnss_position_m = Eigen::Vector2d(1.5, 0.3);
+  BatchOptions options = options_that_report();
+  const BatchSummary stated = calibrate_batch(log, options);
+  EXPECT_FALSE(stated.mounting_detection.has_value()) << stated.full_report();
+  EXPECT_EQ(stated.termination, Termination::kConverged) << stated.full_report();
+  EXPECT_LT(stated.doppler_sigma_scale, 1.2) << stated.full_report();
+  EXPECT_LT(std::abs(error_rl(stated, drive)), 2.0 * stated.sigma_rl_m()) << stated.full_report();
+
+  options.lever_arm_x_m = 1.5;
+  options.lever_arm_y_m = 0.3;
+  const BatchSummary twice = calibrate_batch(log, options);  // the same place: no conflict
+  EXPECT_DOUBLE_EQ(twice.estimate.circumference_rl_m, stated.estimate.circumference_rl_m);
+  options.lever_arm_x_m = 1.2;
+  try {
+    calibrate_batch(log, options);
+    FAIL() << "two places for one antenna were taken";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().field, "gnss_x_m") << e.what();
+    EXPECT_NE(e.problem().find("lever_arm_x_m"), std::string::npos) << e.what();
+  }
+}
+
+// A place stated wrong is found like an unstated one: the antenna is over the axle, vehicle.yaml
+// says 1.5 m ahead and 0.3 m left.
+TEST(MountingDetection, AnAntennaStatedWhereItIsNotIsFound) {
+  const sim::SimulatedDrive drive = urban_drive();
+  Log log = simulated_log(drive);
+  log.vehicle.gnss_position_m = Eigen::Vector2d(1.5, 0.3);
+  const BatchSummary found = calibrate_batch(log, options_that_report());
+  ASSERT_TRUE(found.mounting_detection.has_value()) << found.full_report();
+  const BatchSummary::MountingDetection& detection = *found.mounting_detection;
+  EXPECT_TRUE(detection.taken) << found.full_report();
+  EXPECT_NEAR(detection.lever_arm_m[0], 0.0, 3.0 * detection.lever_arm_sigma_m[0] + 0.01);
+  EXPECT_NEAR(detection.lever_arm_m[1], 0.0, 3.0 * detection.lever_arm_sigma_m[1] + 0.01);
+  EXPECT_LT(std::abs(error_rl(found, drive)), 3.0 * found.sigma_rl_m()) << found.full_report();
+  EXPECT_NE(found.full_report().find("gnss_x_m"), std::string::npos) << found.full_report();
 }
 
 TEST(MountingDetection, AHeadingReadOffByAMountsYawIsFoundAndEstimated) {

@@ -434,6 +434,28 @@ TEST(VehicleConfigIo, TheImusMountingIsWrittenWhereStatedAndReadBack) {
   EXPECT_EQ(*left.imu_position_m, Eigen::Vector2d(0.0, 0.3));
 }
 
+TEST(VehicleConfigIo, TheAntennasMountingIsWrittenWhereStatedAndReadBack) {
+  const TempLogDir dir;
+  VehicleConfig vehicle = plain_vehicle();
+  write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
+  EXPECT_EQ(testing::read_text_file(dir.file("vehicle.yaml")).find("gnss_"), std::string::npos);
+  EXPECT_FALSE(read_vehicle_config(dir.file("vehicle.yaml")).gnss_position_m);
+  vehicle.gnss_position_m = Eigen::Vector2d(1.5, -0.4);
+  write_vehicle_config(vehicle, dir.file("vehicle.yaml"));
+  const VehicleConfig back = read_vehicle_config(dir.file("vehicle.yaml"));
+  ASSERT_TRUE(back.gnss_position_m);
+  EXPECT_EQ(*back.gnss_position_m, Eigen::Vector2d(1.5, -0.4));
+  EXPECT_FALSE(back.imu_position_m);
+  const TempLogDir one;
+  one.write("vehicle.yaml",
+            "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\ngnss_x_m: 0.8\n");
+  EXPECT_EQ(*read_vehicle_config(one.file("vehicle.yaml")).gnss_position_m,
+            Eigen::Vector2d(0.8, 0.0));
+  one.write("vehicle.yaml",
+            "track_width_m: 1.6\ncircumference_rl_m: 2\ncircumference_rr_m: 2\ngnss_y_m: left\n");
+  expect_input_error(one, {"vehicle.yaml", 4, "gnss_y_m", ""});
+}
+
 TEST(LogReaderRejects, ImuMountedOffAnyVehicle) {
   const TempLogDir dir;
   dir.write("vehicle.yaml",

@@ -146,7 +146,45 @@ TEST(ReferenceMeasurements, JacobiansMatchNumerical) {
       return Eigen::Matrix<double, 1, 1>(reference_lateral_velocity(s));
     };
     EXPECT_LT((J_lateral - numerical_jacobian<1, 8>(lateral, x)).norm(), 1e-8);
+
+    const Eigen::Vector2d antenna(2 * u(rng), u(rng));
+    const double gyro = 0.3 * u(rng);
+    Eigen::Matrix<double, 2, kReferenceStates> J_antenna;
+    reference_antenna_position(x, antenna, &J_antenna);
+    const auto antenna_position = [&](const ReferenceState& s) {
+      return reference_antenna_position(s, antenna);
+    };
+    EXPECT_LT((J_antenna - numerical_jacobian<2, 8>(antenna_position, x)).norm(), 1e-8);
+    ReferenceRowJacobian J_antenna_speed;
+    reference_antenna_speed(x, antenna, gyro, &J_antenna_speed);
+    const auto antenna_speed = [&](const ReferenceState& s) {
+      return Eigen::Matrix<double, 1, 1>(reference_antenna_speed(s, antenna, gyro));
+    };
+    EXPECT_LT((J_antenna_speed - numerical_jacobian<1, 8>(antenna_speed, x)).norm(), 1e-8);
   }
+}
+
+TEST(ReferenceMeasurements, AnAntennaOffTheAxleIsWhereTheHeadingTurnsIt) {
+  ReferenceState x = ReferenceState::Zero();
+  x.head<2>() << 10.0, 20.0;
+  x(4) = 0.5 * std::numbers::pi;  // pointing north: ahead is north, left is west
+  const Eigen::Vector2d antenna(1.5, 0.5);
+  EXPECT_LT((reference_antenna_position(x, antenna) - Eigen::Vector2d(9.5, 21.5)).norm(), 1e-12);
+  EXPECT_LT((reference_antenna_position(x, Eigen::Vector2d::Zero()) - reference_position(x)).norm(),
+            1e-15);
+}
+
+TEST(ReferenceMeasurements, AnAntennaOffTheAxleRunsTheTurnsSpeedBesideTheAxles) {
+  ReferenceState x = ReferenceState::Zero();
+  x(2) = 10.0;  // east at 10 m/s, pointing east, turning left at 0.1 rad/s (gyro 0.12, bias 0.02)
+  x(7) = 0.02;
+  const Eigen::Vector2d antenna(1.5, 0.5);
+  // 0.5 m left runs 0.05 m/s slower; 1.5 m ahead swings out at 0.15 m/s.
+  EXPECT_NEAR(reference_antenna_speed(x, antenna, 0.12), std::hypot(9.95, 0.15), 1e-12);
+  x(2) = 0.0;  // a pivot on the spot: the antenna circles at 0.1 |l|
+  EXPECT_NEAR(reference_antenna_speed(x, antenna, 0.12), 0.1 * antenna.norm(), 1e-12);
+  x(2) = 10.0;
+  EXPECT_NEAR(reference_antenna_speed(x, Eigen::Vector2d::Zero(), 0.12), reference_speed(x), 1e-15);
 }
 
 TEST(ReferenceMeasurements, TheLateralVelocityIsTheVelocityAcrossTheHeading) {

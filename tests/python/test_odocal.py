@@ -157,6 +157,21 @@ def test_dead_reckoning_takes_the_accelerometer_as_the_calibration_did(tmp_path)
     assert _end_gap(*prepared) < 0.2 * _end_gap(*raw)
 
 
+def test_the_sensors_places_are_vehicle_yamls(tmp_path):
+    log = odocal.read_log(EXAMPLE)
+    assert log.vehicle.gnss_x_m is None and log.vehicle.gnss_y_m is None
+    directory = tmp_path / "mounted"
+    directory.mkdir()
+    for f in os.listdir(EXAMPLE):
+        text = open(os.path.join(EXAMPLE, f)).read()
+        if f == "vehicle.yaml":
+            text += "gnss_x_m: 1.5\ngnss_y_m: -0.4\nimu_x_m: 0.7\n"
+        (directory / f).write_text(text)
+    mounted = odocal.read_log(str(directory))
+    assert (mounted.vehicle.gnss_x_m, mounted.vehicle.gnss_y_m) == (1.5, -0.4)
+    assert (mounted.vehicle.imu_x_m, mounted.vehicle.imu_y_m) == (0.7, 0.0)
+
+
 def test_read_log_and_its_errors():
     log = odocal.read_log(EXAMPLE)
     assert log.vehicle.track_width_m == pytest.approx(1.6)

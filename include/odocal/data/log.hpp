@@ -33,6 +33,11 @@ struct VehicleConfig {
   // centre of gravity: one ahead of a point reads each turn's -w^2 x and dw/dt x beside the
   // point's. Unstated: layer 1 takes it at the axle, the tyre terms at the centre of gravity.
   std::optional<Eigen::Vector2d> imu_position_m;
+  // Where the GNSS antenna sits, forward and left of the rear axle's centre (m; vehicle.yaml's
+  // gnss_x_m, gnss_y_m): the fixes and the Doppler speed are that point's. Layer 1 measures the
+  // axle through it, and the batch holds its lever arm there (or starts there, when it estimates
+  // it). Unstated: the fixes are taken as the axle's, and the batch's options say.
+  std::optional<Eigen::Vector2d> gnss_position_m;
   // A calibrated condition-dependent circumference (docs/tyre-model.md); dead reckoning applies
   // it. Absent: the plain model.
   std::optional<TyreModel> tyre_model;

@@ -303,4 +303,10 @@ struct BatchSummary : CalibrationSummary {
 BatchSummary calibrate_batch(const Log& log, const BatchOptions& options = {},
                              const CalibrationOptions& common = {});
 
+// Where the fit found the GNSS antenna (forward and left of the rear axle's centre, m): where it
+// estimated the lever arm (estimate_lever_arm, or detect_mounting's fit taken) and the log
+// identified both coordinates. Nothing where it was held (at vehicle.yaml's gnss_x_m, gnss_y_m or
+// the configured place).
+std::optional<Eigen::Vector2d> fitted_antenna_place(const BatchSummary& summary);
+
 }  // namespace odocal

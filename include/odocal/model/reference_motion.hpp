@@ -46,6 +46,16 @@ inline constexpr int kReferencePositionIndex = 0;
 // GNSS Doppler speed over ground: h(x) = |v|. Undefined at |v| = 0 (callers gate on speed).
 inline double reference_speed(const ReferenceState& x, ReferenceRowJacobian* J_z_x = nullptr);
 
+// The same of an antenna at l (forward and left of the reference point, m; vehicle.yaml's
+// gnss_x_m, gnss_y_m): its position h(x) = p + R(yaw) l, and its speed |v + w R(yaw) (-l_y, l_x)|
+// with the turn w = gyro - b_g (the gyro's reading taken as known; zero without an IMU). An
+// antenna ahead of the axle swings out in every turn, one to its left runs slower in a left turn.
+inline Eigen::Vector2d reference_antenna_position(
+    const ReferenceState& x, const Eigen::Vector2d& antenna_m,
+    Eigen::Matrix<double, 2, kReferenceStates>* J_z_x = nullptr);
+inline double reference_antenna_speed(const ReferenceState& x, const Eigen::Vector2d& antenna_m,
+                                      double gyro_radps, ReferenceRowJacobian* J_z_x = nullptr);
+
 // The velocity across the heading, left positive: h(x) = -sin(yaw) vx + cos(yaw) vy. A car's
 // rear axle moves along its heading up to its side slip (the non-holonomic constraint).
 inline double reference_lateral_velocity(const ReferenceState& x,
@@ -110,6 +120,39 @@ inline double reference_speed(const ReferenceState& x, ReferenceRowJacobian* J_z
     J_z_x->setZero();
     (*J_z_x)(2) = x(2) / speed;
     (*J_z_x)(3) = x(3) / speed;
+  }
+  return speed;
+}
+
+inline Eigen::Vector2d reference_antenna_position(
+    const ReferenceState& x, const Eigen::Vector2d& antenna_m,
+    Eigen::Matrix<double, 2, kReferenceStates>* J_z_x) {
+  const double c = std::cos(x(4)), s = std::sin(x(4));
+  const Eigen::Vector2d rotated(c * antenna_m.x() - s * antenna_m.y(),
+                                s * antenna_m.x() + c * antenna_m.y());
+  if (J_z_x != nullptr) {
+    J_z_x->setZero();
+    J_z_x->leftCols<2>().setIdentity();
+    J_z_x->col(4) = Eigen::Vector2d(-rotated.y(), rotated.x());
+  }
+  return x.head<2>() + rotated;
+}
+
+inline double reference_antenna_speed(const ReferenceState& x, const Eigen::Vector2d& antenna_m,
+                                      double gyro_radps, ReferenceRowJacobian* J_z_x) {
+  const double c = std::cos(x(4)), s = std::sin(x(4));
+  // R(yaw) (-l_y, l_x): the antenna's velocity per unit turn, and its change with yaw.
+  const Eigen::Vector2d swing(-c * antenna_m.y() - s * antenna_m.x(),
+                              -s * antenna_m.y() + c * antenna_m.x());
+  const double turn = gyro_radps - x(7);
+  const Eigen::Vector2d velocity = x.segment<2>(2) + turn * swing;
+  const double speed = velocity.norm();
+  if (J_z_x != nullptr) {
+    const Eigen::Vector2d direction = velocity / speed;
+    J_z_x->setZero();
+    J_z_x->segment<2>(2) = direction.transpose();
+    (*J_z_x)(4) = turn * direction.dot(Eigen::Vector2d(-swing.y(), swing.x()));
+    (*J_z_x)(7) = -direction.dot(swing);
   }
   return speed;
 }

@@ -18,6 +18,10 @@ namespace odocal {
 inline constexpr double kCarRadiusPerNewtonM = 0.4e-6;
 inline constexpr double kCarSlipStiffnessPerLoad = 20.0;
 inline constexpr double kCarCorneringStiffnessPerLoad = 19.0;
+// The rear axle's side slip per lateral acceleration (s^2/m) that this cornering stiffness gives:
+// the axle slides outwards, so it is negative.
+inline constexpr double kCarSideSlipPerLateralS2pm =
+    -1.0 / (kGravityMps2 * kCarCorneringStiffnessPerLoad);
 // A free-rolling axle carries none of the drive, and what its coefficient can still take up is the
 // model's slop: fitted to the simulator's truth (tools/tyre_truth_regression.py; front-driven
 // circuit, urban drive and Hockenheim) at most 4e-4 where its driver holds the road, 1.4e-3
@@ -53,8 +57,7 @@ inline CarCoefficient car_tyre_coefficient(int j, const VehicleBody& body, doubl
   }
   if (member == &TyreModel::k_brake_slip)
     return sized(body.brake_rear_share / kCarSlipStiffnessPerLoad);
-  if (member == &TyreModel::k_side_slip_s2pm)
-    return sized(-1.0 / (kGravityMps2 * kCarCorneringStiffnessPerLoad));
+  if (member == &TyreModel::k_side_slip_s2pm) return sized(kCarSideSlipPerLateralS2pm);
   return {};
 }
 

@@ -219,7 +219,7 @@ inline Eigen::Vector2d specific_force_at_cg(const DrivingState& state, const Veh
   const Eigen::Vector2d read(state.specific_force_x_mps2, state.specific_force_y_mps2);
   if (!body.imu_position_m) return read;  // taken as at the centre of gravity
   const Eigen::Vector2d r =
-      accelerometer_position_m(body) - Eigen::Vector2d(cg_ahead_of_rear_axle_m(body), 0.0);
+      *body.imu_position_m - Eigen::Vector2d(cg_ahead_of_rear_axle_m(body), 0.0);
   const double w = state.yaw_rate_radps, w_dot = state.yaw_acceleration_radps2;
   return read + Eigen::Vector2d(w * w * r.x() + w_dot * r.y(), -w_dot * r.x() + w * w * r.y());
 }

@@ -69,6 +69,9 @@ struct GnssSimConfig {
   // The antenna ahead of and left of the rear axle's centre: the fixes and the Doppler speed are
   // that point's (a car's antenna is seldom over the axle; the batch's detect_mounting).
   double lever_arm_x_m = 0.0, lever_arm_y_m = 0.0;
+  // Whether vehicle.yaml states that place (gnss_x_m, gnss_y_m), as an owner who measured the
+  // mounting does; else the calibration is left to find it.
+  bool lever_arm_stated = false;
   // Altitude noise (white, m) of the alt column, written when the terrain is not flat; negative:
   // 1.5 x sigma_m (GNSS altitude is worse than its horizontal position).
   double altitude_sigma_m = -1.0;
