@@ -192,24 +192,31 @@ TEST(ReferenceFilter, TheYawDoesNotLagTheGyrosTurn) {
   EXPECT_LT(std::abs(lag_s), 0.003);
 }
 
+// One lap of the built-in urban drive (realistic), with its truth.
+sim::Scenario urban_lap() {
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.route.laps = 1;
+  return scenario;
+}
+
+// The smoothed reference of `log` against its truth.
+TrajectoryErrors smoothed_reference_errors(const Log& log, ReferenceOptions options = {}) {
+  options.mode = ReferenceMode::kSmoother;
+  return trajectory_errors(timed(log, compute_reference(log, options)),
+                           reference_from_poses(*log.truth, "truth"));
+}
+
 // The realistic car's IMU sits at its centre of gravity, 1.45 m ahead of the rear axle whose
 // pose the fixes give; vehicle.yaml says so. Taken as the axle's own, its readings put each turn's
 // -w^2 x and dw/dt x into the axle's motion (measured on urban seeds 1-5: 0.32 m RMS against
 // 0.22-0.24 m with the IMU where it is).
 TEST(ReferenceFilter, TakesTheImuFromWhereVehicleYamlMountsItToTheRearAxle) {
-  sim::Scenario scenario = load_scenario("urban");
-  scenario.route.laps = 1;
-  Log log = simulated_log(sim::simulate(scenario), /*with_truth=*/true);
+  Log log = simulated_log(sim::simulate(urban_lap()), /*with_truth=*/true);
   ASSERT_TRUE(log.vehicle.imu_position_m);
   ASSERT_NEAR(log.vehicle.imu_position_m->x(), 1.45, 1e-12);
-  ReferenceOptions options;
-  options.mode = ReferenceMode::kSmoother;
-  const ReferencePath truth = reference_from_poses(*log.truth, "truth");
-  const TrajectoryErrors mounted =
-      trajectory_errors(timed(log, compute_reference(log, options)), truth);
+  const TrajectoryErrors mounted = smoothed_reference_errors(log);
   log.vehicle.imu_position_m.reset();
-  const TrajectoryErrors at_axle =
-      trajectory_errors(timed(log, compute_reference(log, options)), truth);
+  const TrajectoryErrors at_axle = smoothed_reference_errors(log);
   EXPECT_LT(mounted.mean_position_m, 0.85 * at_axle.mean_position_m);
 }
 
@@ -217,17 +224,11 @@ TEST(ReferenceFilter, TakesTheImuFromWhereVehicleYamlMountsItToTheRearAxle) {
 // driving straight, the GNSS fixes' course steadies the yaw that heading.csv's 0.15 rad noise and
 // the gyro's leave (measured on urban seeds 1-10, 2 laps: yaw RMS 5.3 mrad without, 3.8 with).
 TEST(ReferenceFilter, HoldsTheRearAxlesVelocityAlongItsHeading) {
-  sim::Scenario scenario = load_scenario("urban");
-  scenario.route.laps = 1;
-  const Log log = simulated_log(sim::simulate(scenario), /*with_truth=*/true);
-  ReferenceOptions options;
-  options.mode = ReferenceMode::kSmoother;
-  const ReferencePath truth = reference_from_poses(*log.truth, "truth");
-  const TrajectoryErrors held =
-      trajectory_errors(timed(log, compute_reference(log, options)), truth);
-  options.lateral_velocity_sigma_mps = 0.0;
-  const TrajectoryErrors free =
-      trajectory_errors(timed(log, compute_reference(log, options)), truth);
+  const Log log = simulated_log(sim::simulate(urban_lap()), /*with_truth=*/true);
+  const TrajectoryErrors held = smoothed_reference_errors(log);
+  ReferenceOptions free_options;
+  free_options.lateral_velocity_sigma_mps = 0.0;
+  const TrajectoryErrors free = smoothed_reference_errors(log, free_options);
   EXPECT_LT(held.mean_heading_rad, 0.85 * free.mean_heading_rad);
   EXPECT_LT(held.mean_position_m, 1.05 * free.mean_position_m);
 }
@@ -236,22 +237,16 @@ TEST(ReferenceFilter, HoldsTheRearAxlesVelocityAlongItsHeading) {
 // states (gnss_x_m, gnss_y_m): layer 1 measures the axle through it. Taken as the axle's, the
 // fixes swing out in every turn, and the held velocity turns that into heading (one urban lap).
 TEST(ReferenceFilter, MeasuresTheAxleThroughTheAntennaWhereVehicleYamlStatesIt) {
-  sim::Scenario scenario = load_scenario("urban");
-  scenario.route.laps = 1;
+  sim::Scenario scenario = urban_lap();
   scenario.gnss.lever_arm_x_m = 1.5;
   scenario.gnss.lever_arm_y_m = -0.4;
   scenario.gnss.lever_arm_stated = true;
   Log log = simulated_log(sim::simulate(scenario), /*with_truth=*/true);
   ASSERT_TRUE(log.vehicle.gnss_position_m);
   ASSERT_NEAR(log.vehicle.gnss_position_m->x(), 1.5, 1e-12);
-  ReferenceOptions options;
-  options.mode = ReferenceMode::kSmoother;
-  const ReferencePath truth = reference_from_poses(*log.truth, "truth");
-  const TrajectoryErrors stated =
-      trajectory_errors(timed(log, compute_reference(log, options)), truth);
+  const TrajectoryErrors stated = smoothed_reference_errors(log);
   log.vehicle.gnss_position_m.reset();
-  const TrajectoryErrors at_axle =
-      trajectory_errors(timed(log, compute_reference(log, options)), truth);
+  const TrajectoryErrors at_axle = smoothed_reference_errors(log);
   // Measured: 0.18 m and 2.8 mrad stated, 1.46 m and 5.1 mrad taken as the axle's.
   EXPECT_LT(stated.mean_position_m, 0.25 * at_axle.mean_position_m);
   EXPECT_LT(stated.mean_heading_rad, 0.7 * at_axle.mean_heading_rad);
