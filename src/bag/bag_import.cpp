@@ -18,6 +18,7 @@
 #include "odocal/io/log_directory_output.hpp"
 #include "odocal/io/vehicle_config_io.hpp"
 #include "odocal/model/angle.hpp"
+#include "static_transforms.hpp"
 #include "topic_map.hpp"
 
 namespace odocal::bag {
@@ -349,7 +350,11 @@ bool all_finite(const std::vector<double>& column) {
 
 ImportSummary import_bag(const fs::path& map_file, const fs::path& bag_path,
                          const fs::path& out_dir) {
-  const TopicMap map = read_topic_map(map_file);
+  const TopicMap stated = read_topic_map(map_file);
+  // tf's static transforms first, in a pass of their own: the IMU's mounting turns its messages.
+  const TopicMap map = stated.frames ? with_static_transforms(
+                                           stated, read_static_transforms(bag_path, *stated.frames))
+                                     : stated;
   std::error_code error;
   if (fs::is_directory(bag_path, error)) refuse_overlapping_directories(bag_path, out_dir);
 

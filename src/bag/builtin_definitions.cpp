@@ -28,6 +28,11 @@ constexpr std::array kShared = {
     Entry{"geometry_msgs/Vector3Stamped", "std_msgs/Header header\ngeometry_msgs/Vector3 vector\n"},
     Entry{"geometry_msgs/QuaternionStamped",
           "std_msgs/Header header\ngeometry_msgs/Quaternion quaternion\n"},
+    Entry{"geometry_msgs/Transform",
+          "geometry_msgs/Vector3 translation\ngeometry_msgs/Quaternion rotation\n"},
+    Entry{"geometry_msgs/TransformStamped",
+          "std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/Transform transform\n"},
+    Entry{"tf2_msgs/TFMessage", "geometry_msgs/TransformStamped[] transforms\n"},
     Entry{"sensor_msgs/Imu",
           "std_msgs/Header header\ngeometry_msgs/Quaternion orientation\n"
           "float64[9] orientation_covariance\ngeometry_msgs/Vector3 angular_velocity\n"

@@ -141,6 +141,34 @@ void read_gnss(YamlMap& map, StampSource stamp, GnssSource& out) {
   }
 }
 
+// frames: the frames tf places the sensors by; a place stated also in the map is refused (two
+// places for one sensor).
+FramesSource read_frames(YamlMap& map, const TopicMap& topics) {
+  FramesSource out;
+  out.where = map.location();
+  map.read("topic", out.topic);
+  map.read("base", out.base);
+  map.read("imu", out.imu);
+  map.read("gnss", out.gnss);
+  map.reject_unknown_keys();
+  if (out.base.empty()) throw InputError(map.location("base"), "must name a frame");
+  if (!out.imu.empty()) {
+    if (!topics.imu)
+      throw InputError(map.location("imu"), "there is no imu stream to place (streams.imu)");
+    if (topics.imu_mounting_stated || topics.vehicle.imu_position_m) {
+      throw InputError(map.location("imu"),
+                       "the IMU is placed by tf and by the map (streams.imu.mounting or vehicle's "
+                       "imu_x_m, imu_y_m): state it in one place");
+    }
+  }
+  if (!out.gnss.empty() && topics.vehicle.gnss_position_m) {
+    throw InputError(map.location("gnss"),
+                     "the antenna is placed by tf and by vehicle's gnss_x_m, gnss_y_m: state it "
+                     "in one place");
+  }
+  return out;
+}
+
 }  // namespace
 
 TopicMap read_topic_map(const std::filesystem::path& map_file) {
@@ -165,12 +193,14 @@ TopicMap read_topic_map(const std::filesystem::path& map_file) {
   if (auto imu = streams->map("imu")) {
     ImuSource& source = out.imu.emplace();
     read_topic(*imu, stamp, source);
+    out.imu_mounting_stated = imu->has("mounting");
     source.body_R_sensor = mounting(*imu);
     imu->reject_unknown_keys();
   }
   if (auto heading = streams->map("heading")) {
     HeadingSource& source = out.heading.emplace();
     read_topic(*heading, stamp, source);
+    out.heading_mounting_stated = heading->has("mounting");
     source.body_R_sensor = mounting(*heading);
     source.angle = field_source(*heading, "angle", Quantity::kAngle);
     if (auto angle = heading->map("angle"); angle && source.angle.path.empty())
@@ -183,6 +213,7 @@ TopicMap read_topic_map(const std::filesystem::path& map_file) {
     heading->reject_unknown_keys();
   }
   streams->reject_unknown_keys();
+  if (auto frames = root.map("frames")) out.frames = read_frames(*frames, out);
   root.reject_unknown_keys();
   return out;
 }

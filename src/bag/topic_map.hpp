@@ -64,6 +64,17 @@ struct HeadingSource : TopicSource {
   bool compass_cw{};  // the orientation's yaw is clockwise from north (else ENU, as ROS's REP 103)
 };
 
+// tf's static transforms (tf2_msgs/TFMessage on /tf_static): where the sensors sit on the vehicle.
+// `base` is the rear axle's centre, x forward, y left, z up (REP 103's base_link on a car); the
+// IMU's frame gives its mounting and imu_x_m, imu_y_m, the antenna's gnss_x_m, gnss_y_m. An empty
+// frame is not taken from tf.
+struct FramesSource {
+  std::string topic{"/tf_static"};
+  std::string base{"base_link"};
+  std::string imu, gnss;
+  InputLocation where;  // the section in the map, for errors
+};
+
 struct TopicMap {
   std::string file;
   VehicleConfig vehicle;
@@ -71,6 +82,9 @@ struct TopicMap {
   GnssSource gnss;
   std::optional<ImuSource> imu;
   std::optional<HeadingSource> heading;
+  std::optional<FramesSource> frames;
+  // Whether the map states the IMU's and the heading's mounting itself (else tf may).
+  bool imu_mounting_stated{}, heading_mounting_stated{};
 };
 
 TopicMap read_topic_map(const std::filesystem::path& map_file);

@@ -39,6 +39,17 @@ void write_log_as_bag(const fs::path& csv_log, const fs::path& bag,
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
 }
 
+// One lap of the simulator's circuit car as a CSV log (wheels in rad, GNSS in lat/lon) and as a
+// bag of it.
+void simulate_car_bag(const fs::path& csv_log, const fs::path& bag,
+                      const std::string& bag_options = "") {
+  ASSERT_EQ(
+      run_cli("simulate --laps 1 --wheel-output rad --gnss-output latlon --out " + csv_log.string())
+          .status,
+      0);
+  ASSERT_NO_FATAL_FAILURE(write_log_as_bag(csv_log, bag, bag_options));
+}
+
 double parameter(const nlohmann::json& result, const std::string& name, const char* key) {
   for (const auto& p : result.at("parameters"))
     if (p.at("name") == name) return p.at(key).get<double>();
@@ -50,11 +61,7 @@ TEST(BagImport, SimulatedLogAsBagGivesTheSameLogAndCalibration) {
   const fs::path csv_log = dir.path() / "csv-log";
   const fs::path bag = dir.path() / "drive.bag";
   const fs::path bag_log = dir.path() / "bag-log";
-  ASSERT_EQ(
-      run_cli("simulate --laps 1 --wheel-output rad --gnss-output latlon --out " + csv_log.string())
-          .status,
-      0);
-  ASSERT_NO_FATAL_FAILURE(write_log_as_bag(csv_log, bag));
+  ASSERT_NO_FATAL_FAILURE(simulate_car_bag(csv_log, bag));
   const CliRun import = run_cli("import bag " + bag.string() + " --map " +
                                 (kSource / "examples/bag-joint-states/topics.yaml").string() +
                                 " --out " + bag_log.string());
@@ -81,6 +88,63 @@ TEST(BagImport, SimulatedLogAsBagGivesTheSameLogAndCalibration) {
     EXPECT_EQ(line_starting(a.out, "c_RL"), line_starting(b.out, "c_RL")) << method;
     EXPECT_EQ(line_starting(a.out, "c_RR"), line_starting(b.out, "c_RR")) << method;
   }
+}
+
+// A car's bag that places its sensors by tf (/tf_static, as its URDF publishes them): the IMU
+// mounted on its side in imu_link under an intermediate chassis frame, the antenna in gps. The
+// map names the frames instead of stating the mounting and the places, and the import turns the
+// IMU's readings and its orientation's heading into the vehicle's frame as the CSV log has them,
+// and writes the places into vehicle.yaml. A place stated twice, a frame tf lacks and a frame it
+// does not connect to the base are errors naming the map's key.
+TEST(BagImport, TfStaticPlacesAndMountsTheSensors) {
+  ScratchDir dir("tf");
+  const fs::path csv_log = dir.path() / "csv-log";
+  const fs::path bag = dir.path() / "drive.bag";
+  const fs::path bag_log = dir.path() / "bag-log";
+  ASSERT_NO_FATAL_FAILURE(simulate_car_bag(csv_log, bag, "--tf --antenna 1.5,-0.4"));
+  std::string example =
+      read_text_file((kSource / "examples/bag-joint-states/topics.yaml").string());
+  const auto imu_line = example.find("  imu_x_m:");
+  example.erase(imu_line, example.find('\n', imu_line) + 1 - imu_line);
+  const auto import_with = [&](const std::string& frames) {
+    std::ofstream(dir.path() / "topics.yaml") << example << frames;
+    fs::remove_all(bag_log);
+    return run_cli("import bag " + bag.string() + " --map " +
+                   (dir.path() / "topics.yaml").string() + " --out " + bag_log.string());
+  };
+  const CliRun import = import_with("frames: {base: base_link, imu: imu_link, gnss: gps}\n");
+  ASSERT_EQ(import.status, 0) << import.err;
+
+  const Log from_csv = read_log(csv_log);
+  const Log from_bag = read_log(bag_log);
+  ASSERT_TRUE(from_bag.vehicle.imu_position_m && from_bag.vehicle.gnss_position_m);
+  EXPECT_NEAR(from_bag.vehicle.imu_position_m->x(), from_csv.vehicle.imu_position_m->x(), 1e-9);
+  EXPECT_NEAR(from_bag.vehicle.imu_position_m->y(), 0.0, 1e-9);
+  EXPECT_NEAR(from_bag.vehicle.gnss_position_m->x(), 1.5, 1e-9);
+  EXPECT_NEAR(from_bag.vehicle.gnss_position_m->y(), -0.4, 1e-9);
+  ASSERT_TRUE(from_bag.imu && from_bag.heading);
+  ASSERT_EQ(from_bag.imu->size(), from_csv.imu->size());
+  for (std::size_t k = 0; k < from_csv.imu->size(); k += 89) {
+    EXPECT_NEAR(from_bag.imu->ax_mps2[k], from_csv.imu->ax_mps2[k], 1e-5) << k;
+    EXPECT_NEAR(from_bag.imu->ay_mps2[k], from_csv.imu->ay_mps2[k], 1e-5) << k;
+    EXPECT_NEAR(from_bag.imu->wz_radps[k], from_csv.imu->wz_radps[k], 1e-6) << k;
+    EXPECT_NEAR(from_bag.heading->heading_rad[k], from_csv.heading->heading_rad[k], 1e-6) << k;
+  }
+
+  const auto expect_error = [&](const std::string& frames, const std::string& key,
+                                const std::string& says) {
+    const CliRun run = import_with(frames);
+    EXPECT_EQ(run.status, 2) << frames;
+    EXPECT_NE(run.err.find(key), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find(says), std::string::npos) << run.err;
+  };
+  expect_error("frames: {imu: imu_link, gnss: antenna}\n", "frames.gnss",
+               "tf has no frame 'antenna' (it has 'base_link', 'chassis', 'gps', 'imu_link')");
+  expect_error("frames: {base: odom, imu: imu_link}\n", "frames.imu",
+               "tf does not connect frame 'imu_link' to 'odom'");
+  expect_error("frames: {topic: /tf, imu: imu_link}\n", "frames", "topic /tf is not in the bag");
+  example.insert(example.find("time: header"), "  imu_y_m: 0.1\n");  // into the vehicle section
+  expect_error("frames: {imu: imu_link}\n", "frames.imu", "state it in one place");
 }
 
 // The tyres' force from the car's bus on a topic of its own (std_msgs/Float64, stamped with the

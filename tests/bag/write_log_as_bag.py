@@ -19,7 +19,14 @@ With --twist, the wheels go out as a robot's drive controller publishes them ins
                                          (ticks or rad) with vehicle.yaml's nominal geometry
 and the heading only when heading.csv shares imu.csv's stamps.
 
-Usage: write_log_as_bag.py LOG OUT.bag [--twist]
+With --tf, the sensors' places go out as tf's static transforms, as a car's URDF publishes them:
+  /tf_static     tf2_msgs/TFMessage      base_link -> chassis (0.3 m up, an intermediate frame)
+                                         -> imu_link (at vehicle.yaml's imu_x_m, imu_y_m, mounted
+                                         yaw -90 deg, roll 90 deg) and base_link -> gps (at
+                                         --antenna X,Y; default 1.5,-0.4)
+and the IMU's readings and orientation in imu_link's axes instead of the vehicle's.
+
+Usage: write_log_as_bag.py LOG OUT.bag [--twist] [--tf [--antenna X,Y]]
 """
 import csv
 import math
@@ -30,7 +37,14 @@ import rosbag
 import yaml
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, JointState, NavSatFix
+from geometry_msgs.msg import TransformStamped
 from std_msgs.msg import Float64
+from tf2_msgs.msg import TFMessage
+
+# --tf: the IMU mounted yaw -90 deg, roll 90 deg (tf's static_transform_publisher yaw pitch roll):
+# body_R_sensor = Rz(-90) Rx(90), as the quaternion (x, y, z, w).
+MOUNTING = (0.5, -0.5, -0.5, 0.5)
+CHASSIS_UP_M = 0.3
 
 
 def rows(path):
@@ -71,15 +85,67 @@ def write_twist(bag, log, wheels):
         bag.write("/odom", odom, odom.header.stamp)
 
 
+def quaternion_product(a, b):
+    ax, ay, az, aw = a
+    bx, by, bz, bw = b
+    return (aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+            aw * bw - ax * bx - ay * by - az * bz)
+
+
+def rotate(q, v):
+    """q (x, y, z, w) applied to the vector v."""
+    x, y, z, _ = quaternion_product(quaternion_product(q, (*v, 0.0)), (-q[0], -q[1], -q[2], q[3]))
+    return (x, y, z)
+
+
+def inverse(q):
+    return (-q[0], -q[1], -q[2], q[3])
+
+
+def transform(parent, child, t, translation, rotation=(0.0, 0.0, 0.0, 1.0)):
+    message = TransformStamped()
+    message.header.stamp = t
+    message.header.frame_id = parent
+    message.child_frame_id = child
+    (message.transform.translation.x, message.transform.translation.y,
+     message.transform.translation.z) = translation
+    (message.transform.rotation.x, message.transform.rotation.y,
+     message.transform.rotation.z, message.transform.rotation.w) = rotation
+    return message
+
+
+def write_static_transforms(bag, log, first_t, antenna):
+    with open(f"{log}/vehicle.yaml") as f:
+        vehicle = yaml.safe_load(f)
+    imu_place = (vehicle.get("imu_x_m", 0.0), vehicle.get("imu_y_m", 0.0), -CHASSIS_UP_M)
+    t = stamp(first_t)
+    message = TFMessage()
+    message.transforms = [
+        transform("base_link", "chassis", t, (0.0, 0.0, CHASSIS_UP_M)),
+        transform("chassis", "imu_link", t, imu_place, MOUNTING),
+        transform("/base_link", "gps", t, (antenna[0], antenna[1], 1.4)),
+    ]
+    bag.write("/tf_static", message, t)
+
+
 def main():
     log, out = sys.argv[1], sys.argv[2]
     twist = "--twist" in sys.argv[3:]
+    tf = "--tf" in sys.argv[3:]
+    antenna = (1.5, -0.4)
+    if "--antenna" in sys.argv[3:]:
+        antenna = tuple(float(v) for v in sys.argv[sys.argv.index("--antenna") + 1].split(","))
+    sensor_R_body = inverse(MOUNTING) if tf else (0.0, 0.0, 0.0, 1.0)
     wheels, gnss = rows(f"{log}/wheels.csv"), rows(f"{log}/gnss.csv")
     imu, heading = rows(f"{log}/imu.csv"), rows(f"{log}/heading.csv")
     same_stamps = [r["t"] for r in imu] == [r["t"] for r in heading]
     if not same_stamps and not twist:
         sys.exit("heading.csv must have imu.csv's time stamps")
     with rosbag.Bag(out, "w", compression="lz4") as bag:
+        if tf:
+            write_static_transforms(bag, log, wheels[0]["t"], antenna)
         if twist:
             write_twist(bag, log, wheels)
         else:
@@ -97,13 +163,16 @@ def main():
             message.header.stamp = stamp(r["t"])
             message.header.frame_id = "imu_link"
             if same_stamps:
+                # world_R_sensor = world_R_body body_R_sensor
                 yaw = float(heading[k]["heading"])
-                message.orientation.z = math.sin(yaw / 2)
-                message.orientation.w = math.cos(yaw / 2)
-            message.angular_velocity.z = float(r["wz"])
-            message.linear_acceleration.x = float(r["ax"])
-            message.linear_acceleration.y = float(r["ay"])
-            message.linear_acceleration.z = 9.81
+                world_R_body = (0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+                (message.orientation.x, message.orientation.y, message.orientation.z,
+                 message.orientation.w) = quaternion_product(world_R_body, inverse(sensor_R_body))
+            (message.angular_velocity.x, message.angular_velocity.y,
+             message.angular_velocity.z) = rotate(sensor_R_body, (0.0, 0.0, float(r["wz"])))
+            (message.linear_acceleration.x, message.linear_acceleration.y,
+             message.linear_acceleration.z) = rotate(sensor_R_body,
+                                                     (float(r["ax"]), float(r["ay"]), 9.81))
             bag.write("/imu/data", message, message.header.stamp)
         for r in gnss:
             fix = NavSatFix()
