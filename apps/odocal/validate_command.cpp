@@ -43,7 +43,16 @@ void run_validate(const ValidateArgs& args) {
   const TyreModel calibrated_tyre = read_calibrated_tyre_model(args.params_file);
   LogReadOptions read_options;
   read_options.read_truth = false;
-  const Log input = args.window.apply(read_log(args.log_dir, read_options));
+  Log input = args.window.apply(read_log(args.log_dir, read_options));
+  // The antenna where the calibration found it, for the reference, unless vehicle.yaml states it.
+  if (const auto antenna = read_calibrated_antenna(args.params_file);
+      antenna && !input.vehicle.gnss_position_m) {
+    input.vehicle.gnss_position_m = antenna;
+    fmt::print(
+        "antenna      the result's, {:+.3f} m ahead and {:+.3f} m left of the rear axle "
+        "(vehicle.yaml states none)\n",
+        antenna->x(), antenna->y());
+  }
   CalibrationOptions options;
   if (!args.config_file.empty()) options = read_calibration_config(args.config_file).common;
   options.reference.mode = *parse_enum<ReferenceMode>(args.reference);

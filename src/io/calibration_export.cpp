@@ -123,4 +123,25 @@ TyreModel read_calibrated_tyre_model(const std::filesystem::path& json_path) {
   return model;
 }
 
+std::optional<Eigen::Vector2d> read_calibrated_antenna(const std::filesystem::path& json_path) {
+  const nlohmann::json json = calibration_json(json_path);
+  if (!json.contains("parameters") || !json["parameters"].is_array()) return std::nullopt;
+  std::optional<double> place[2];
+  for (const nlohmann::json& p : json["parameters"]) {
+    if (!p.is_object() || !p.contains("name") || !p["name"].is_string()) continue;
+    const std::string name = p["name"];
+    const int axis = name == "lever_arm_x_m" ? 0 : name == "lever_arm_y_m" ? 1 : -1;
+    if (axis < 0 || !p.value("estimated", false) || !p.value("identified", false)) continue;
+    if (!p.contains("value") || !p["value"].is_number() ||
+        !kMountingOffsetM.contains(p["value"].get<double>())) {
+      throw InputError({json_path.string(), 0, "parameters." + name},
+                       fmt::format("expected a number from {} to {}", kMountingOffsetM.min,
+                                   kMountingOffsetM.max));
+    }
+    place[axis] = p["value"].get<double>();
+  }
+  if (!place[0] || !place[1]) return std::nullopt;
+  return Eigen::Vector2d(*place[0], *place[1]);
+}
+
 }  // namespace odocal

@@ -224,7 +224,8 @@ TEST(ImportCli, ImportsAndSummarisesOrExitsTwoOnABadMap) {
 
 // An antenna 0.5 m left of the axle that vehicle.yaml does not state: the batch finds it in the
 // fixes and the Doppler speed (detect_mounting), and the calibrated vehicle.yaml states it, so
-// that layer 1 and the next calibration take it from there.
+// that layer 1 and the next calibration take it from there; validate's reference takes it from
+// the result.
 TEST(CalibrateCliAntenna, TheCalibratedVehicleYamlStatesTheAntennaWhereTheBatchFoundIt) {
   const TempLogDir dir;
   sim::Scenario scenario = load_scenario("urban");
@@ -236,14 +237,19 @@ TEST(CalibrateCliAntenna, TheCalibratedVehicleYamlStatesTheAntennaWhereTheBatchF
           .status,
       0);
   const std::string vehicle = dir.file("calibrated.yaml");
-  const auto run =
-      run_cli("calibrate " + dir.file("log") + " --method batch --vehicle-out " + vehicle);
+  const std::string result = dir.file("result.json");
+  const auto run = run_cli("calibrate " + dir.file("log") + " --method batch --vehicle-out " +
+                           vehicle + " --json " + result);
   ASSERT_EQ(run.status, 0) << run.out << run.err;
   const VehicleConfig calibrated = read_vehicle_config(vehicle);
   ASSERT_TRUE(calibrated.gnss_position_m) << read_text_file(vehicle);
   EXPECT_NEAR(calibrated.gnss_position_m->y(), 0.5, 0.05);
   EXPECT_NEAR(calibrated.gnss_position_m->x(), 0.0, 0.2);
   EXPECT_NE(run.out.find("mounting     the fit without them"), std::string::npos) << run.out;
+  // validate takes the antenna from the result for its reference where vehicle.yaml states none.
+  const auto validated = run_cli("validate " + dir.file("log") + " --params " + result);
+  ASSERT_EQ(validated.status, 0) << validated.out << validated.err;
+  EXPECT_NE(validated.out.find("antenna      the result's, "), std::string::npos) << validated.out;
   // Calibrated again from there, the antenna is held where it was found: nothing to look for.
   std::filesystem::copy_file(vehicle, dir.file("log/vehicle.yaml"),
                              std::filesystem::copy_options::overwrite_existing);

@@ -36,4 +36,9 @@ OdometryParams read_calibrated_parameters(const std::filesystem::path& json_path
 // are none); throws InputError like read_calibrated_parameters.
 TyreModel read_calibrated_tyre_model(const std::filesystem::path& json_path);
 
+// Where a calibration result JSON found the GNSS antenna (forward, left of the rear axle's
+// centre, m): its lever_arm_x_m and lever_arm_y_m where both were estimated and identified;
+// nothing otherwise (held where stated). Throws InputError like read_calibrated_parameters.
+std::optional<Eigen::Vector2d> read_calibrated_antenna(const std::filesystem::path& json_path);
+
 }  // namespace odocal
