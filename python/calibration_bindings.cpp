@@ -73,6 +73,16 @@ void bind_calibration(py::module_& m) {
           },
           "the condition-dependent circumference's coefficients (all zero: plain model; "
           "docs/tyre-model.md)")
+      .def_property_readonly(
+          "antenna_m",
+          [](const CalibrationResult& r) -> std::optional<std::pair<double, double>> {
+            const auto* batch = std::get_if<BatchSummary>(&r.summary);
+            const auto place = batch ? fitted_antenna_place(*batch) : std::nullopt;
+            if (!place) return std::nullopt;
+            return std::make_pair(place->x(), place->y());
+          },
+          "where the batch found the GNSS antenna, (forward, left) of the rear axle's centre in "
+          "metres; None where it held it (vehicle.yaml's gnss_x_m, gnss_y_m, or the options')")
       .def_property_readonly("sigma_rl_m",
                              [](const CalibrationResult& r) { return r.core().sigma_rl_m(); })
       .def_property_readonly("sigma_rr_m",

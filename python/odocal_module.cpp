@@ -127,8 +127,18 @@ PYBIND11_MODULE(odocal, m) {
 
   m.def(
       "validate",
-      [](const Log& input, py::object params, double window_s, double min_distance_m, double step_s,
+      [](const Log& given, py::object params, double window_s, double min_distance_m, double step_s,
          double tick_smoothing_s) {
+        // The antenna where the calibration found it, for the reference, unless vehicle.yaml
+        // states it (as `odocal validate`).
+        std::optional<Log> with_antenna;
+        if (py::hasattr(params, "antenna_m") && !params.attr("antenna_m").is_none() &&
+            !given.vehicle.gnss_position_m) {
+          const auto [x, y] = params.attr("antenna_m").cast<std::pair<double, double>>();
+          with_antenna = given;
+          with_antenna->vehicle.gnss_position_m = Eigen::Vector2d(x, y);
+        }
+        const Log& input = with_antenna ? *with_antenna : given;
         const OdometryParams calibrated = params_of(input, params);
         CalibrationOptions options;
         options.reference.mode = ReferenceMode::kSmoother;

@@ -172,6 +172,24 @@ def test_the_sensors_places_are_vehicle_yamls(tmp_path):
     assert (mounted.vehicle.imu_x_m, mounted.vehicle.imu_y_m) == (0.7, 0.0)
 
 
+def test_the_batch_finds_an_antenna_and_validate_takes_it(tmp_path):
+    # The urban drive with a Doppler column and its antenna 0.5 m left of the axle, unstated.
+    scenario = tmp_path / "urban-antenna.yaml"
+    scenario.write_text(open(os.path.join(SOURCE, "config", "scenarios", "urban.yaml")).read()
+                        + "sensors:\n  gnss:\n    speed_sigma_mps: 0.05\n    lever_arm_y_m: 0.5\n")
+    log = odocal.simulate(str(scenario))
+    batch = odocal.calibrate(log, "batch")
+    assert batch.antenna_m is not None
+    assert batch.antenna_m[1] == pytest.approx(0.5, abs=0.05)
+    assert odocal.calibrate(log, "iterative").antenna_m is None
+    # The reference through the found antenna is not the one through the axle.
+    numbers = (batch.circumference_rl_m, batch.circumference_rr_m, batch.track_width_m)
+    through_antenna = odocal.validate(log, batch)["windows"]
+    through_axle = odocal.validate(log, numbers)["windows"]
+    assert [w["calibrated_end_error_m"] for w in through_antenna] != \
+        [w["calibrated_end_error_m"] for w in through_axle]
+
+
 def test_read_log_and_its_errors():
     log = odocal.read_log(EXAMPLE)
     assert log.vehicle.track_width_m == pytest.approx(1.6)
