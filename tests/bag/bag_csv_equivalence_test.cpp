@@ -102,17 +102,14 @@ TEST(BagImport, TfStaticPlacesAndMountsTheSensors) {
   const fs::path bag = dir.path() / "drive.bag";
   const fs::path bag_log = dir.path() / "bag-log";
   ASSERT_NO_FATAL_FAILURE(simulate_car_bag(csv_log, bag, "--tf --antenna 1.5,-0.4"));
-  std::string example =
-      read_text_file((kSource / "examples/bag-joint-states/topics.yaml").string());
-  const auto imu_line = example.find("  imu_x_m:");
-  example.erase(imu_line, example.find('\n', imu_line) + 1 - imu_line);
-  const auto import_with = [&](const std::string& frames) {
-    std::ofstream(dir.path() / "topics.yaml") << example << frames;
+  // The shipped map, then copies of it with one thing wrong.
+  const fs::path shipped = kSource / "examples/bag-joint-states/topics-tf.yaml";
+  const auto import_with = [&](const fs::path& map) {
     fs::remove_all(bag_log);
-    return run_cli("import bag " + bag.string() + " --map " +
-                   (dir.path() / "topics.yaml").string() + " --out " + bag_log.string());
+    return run_cli("import bag " + bag.string() + " --map " + map.string() + " --out " +
+                   bag_log.string());
   };
-  const CliRun import = import_with("frames: {base: base_link, imu: imu_link, gnss: gps}\n");
+  const CliRun import = import_with(shipped);
   ASSERT_EQ(import.status, 0) << import.err;
 
   const Log from_csv = read_log(csv_log);
@@ -131,20 +128,24 @@ TEST(BagImport, TfStaticPlacesAndMountsTheSensors) {
     EXPECT_NEAR(from_bag.heading->heading_rad[k], from_csv.heading->heading_rad[k], 1e-6) << k;
   }
 
-  const auto expect_error = [&](const std::string& frames, const std::string& key,
-                                const std::string& says) {
-    const CliRun run = import_with(frames);
-    EXPECT_EQ(run.status, 2) << frames;
+  const std::string text = read_text_file(shipped.string());
+  const auto expect_error = [&](const std::string& from, const std::string& to,
+                                const std::string& key, const std::string& says) {
+    std::string edited = text;
+    edited.replace(edited.find(from), from.size(), to);
+    std::ofstream(dir.path() / "topics.yaml") << edited;
+    const CliRun run = import_with(dir.path() / "topics.yaml");
+    EXPECT_EQ(run.status, 2) << to;
     EXPECT_NE(run.err.find(key), std::string::npos) << run.err;
     EXPECT_NE(run.err.find(says), std::string::npos) << run.err;
   };
-  expect_error("frames: {imu: imu_link, gnss: antenna}\n", "frames.gnss",
+  expect_error("gnss: gps", "gnss: antenna", "frames.gnss",
                "tf has no frame 'antenna' (it has 'base_link', 'chassis', 'gps', 'imu_link')");
-  expect_error("frames: {base: odom, imu: imu_link}\n", "frames.imu",
+  expect_error("base: base_link ", "base: odom ", "frames.imu",
                "tf does not connect frame 'imu_link' to 'odom'");
-  expect_error("frames: {topic: /tf, imu: imu_link}\n", "frames", "topic /tf is not in the bag");
-  example.insert(example.find("time: header"), "  imu_y_m: 0.1\n");  // into the vehicle section
-  expect_error("frames: {imu: imu_link}\n", "frames.imu", "state it in one place");
+  expect_error("topic: /tf_static", "topic: /tf", "frames", "topic /tf is not in the bag");
+  expect_error("wheelbase_m: 2.7", "wheelbase_m: 2.7\n  imu_y_m: 0.1", "frames.imu",
+               "state it in one place");
 }
 
 // The tyres' force from the car's bus on a topic of its own (std_msgs/Float64, stamped with the
