@@ -1,8 +1,9 @@
 #include "diagnosis_track.hpp"
 
-#include <Eigen/Dense>
 #include <cmath>
 #include <limits>
+
+#include "normal_equations.hpp"
 
 namespace odocal::detail {
 
@@ -20,36 +21,25 @@ WheelTurnScale wheel_turn_scale(const DiagnosisSignals& signals, const std::vect
                        std::numeric_limits<double>::infinity(), 0};
   if (signals.gyro_radps.empty()) return scale;
   // wheel yaw rate = a gyro + b gyro v^2 + c v + d
-  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
-  Eigen::Vector4d right = Eigen::Vector4d::Zero();
-  double yy = 0.0;
-  std::size_t n = 0, slow_turning = 0;
+  NormalEquations<4> equations;
+  std::size_t slow_turning = 0;
   for (std::size_t k = 0; k < signals.size(); ++k) {
     const double gyro = signals.gyro_radps[k];
     const double wheels = signals.wheel_yaw_rate_radps[k];
     const double v = signals.gnss_speed_mps[k];
     if (!use[k] || !std::isfinite(gyro) || !std::isfinite(wheels) || !std::isfinite(v)) continue;
-    const Eigen::Vector4d x(gyro, gyro * v * v, v, 1.0);
-    normal += x * x.transpose();
-    right += x * wheels;
-    yy += wheels * wheels;
-    ++n;
+    equations.add({gyro, gyro * v * v, v, 1.0}, wheels);
     if (std::abs(gyro) > kTurningRadps) {
       ++scale.turning;
       if (v < kSlowMps) ++slow_turning;
     }
   }
-  if (scale.turning < kMinTurning || n <= 4) return scale;
+  if (scale.turning < kMinTurning) return scale;
   if (static_cast<double>(slow_turning) * signals.step_s < kMinSlowTurningS) return scale;
-  const Eigen::LDLT<Eigen::Matrix4d> solver(normal);
-  if (solver.info() != Eigen::Success) return scale;
-  const Eigen::Vector4d coefficients = solver.solve(right);
-  const double residual_sum = yy - coefficients.dot(right);
-  const double variance = std::max(residual_sum, 0.0) / static_cast<double>(n - 4);
-  const Eigen::Matrix4d covariance = variance * solver.solve(Eigen::Matrix4d::Identity());
-  if (!(covariance(0, 0) >= 0.0)) return scale;
-  scale.at_rest = coefficients(0);
-  scale.sigma = std::sqrt(covariance(0, 0));
+  const auto fit = equations.solve();
+  if (!fit || std::isnan(fit->sigma(0))) return scale;
+  scale.at_rest = fit->coefficients(0);
+  scale.sigma = fit->sigma(0);
   return scale;
 }
 

@@ -2,10 +2,10 @@
 // the turns.
 #include <fmt/format.h>
 
-#include <Eigen/Cholesky>
 #include <cmath>
 
 #include "doctor.hpp"
+#include "normal_equations.hpp"
 
 namespace odocal::detail {
 namespace {
@@ -14,10 +14,6 @@ namespace {
 constexpr double kMinSpeedMps = 3.0;
 // A finding: the side read this far from vehicle.yaml's and 5 standard errors (at most 0.1 m).
 constexpr double kMinGapM = 0.2, kMaxSigmaM = 0.1, kSigmas = 5.0;
-
-// One row of the fit: -w, the speed, the acceleration, the lateral acceleration squared, 1.
-using Row = Eigen::Matrix<double, 5, 1>;
-using Normal = Eigen::Matrix<double, 5, 5>;
 
 }  // namespace
 
@@ -36,10 +32,7 @@ void Doctor::check_gnss_place() {
   // the realistic circuit read -0.13 m for an antenna on the centreline, -0.09 m with it) and an
   // offset.
   const std::vector<double> acceleration = wheel_acceleration();
-  Normal normal = Normal::Zero();
-  Row right = Row::Zero();
-  double residual_squares = 0.0;
-  std::size_t rows = 0;
+  NormalEquations<5> equations;
   for (std::size_t k = 0; k < signals_.size(); ++k) {
     const double speed = 0.5 * (signals_.speed_rl_mps[k] + signals_.speed_rr_mps[k]);
     const double w = turn[k];
@@ -49,23 +42,14 @@ void Doctor::check_gnss_place() {
     const double swing = w * stated.x();
     const double excess = doppler[k] - speed - 0.5 * swing * swing / speed;
     const double lateral = speed * w;
-    Row row;
-    row << -w, speed, acceleration[k], lateral * lateral, 1.0;
-    normal += row * row.transpose();
-    right += row * excess;
-    residual_squares += excess * excess;
-    ++rows;
+    equations.add({-w, speed, acceleration[k], lateral * lateral, 1.0}, excess);
   }
-  if (rows < 100) return;
-  const Eigen::LDLT<Normal> solved(normal);
-  if (solved.info() != Eigen::Success) return;
-  const Row fit = solved.solve(right);
-  const double variance = std::max(0.0, residual_squares - fit.dot(right)) /
-                          (static_cast<double>(rows) - static_cast<double>(Row::RowsAtCompileTime));
+  if (equations.rows() < 100) return;
   // The wheels' speed is a one-second mean: the rows of one second share it.
-  const double rows_per_second = 1.0 / signals_.step_s;
-  const double sigma = std::sqrt(variance * solved.solve(Row::Unit(0)).eval()(0) * rows_per_second);
-  const double read = fit(0), gap = std::abs(read - stated.y());
+  const auto fit = equations.solve(1.0 / signals_.step_s);
+  if (!fit) return;
+  const double sigma = fit->sigma(0);
+  const double read = fit->coefficients(0), gap = std::abs(read - stated.y());
   if (!(std::isfinite(sigma) && sigma <= kMaxSigmaM && gap >= kMinGapM && gap >= kSigmas * sigma))
     return;
   const std::string side = std::abs(read) < 0.1
@@ -79,7 +63,7 @@ void Doctor::check_gnss_place() {
       fmt::format(
           "Doppler speed less the wheels' against the {} yaw rate, {} rows from {:.0f} m/s: "
           "y = {:+.2f} +- {:.2f} m",
-          gyro_usable ? "gyro's" : "wheels'", rows, kMinSpeedMps, read, sigma),
+          gyro_usable ? "gyro's" : "wheels'", equations.rows(), kMinSpeedMps, read, sigma),
       facts_.vehicle.gnss_position_m
           ? "vehicle.yaml's gnss_y_m is not where the antenna is (left of the rear axle's "
             "centre, in metres)"

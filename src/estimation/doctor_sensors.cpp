@@ -1,12 +1,12 @@
 // The doctor's checks of the IMU and the Doppler speed: axes, units and biases at standstill.
 #include <fmt/format.h>
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 
 #include "doctor.hpp"
 #include "doppler_scale.hpp"
+#include "normal_equations.hpp"
 #include "odocal/estimation/median.hpp"
 #include "odocal/estimation/standstill.hpp"
 #include "odocal/model/angle.hpp"
@@ -86,10 +86,7 @@ void Doctor::check_imu_place() {
   constexpr double kMaxSpeedMps = 8.0, kMinSpeedMps = 1.0;
   const auto half = static_cast<std::size_t>(std::lround(0.5 / signals_.step_s));
   const double second_s = 2.0 * static_cast<double>(half) * signals_.step_s;
-  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
-  Eigen::Vector4d right = Eigen::Vector4d::Zero();
-  double residual_squares = 0.0;
-  std::size_t rows = 0;
+  NormalEquations<4> equations;
   for (std::size_t k = half; k + half < signals_.size(); ++k) {
     const double speed = 0.5 * (signals_.speed_rl_mps[k] + signals_.speed_rr_mps[k]);
     const double turn = signals_.gyro_radps[k];
@@ -99,25 +96,14 @@ void Doctor::check_imu_place() {
     if (!(speed > kMinSpeedMps && speed < kMaxSpeedMps) || !std::isfinite(turn_change) ||
         !std::isfinite(excess) || !std::isfinite(signals_.ax_mps2[k]))
       continue;
-    const Eigen::Vector4d row(turn_change, -turn * turn, signals_.ax_mps2[k], 1.0);
-    normal += row * row.transpose();
-    right += row * excess;
-    residual_squares += excess * excess;
-    ++rows;
+    equations.add({turn_change, -turn * turn, signals_.ax_mps2[k], 1.0}, excess);
   }
-  if (rows < 100) return;
-  const Eigen::LDLT<Eigen::Matrix4d> solved(normal);
-  if (solved.info() != Eigen::Success) return;
-  const Eigen::Vector4d fit = solved.solve(right);
-  const double dof = static_cast<double>(rows) - 4.0;
-  const double variance = std::max(0.0, residual_squares - fit.dot(right)) / dof;
+  if (equations.rows() < 100) return;
   // The rows overlap over their second: each 2 half of them read one independent second.
-  const auto sigma_of = [&](int i) {
-    return std::sqrt(variance * solved.solve(Eigen::Vector4d::Unit(i))(i) * 2.0 *
-                     static_cast<double>(half));
-  };
+  const auto fit = equations.solve(2.0 * static_cast<double>(half));
+  if (!fit) return;
   const Eigen::Vector2d stated = facts_.vehicle.imu_position_m.value_or(Eigen::Vector2d::Zero());
-  const Eigen::Vector2d read(fit(0), fit(1)), sigma(sigma_of(0), sigma_of(1));
+  const Eigen::Vector2d read = fit->coefficients.head<2>(), sigma = fit->sigma.head<2>();
   constexpr double kMinGapM = 0.5;
   const auto stands_out = [&](int i) {
     const double gap = std::abs(read(i) - stated(i));
@@ -142,7 +128,7 @@ void Doctor::check_imu_place() {
       fmt::format("lateral acceleration less speed x yaw rate against the yaw rate's change and "
                   "its square, {} rows below {:.0f} m/s: x = {:+.2f} +- {:.2f} m, y = {:+.2f} "
                   "+- {:.2f} m",
-                  rows, kMaxSpeedMps, read.x(), sigma.x(), read.y(), sigma.y()),
+                  equations.rows(), kMaxSpeedMps, read.x(), sigma.x(), read.y(), sigma.y()),
       !facts_.vehicle.imu_position_m
           ? "the IMU is mounted away from the rear axle (at the centre of gravity, under "
             "a seat) and vehicle.yaml does not say so: layer 1 takes the accelerations "
