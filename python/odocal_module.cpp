@@ -129,14 +129,15 @@ PYBIND11_MODULE(odocal, m) {
       "validate",
       [](const Log& given, py::object params, double window_s, double min_distance_m, double step_s,
          double tick_smoothing_s) {
-        // The antenna where the calibration found it, for the reference, unless vehicle.yaml
-        // states it (as `odocal validate`).
+        // The antenna where the calibration found it, as `odocal validate` takes it.
         std::optional<Log> with_antenna;
-        if (py::hasattr(params, "antenna_m") && !params.attr("antenna_m").is_none() &&
-            !given.vehicle.gnss_position_m) {
+        if (py::hasattr(params, "antenna_m") && !params.attr("antenna_m").is_none()) {
           const auto [x, y] = params.attr("antenna_m").cast<std::pair<double, double>>();
-          with_antenna = given;
-          with_antenna->vehicle.gnss_position_m = Eigen::Vector2d(x, y);
+          VehicleConfig vehicle = given.vehicle;
+          if (adopt_found_antenna(vehicle, Eigen::Vector2d(x, y))) {
+            with_antenna = given;
+            with_antenna->vehicle = std::move(vehicle);
+          }
         }
         const Log& input = with_antenna ? *with_antenna : given;
         const OdometryParams calibrated = params_of(input, params);

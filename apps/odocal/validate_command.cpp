@@ -44,10 +44,8 @@ void run_validate(const ValidateArgs& args) {
   LogReadOptions read_options;
   read_options.read_truth = false;
   Log input = args.window.apply(read_log(args.log_dir, read_options));
-  // The antenna where the calibration found it, for the reference, unless vehicle.yaml states it.
   if (const auto antenna = read_calibrated_antenna(args.params_file);
-      antenna && !input.vehicle.gnss_position_m) {
-    input.vehicle.gnss_position_m = antenna;
+      adopt_found_antenna(input.vehicle, antenna)) {
     fmt::print(
         "antenna      the result's, {:+.3f} m ahead and {:+.3f} m left of the rear axle "
         "(vehicle.yaml states none)\n",

@@ -161,4 +161,10 @@ DriftValidation validate_drift(const WheelStream& counted_wheels,
   return result;
 }
 
+bool adopt_found_antenna(VehicleConfig& vehicle, const std::optional<Eigen::Vector2d>& found_m) {
+  if (!found_m || vehicle.gnss_position_m) return false;
+  vehicle.gnss_position_m = found_m;
+  return true;
+}
+
 }  // namespace odocal

@@ -127,5 +127,20 @@ TEST(DriftValidation, TheReferencesUncertaintySaysWhatItAloneWouldShow) {
   EXPECT_THROW(validate_drift(d.wheels, d.reference, truth, truth, {60.0, 20.0}), Error);
 }
 
+// The reference measures the axle through the antenna: the one vehicle.yaml states stands, the
+// one the calibration found fills in where it states none, and nothing found changes nothing.
+TEST(DriftValidation, TakesTheFoundAntennaOnlyWhereVehicleYamlStatesNone) {
+  VehicleConfig unstated;
+  EXPECT_FALSE(adopt_found_antenna(unstated, std::nullopt));
+  EXPECT_FALSE(unstated.gnss_position_m.has_value());
+  EXPECT_TRUE(adopt_found_antenna(unstated, Eigen::Vector2d(1.5, -0.2)));
+  EXPECT_EQ(*unstated.gnss_position_m, Eigen::Vector2d(1.5, -0.2));
+
+  VehicleConfig stated;
+  stated.gnss_position_m = Eigen::Vector2d(0.3, 0.0);
+  EXPECT_FALSE(adopt_found_antenna(stated, Eigen::Vector2d(1.5, -0.2)));
+  EXPECT_EQ(*stated.gnss_position_m, Eigen::Vector2d(0.3, 0.0));
+}
+
 }  // namespace
 }  // namespace odocal

@@ -76,4 +76,8 @@ DriftValidation validate_drift(const WheelStream& nominal_wheels,
                                const OdometryParams& calibrated,
                                const DriftValidationOptions& options = {});
 
+// The antenna where a calibration found it is the validation's too (its reference measures the
+// axle through it), unless vehicle.yaml states one. True when `vehicle` took `found_m`.
+bool adopt_found_antenna(VehicleConfig& vehicle, const std::optional<Eigen::Vector2d>& found_m);
+
 }  // namespace odocal
