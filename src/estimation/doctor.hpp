@@ -68,6 +68,10 @@ class Doctor {
   // one-second mean speeds half a second either side, centred as the accelerometer's mean is.
   std::vector<double> wheel_acceleration() const;
 
+  // The GNSS course rate as the wheels would turn it: their yaw rate, and where vehicle.yaml
+  // states the antenna, the rate of its course's lead on the axle's, atan2(w x, v - w y).
+  std::vector<double> wheel_course_rate() const;
+
   // Clock offsets between streams, from the cross-correlation of what both measure.
   void check_clock_offsets();
   // wheels.csv's drive_force_n against the body's acceleration (after check_clock_offsets, which
