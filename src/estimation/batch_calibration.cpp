@@ -41,7 +41,8 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
   const auto spread = [&] {
     std::array<double, 2> gap{};
     if (const auto& rival = controls.rival_circumference) {
-      for (std::size_t w = 0; w < 2; ++w) gap[w] = std::abs(batch.params()[w] - (*rival)[w]);
+      for (std::size_t w = 0; w < 2; ++w)
+        gap[w] = controls.rival_share * std::abs(batch.params()[w] - (*rival)[w]);
     }
     return gap;
   };
@@ -115,8 +116,9 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
   const TyreJudgement tyre =
       judge_against_tyre_models(run, options, common, unfitted, scratch.gnss_noise, plain_bic);
   if (const TyreCandidate* better = tyre.better_fit()) {
-    judgement.gap_m = {std::abs(start.circumference_rl_m - better->circumference[0]),
-                       std::abs(start.circumference_rr_m - better->circumference[1])};
+    const double share = tyre.gap_share();
+    judgement.gap_m = {share * std::abs(start.circumference_rl_m - better->circumference[0]),
+                       share * std::abs(start.circumference_rr_m - better->circumference[1])};
     judgement.gap_cannot_stand = why_it_cannot_stand(*better);
     say_a_tyre_model_fits_better(adequacy, tyre, judgement.gap_m, "this estimate's");
   }

@@ -115,8 +115,9 @@ std::string BatchSummary::full_report() const {
   }
   if (model_spread_m[0] > 0.0 || model_spread_m[1] > 0.0) {
     text += fmt::format(
-        "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm, their gap to {}\n", "spread",
-        1e3 * model_spread_m[0], 1e3 * model_spread_m[1],
+        "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm, their gap (or the criteria's "
+        "share of it) to {}\n",
+        "spread", 1e3 * model_spread_m[0], 1e3 * model_spread_m[1],
         !tyre_selection.plain_gap_to.empty()
             ? "a tyre model's fit of this log (the tyre model line names it): the plain "
               "circumferences are the ones this drive rolled on, slip and load in them, not the "

@@ -154,8 +154,9 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
 std::string plain_gap_verdict(double sigma_m, double gap_m, TyreModelChoice configured) {
   return fmt::format(
       "the plain model's circumference is the one this drive rolled on, slip and load in it: a "
-      "tyre model, which fits this log better, puts the circumference at rest {:.3g} mm away (of "
-      "its 1-sigma, {:.2g} mm from the log's own noise); {}",
+      "tyre model, which fits this log as well or better, puts the circumference at rest "
+      "elsewhere (of its 1-sigma, {:.3g} mm from that gap, or the share of it that the criteria "
+      "weigh; {:.2g} mm from the log's own noise); {}",
       1e3 * gap_m, 1e3 * std::sqrt(std::max(0.0, sigma_m * sigma_m - gap_m * gap_m)),
       configured == TyreModelChoice::kNone ? "use tyre_model: auto" : "see the model line");
 }

@@ -30,6 +30,33 @@ std::optional<std::size_t> decisive_fit_that_cannot_stand(
   return best;
 }
 
+std::optional<std::size_t> tyre_fit_not_rejected(const std::vector<TyreCandidate>& candidates,
+                                                 double plain_bic) {
+  std::optional<std::size_t> best;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const TyreCandidate& c = candidates[i];
+    const bool fitted = std::isfinite(c.circumference[0]) && std::isfinite(c.circumference[1]);
+    if (!c.can_stand() || !fitted || !(c.bic < plain_bic + kDecisiveBic)) continue;
+    if (!best || c.bic < candidates[*best].bic) best = i;
+  }
+  return best;
+}
+
+double tie_gap_share(double excess) {
+  if (!(excess >= 0.0)) return 1.0;
+  const double weight = 1.0 / (1.0 + std::exp(0.5 * excess));
+  return std::sqrt(weight * (1.0 - weight));
+}
+
+std::string how_it_fits(const TyreCandidate& candidate, double plain_bic) {
+  if (!candidate.can_stand()) {
+    return fmt::format("decisively better ({})",
+                       candidate.tyre ? "every coefficient held" : "no tyre");
+  }
+  if (candidate.bic < plain_bic) return "better";
+  return fmt::format("about as well (BIC within {:.0f})", kDecisiveBic);
+}
+
 std::string why_it_cannot_stand(const TyreCandidate& candidate) {
   if (!candidate.tyre) {
     return "is no tyre (coefficients beyond a road tyre's, or circumferences out of their band): "
@@ -96,7 +123,14 @@ TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOp
   }
   if (!judgement.better)
     judgement.better = decisive_fit_that_cannot_stand(judgement.candidates, judgement.plain_bic);
+  if (!judgement.better)
+    judgement.better = tyre_fit_not_rejected(judgement.candidates, judgement.plain_bic);
   return judgement;
+}
+
+double TyreJudgement::gap_share() const {
+  const TyreCandidate* fit = better_fit();
+  return fit && fit->can_stand() ? tie_gap_share(fit->bic - plain_bic) : 1.0;
 }
 
 int TyreJudgement::solves() const {
@@ -109,6 +143,17 @@ void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& 
                                   const std::array<double, 2>& gap_m, const char* whose) {
   const TyreCandidate* better = judgement.better_fit();
   if (!adequacy.judged || !better) return;
+  if (const double share = judgement.gap_share(); share < 1.0) {
+    // Not decisively worse: the plain model explains the log as well as it did, but not surely
+    // where the circumferences at rest lie.
+    adequacy.verdict += fmt::format(
+        "; tyre_model: {} fits it about as well (BIC {:.1f} against {:.1f}) and puts the "
+        "circumferences at rest {:.3g} / {:.3g} mm from {}, of which their sigma carries "
+        "{:.3g} / {:.3g} mm (the criteria's weight of the two)",
+        better->model, better->bic, judgement.plain_bic, 1e3 * gap_m[0] / share,
+        1e3 * gap_m[1] / share, whose, 1e3 * gap_m[0], 1e3 * gap_m[1]);
+    return;
+  }
   const std::string text =
       better->can_stand()
           ? fmt::format(
@@ -133,7 +178,8 @@ BatchSummary fit_plain_carrying_gap(const CalibrationRun& run, const BatchOption
                                     const TyreJudgement& judgement) {
   BatchSummary summary = unfitted;
   fit_model(run, options, common, std::nullopt, summary,
-            {.rival_circumference = judgement.better_fit()->circumference});
+            {.rival_circumference = judgement.better_fit()->circumference,
+             .rival_share = judgement.gap_share()});
   say_a_tyre_model_fits_better(summary.model_adequacy, judgement, summary.model_spread_m,
                                "the plain ones");
   return summary;

@@ -14,7 +14,8 @@
 // fit's residuals showed where it adapted it (each model then solved once more, for its criterion).
 // Where none stands and one that cannot stand (no tyre, or every coefficient held) fits the log
 // decisively better, the plain circumferences carry their gap to it
-// (decisive_fit_that_cannot_stand). The same candidates judge a plain fit
+// (decisive_fit_that_cannot_stand); else to a tyre that the log does not decisively reject
+// (tyre_fit_not_rejected). The same candidates judge a plain fit
 // that was not chosen among them: tyre_model_judge.cpp.
 
 #include <fmt/format.h>
@@ -343,8 +344,10 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
     const double plain_bic = std::isfinite(selection.free_track_bic)
                                  ? std::min(selection.plain_bic, selection.free_track_bic)
                                  : selection.plain_bic;
-    if (const std::optional<std::size_t> better =
-            decisive_fit_that_cannot_stand(selection.candidates, plain_bic)) {
+    std::optional<std::size_t> better =
+        decisive_fit_that_cannot_stand(selection.candidates, plain_bic);
+    if (!better) better = tyre_fit_not_rejected(selection.candidates, plain_bic);
+    if (better) {
       const TyreJudgement judgement{selection.candidates, plain_bic, better};
       BatchSummary judged = fit_plain_carrying_gap(
           run, selection.plain_track_free ? free_track : options, common, unfitted, judgement);

@@ -11,14 +11,12 @@
 namespace odocal::batch {
 namespace {
 
-// Why the model whose gap the plain circumferences carry cannot stand ("no tyre", "every
-// coefficient held"; empty where it can: a tyre that fits the log better).
-std::string why_the_gap_cannot_stand(const TyreModelSelection& selection) {
+// The model whose gap the plain circumferences carry (none: they carry none).
+const TyreCandidate* gap_candidate(const TyreModelSelection& selection) {
   const auto gap =
       std::find_if(selection.candidates.begin(), selection.candidates.end(),
                    [&](const TyreCandidate& c) { return c.model == selection.plain_gap_to; });
-  if (gap == selection.candidates.end() || gap->can_stand()) return "";
-  return gap->tyre ? "every coefficient held" : "no tyre";
+  return gap == selection.candidates.end() ? nullptr : &*gap;
 }
 
 }  // namespace
@@ -31,13 +29,10 @@ std::string tyre_selection_report(const BatchSummary& summary) {
     for (const TyreCandidate& c : selection.candidates)
       criteria += fmt::format(", {} {:.1f}", c.model, c.bic);
     const TyreCandidate& last = selection.candidates.back();
-    const std::string cannot_stand = why_the_gap_cannot_stand(selection);
+    const TyreCandidate* gap = gap_candidate(selection);
     const std::string why =
-        !selection.plain_gap_to.empty()
-            ? fmt::format("the {} terms fit the log {}: their gap is in the sigma",
-                          selection.plain_gap_to,
-                          cannot_stand.empty() ? std::string("better")
-                                               : "decisively better (" + cannot_stand + ")")
+        gap ? fmt::format("the {} terms fit the log {}: their gap is in the sigma", gap->model,
+                          how_it_fits(*gap, selection.plain_bic))
         : !last.tyre ? fmt::format("the {} terms' fit was not a tyre", last.model)
         : last.every_coefficient_held
             ? fmt::format("the {} terms' fit identified none of their coefficients", last.model)
@@ -82,15 +77,17 @@ std::string tyre_selection_report(const BatchSummary& summary) {
     named = c.model;
     break;
   }
-  if (!selection.plain_gap_to.empty()) {
-    const std::string which = selection.plain_gap_to == named
-                                  ? std::string("it")
-                                  : fmt::format("the {} fit, {},", selection.plain_gap_to,
-                                                why_the_gap_cannot_stand(selection));
+  if (const TyreCandidate* gap = gap_candidate(selection)) {
+    // Compared with the better of the plain fits, as the gap was chosen.
+    const double plain_bic = std::isfinite(selection.free_track_bic)
+                                 ? std::min(selection.plain_bic, selection.free_track_bic)
+                                 : selection.plain_bic;
+    const std::string which =
+        gap->model == named ? std::string("it") : fmt::format("the {} fit", gap->model);
     why += fmt::format(
-        "; {} fits the log decisively better all the same: the plain circumferences carry their "
-        "gap to it in their sigma",
-        which);
+        "; {} fits the log {} all the same: the plain circumferences carry their gap to it in "
+        "their sigma",
+        which, how_it_fits(*gap, plain_bic));
   }
   if (selection.body_in_doubt()) {
     why += fmt::format(
