@@ -19,6 +19,7 @@
 #include "odocal/io/vehicle_config_io.hpp"
 #include "odocal/model/angle.hpp"
 #include "static_transforms.hpp"
+#include "topic_errors.hpp"
 #include "topic_map.hpp"
 
 namespace odocal::bag {
@@ -56,8 +57,7 @@ struct Plan {
 
 [[noreturn]] void wrong_type(const TopicSource& source, const std::string& stream,
                              const std::string& type, const std::string& expected) {
-  throw InputError(source.where, fmt::format("topic {} is {}; {} reads {}", source.topic, type,
-                                             stream, expected));
+  throw_topic_of_wrong_type(source.where, source.topic, type, stream, expected);
 }
 
 Plan wheels_plan(const WheelsSource& source, const std::string& type, double track_width_m) {
@@ -292,7 +292,7 @@ class ImportVisitor : public BagVisitor {
   std::string topic_names() const {
     std::string out;
     for (const std::string& name : names_) out += (out.empty() ? "" : ", ") + name;
-    return out.empty() ? "none" : out;
+    return out;
   }
 
  private:
@@ -372,9 +372,8 @@ ImportSummary import_bag(const fs::path& map_file, const fs::path& bag_path,
   ImportSummary notes_only;
   for (Collector& collector : collectors) {
     if (!collector.seen) {
-      throw InputError(collector.source->where,
-                       fmt::format("topic {} is not in the bag (it has {})",
-                                   collector.source->topic, visitor.topic_names()));
+      throw_topic_not_in_bag(collector.source->where, collector.source->topic,
+                             visitor.topic_names());
     }
     if (collector.rows.skipped > 0) {
       notes_only.notes.push_back(fmt::format("{}: {} of {} messages {} left out", collector.stream,

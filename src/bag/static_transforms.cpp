@@ -10,6 +10,7 @@
 #include "odocal/bag/bag_reader.hpp"
 #include "odocal/bag/message_decoder.hpp"
 #include "odocal/error.hpp"
+#include "topic_errors.hpp"
 
 namespace odocal::bag {
 namespace {
@@ -39,8 +40,7 @@ class TransformVisitor : public BagVisitor {
     if (topic.name != frames_.topic) return;
     const std::string type = canonical_type_name(topic.type);
     if (type != "tf2_msgs/TFMessage") {
-      throw InputError(frames_.where, fmt::format("topic {} is {}; frames reads tf2_msgs/TFMessage",
-                                                  topic.name, type));
+      throw_topic_of_wrong_type(frames_.where, topic.name, type, "frames", "tf2_msgs/TFMessage");
     }
     decoder_.emplace(topic.type, topic.definition, topic.definition_format,
                      message_encoding_from_name(topic.encoding, bag_), kPaths,
@@ -78,8 +78,7 @@ class TransformVisitor : public BagVisitor {
 
   StaticTransforms result() const {
     if (!decoder_) {
-      throw InputError(frames_.where, fmt::format("topic {} is not in the bag (it has {})",
-                                                  frames_.topic, names_.empty() ? "none" : names_));
+      throw_topic_not_in_bag(frames_.where, frames_.topic, names_);
     }
     return out_;
   }
