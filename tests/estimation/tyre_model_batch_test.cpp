@@ -635,16 +635,11 @@ TEST(TyreModelBatch, APlainFitThatATyreModelTiesCarriesTheWeighedGap) {
   // kept the plain fit, usable and 6 sigma off. The criteria weigh the two, and the plain
   // circumferences carry that share of their gap: refused at the default 1 mm, the error inside
   // 3 sigma, and the verdict saying why; chosen by hand and judged, the same.
-  sim::Scenario scenario = load_scenario("urban");
-  scenario.dynamics.drivetrain = sim::Drivetrain::kFront;
-  scenario.route.laps = 1;
-  scenario.seeds.noise = 1;
-  scenario.seeds.trajectory = 1;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const sim::SimulatedDrive drive =
+      sim::simulate(testing::realistic_urban_lap(sim::Drivetrain::kFront, 1));
   const Log log = simulated_log(drive);
   const double truth_m = drive.true_params.circumference_rl_m;
-  BatchOptions options;
-  options.tyre_model = TyreModelChoice::kAuto;
+  BatchOptions options;  // auto
   const BatchSummary chosen = calibrate_batch(log, options);
   SCOPED_TRACE(chosen.full_report());
   const TyreModelSelection& selection = chosen.tyre_selection;

@@ -43,4 +43,14 @@ inline sim::Scenario realistic_lap_on_track(double effective_track_m, std::uint6
   return scenario;
 }
 
+// One lap (1 km) of the built-in urban drive, realistic, on a `drivetrain` car, noise and
+// trajectory seed `seed`.
+inline sim::Scenario realistic_urban_lap(sim::Drivetrain drivetrain, std::uint64_t seed) {
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.dynamics.drivetrain = drivetrain;
+  scenario.route.laps = 1;
+  scenario.seeds = {seed, seed};
+  return scenario;
+}
+
 }  // namespace odocal::testing
