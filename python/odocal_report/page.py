@@ -15,6 +15,20 @@ def table(rows, header):
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
+def gap_share_text(selection):
+    """How much of its gap to the judging fit the plain fit carries: all of it where that fit is
+    better (or cannot stand), the criteria's share where it fits the log only about as well."""
+    judge = next((c for c in selection.get("candidates", [])
+                  if c["model"] == selection["plain_gap_to"]), None)
+    plain = [b for b in (selection.get("plain_bic"), selection.get("free_track_bic"))
+             if b is not None]
+    can_stand = judge is not None and judge.get("tyre", True) and not judge.get(
+        "every_coefficient_held")
+    if can_stand and judge.get("bic") is not None and plain and judge["bic"] >= min(plain):
+        return "the share of their gap that the criteria weigh (it fits the log about as well)"
+    return "their gap"
+
+
 def tyre_selection_text(selection):
     """The tyre models compared: which stands, every criterion, each candidate's circumferences
     at rest and whether it is a tyre, and whose gap the plain (or the chosen) circumferences
@@ -38,8 +52,8 @@ def tyre_selection_text(selection):
         parts.append(f"{c['model']} {bic}{standing}{rest}")
     text = f"{chosen} ({'; '.join(parts)})"
     if selection.get("plain_gap_to"):
-        text += (f"; the plain circumferences carry their gap to the {selection['plain_gap_to']} "
-                 f"fit in their sigma")
+        text += (f"; the plain circumferences carry {gap_share_text(selection)} to the "
+                 f"{selection['plain_gap_to']} fit in their sigma")
     if selection.get("chosen_gap_to"):
         sigmas = selection.get("chosen_gap_sigmas")
         away = f" ({sigmas:.1f} of their combined sigma away)" if sigmas is not None else ""

@@ -80,6 +80,14 @@ def test_the_tyre_models_compared_are_shown_with_whose_gap_the_plain_fit_carries
     text = dict(summary_rows(result))["tyre model"]
     assert "physical BIC 34668.3, every coefficient held, at rest" in text
     assert text.endswith("carry their gap to the physical fit in their sigma")
+    # A tyre fit a little worse than the plain fit with the track free: the criteria's share.
+    selection["candidates"][0].update(every_coefficient_held=False, tyre=True, bic=35459.0)
+    text = dict(summary_rows(result))["tyre model"]
+    assert text.endswith("carry the share of their gap that the criteria weigh (it fits the log "
+                         "about as well) to the physical fit in their sigma")
+    selection["candidates"][0]["bic"] = 35457.0  # better than the plain fit: all of it
+    assert dict(summary_rows(result))["tyre model"].endswith(
+        "carry their gap to the physical fit in their sigma")
     del result["tyre_selection"]
     assert "tyre model" not in dict(summary_rows(result))
 
