@@ -96,17 +96,20 @@ int main(int argc, char** argv) {
     batch_adapted.add(a, drive.true_params, bound);
     if (report) fmt::print(stderr, "{}Cramér–Rao sigma {:.3f} mm\n", a.full_report(), 1e3 * bound);
     batch_fixed.add(calibrate_batch(log, fixed, claimed), drive.true_params, bound);
-    iterative.add(calibrate_iterative(log, {}, claimed), drive.true_params, bound);
+    const CalibrationSummary i = calibrate_iterative(log, {}, claimed);
+    iterative.add(i, drive.true_params, bound);
     fmt::print(
         stderr,
         "run {:>2}: GM {:.1f} m, tau {:>3.0f} s -> error {:+.3f} / {:+.3f} mm, sigma "
         "{:.3f} mm, CRLB {:.3f} mm (estimated GM {:.2f} m, tau {:.0f} s; x{:.1f}; tyre model "
-        "{})\n",
+        "{}); iterative {:+.3f} mm at sigma {:.3f} mm\n",
         run + 1, scenario.gnss.gauss_markov_sigma_m, scenario.gnss.gauss_markov_tau_s,
         1e3 * (a.estimate.circumference_rl_m - drive.true_params.circumference_rl_m),
         1e3 * (a.estimate.circumference_rr_m - drive.true_params.circumference_rr_m),
         1e3 * a.sigma_rl_m(), 1e3 * bound, a.gnss_noise.gauss_markov_sigma_m,
-        a.gnss_noise.gauss_markov_tau_s, a.gnss_noise.sigma_inflation, a.tyre_selection.chosen);
+        a.gnss_noise.gauss_markov_tau_s, a.gnss_noise.sigma_inflation, a.tyre_selection.chosen,
+        1e3 * (i.estimate.circumference_rl_m - drive.true_params.circumference_rl_m),
+        1e3 * i.sigma_rl_m());
   }
   fmt::print(
       "{} runs, {} laps of the built-in circuit (--ideal), GNSS: 5 cm white + Gauss-Markov "
