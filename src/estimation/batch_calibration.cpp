@@ -109,6 +109,13 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
                       ceres::TerminationTypeToString(solver.termination_type));
       return judgement;
     }
+    const double scale = scratch.gnss_noise.covariance_scale;
+    if (scratch.gnss_noise.adapted && std::isfinite(scale)) {
+      if (const auto u = batch.uncertainty()) {
+        judgement.adapted_sigma_m = {std::sqrt(scale * u->params(0, 0)),
+                                     std::sqrt(scale * u->params(1, 1))};
+      }
+    }
     judgement.adequacy = assess_model_adequacy(batch.odometry_errors());
   }  // freed before the tyre models' problems
   ModelAdequacy& adequacy = judgement.adequacy;
