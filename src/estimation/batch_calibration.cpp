@@ -112,8 +112,9 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
     const double scale = scratch.gnss_noise.covariance_scale;
     if (scratch.gnss_noise.adapted && std::isfinite(scale)) {
       if (const auto u = batch.uncertainty()) {
-        judgement.adapted_sigma_m = {std::sqrt(scale * u->params(0, 0)),
-                                     std::sqrt(scale * u->params(1, 1))};
+        judgement.adapted = ModelJudgement::AdaptedFit{
+            {batch.params()[0], batch.params()[1]},
+            {std::sqrt(scale * u->params(0, 0)), std::sqrt(scale * u->params(1, 1))}};
       }
     }
     judgement.adequacy = assess_model_adequacy(batch.odometry_errors());

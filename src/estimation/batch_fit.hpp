@@ -248,10 +248,14 @@ struct ModelJudgement {
   std::array<double, 2> gap_m{};  // zero where no tyre model fits the log better
   // Where the gap is to a model that cannot stand (decisive_fit_that_cannot_stand): why not.
   std::string gap_cannot_stand;
-  // Where the plain fit's residuals showed a GNSS noise other than the configured one: the
-  // circumferences' sigma of that fit under the noise they showed (none otherwise). The batch
+  // Where the plain fit's residuals showed a GNSS noise other than the configured one: that
+  // fit's circumferences and their sigma under the noise they showed (none otherwise). The batch
   // is at the Cramér-Rao bound, and no estimate from the same log is surer than it.
-  std::optional<std::array<double, 2>> adapted_sigma_m;
+  struct AdaptedFit {
+    std::array<double, 2> circumference_m{};
+    std::array<double, 2> sigma_m{};
+  };
+  std::optional<AdaptedFit> adapted;
 };
 ModelJudgement judge_model_adequacy(const CalibrationRun& run, const OdometryParams& start,
                                     const CalibrationOptions& common);
