@@ -23,8 +23,7 @@ std::optional<std::size_t> decisive_fit_that_cannot_stand(
   std::optional<std::size_t> best;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const TyreCandidate& c = candidates[i];
-    const bool fitted = std::isfinite(c.circumference[0]) && std::isfinite(c.circumference[1]);
-    if (c.can_stand() || !fitted || !(c.bic < plain_bic - kDecisiveBic)) continue;
+    if (c.can_stand() || !c.fitted() || !(c.bic < plain_bic - kDecisiveBic)) continue;
     if (!best || c.bic < candidates[*best].bic) best = i;
   }
   return best;
@@ -35,8 +34,7 @@ std::optional<std::size_t> tyre_fit_not_rejected(const std::vector<TyreCandidate
   std::optional<std::size_t> best;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const TyreCandidate& c = candidates[i];
-    const bool fitted = std::isfinite(c.circumference[0]) && std::isfinite(c.circumference[1]);
-    if (!c.can_stand() || !fitted || !(c.bic < plain_bic + kDecisiveBic)) continue;
+    if (!c.can_stand() || !c.fitted() || !(c.bic < plain_bic + kDecisiveBic)) continue;
     if (!best || c.bic < candidates[*best].bic) best = i;
   }
   return best;

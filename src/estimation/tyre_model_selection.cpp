@@ -340,10 +340,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
     }
   }
   if (selection.chosen == "none") {
-    // Compared with the better of the plain fits: the geometry explains what the track freed does.
-    const double plain_bic = std::isfinite(selection.free_track_bic)
-                                 ? std::min(selection.plain_bic, selection.free_track_bic)
-                                 : selection.plain_bic;
+    const double plain_bic = selection.compared_plain_bic();
     std::optional<std::size_t> better =
         decisive_fit_that_cannot_stand(selection.candidates, plain_bic);
     if (!better) better = tyre_fit_not_rejected(selection.candidates, plain_bic);

@@ -78,10 +78,7 @@ std::string tyre_selection_report(const BatchSummary& summary) {
     break;
   }
   if (const TyreCandidate* gap = gap_candidate(selection)) {
-    // Compared with the better of the plain fits, as the gap was chosen.
-    const double plain_bic = std::isfinite(selection.free_track_bic)
-                                 ? std::min(selection.plain_bic, selection.free_track_bic)
-                                 : selection.plain_bic;
+    const double plain_bic = selection.compared_plain_bic();  // as the gap was chosen
     const std::string which =
         gap->model == named ? std::string("it") : fmt::format("the {} fit", gap->model);
     why += fmt::format(

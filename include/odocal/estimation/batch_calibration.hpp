@@ -3,7 +3,9 @@
 // parameters fitted by Ceres to all wheel, GNSS, heading and gyro data at once, with the
 // covariance of every parameter and an observability verdict in words.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
@@ -90,6 +92,8 @@ struct TyreCandidate {
   bool every_coefficient_held = false;
   // Whether it may stand, or judge a plain fit, by fitting the log better.
   bool can_stand() const { return tyre && !every_coefficient_held; }
+  // Whether its fit was usable: it has circumferences at rest to carry a gap to.
+  bool fitted() const { return std::isfinite(circumference[0]) && std::isfinite(circumference[1]); }
 };
 
 // tyre_model auto: the information criteria of every model fitted and which one stands. Under
@@ -104,6 +108,11 @@ struct TyreModelSelection {
   // The plain model's with the track width freed, where auto fitted it (the track held and the
   // plain fit's heading residual following the curvature; NaN otherwise).
   double free_track_bic = std::numeric_limits<double>::quiet_NaN();
+  // The better of the plain fits, which the tyre models are compared with: the geometry explains
+  // what the track freed does.
+  double compared_plain_bic() const {
+    return std::isfinite(free_track_bic) ? std::min(plain_bic, free_track_bic) : plain_bic;
+  }
   // The plain model stands with the track width free: it fitted the log better so than with the
   // track held, and no tyre model stood.
   bool plain_track_free = false;
