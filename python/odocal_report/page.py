@@ -18,14 +18,10 @@ def table(rows, header):
 def gap_share_text(selection):
     """How much of its gap to the judging fit the plain fit carries: all of it where that fit is
     better (or cannot stand), the criteria's share where it fits the log only about as well."""
-    judge = next((c for c in selection.get("candidates", [])
-                  if c["model"] == selection["plain_gap_to"]), None)
-    plain = [b for b in (selection.get("plain_bic"), selection.get("free_track_bic"))
-             if b is not None]
-    can_stand = judge is not None and judge.get("tyre", True) and not judge.get(
-        "every_coefficient_held")
-    if can_stand and judge.get("bic") is not None and plain and judge["bic"] >= min(plain):
-        return "the share of their gap that the criteria weigh (it fits the log about as well)"
+    share = selection.get("plain_gap_share")
+    if share is not None and share < 1.0:
+        return (f"{share:.2f} of their gap, the share that the criteria weigh (it fits the log "
+                f"about as well),")
     return "their gap"
 
 

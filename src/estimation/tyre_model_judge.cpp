@@ -200,6 +200,7 @@ void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
     other_solves += summary.solves;
     summary = fit_plain_carrying_gap(run, options, common, unfitted, judgement);
     selection.plain_gap_to = better->model;
+    selection.plain_gap_share = judgement.gap_share();
   }
   selection.compared = true;
   selection.judges_plain = true;

@@ -352,6 +352,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
       if (finished) run.finish(judged);
       summary = std::move(judged);
       selection.plain_gap_to = judgement.better_fit()->model;
+      selection.plain_gap_share = judgement.gap_share();
     }
   }
   selection.other_solves = all_solves - summary.solves;

@@ -314,6 +314,7 @@ void add_details(json& out, const BatchSummary& s) {
         {"chosen", s.tyre_selection.chosen},
         {"judges_plain", s.tyre_selection.judges_plain},
         {"plain_gap_to", s.tyre_selection.plain_gap_to},
+        {"plain_gap_share", s.tyre_selection.plain_gap_share},
         {"chosen_gap_to", s.tyre_selection.chosen_gap_to},
         {"chosen_gap_sigmas", number_or_null(s.tyre_selection.chosen_gap_sigmas)}};
   }

@@ -21,6 +21,7 @@
 #include "odocal/estimation/drift_validation.hpp"
 #include "odocal/estimation/driving_state.hpp"
 #include "odocal/estimation/iterative_calibration.hpp"
+#include "odocal/io/calibration_io.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
@@ -646,11 +647,14 @@ TEST(TyreModelBatch, APlainFitThatATyreModelTiesCarriesTheWeighedGap) {
   ASSERT_EQ(selection.chosen, "none");
   ASSERT_EQ(selection.plain_gap_to, "physical");
   const TyreCandidate& physical = selection.candidates.front();
-  const double excess = physical.bic - std::min(selection.plain_bic, selection.free_track_bic);
+  const double excess = physical.bic - selection.compared_plain_bic();
   ASSERT_GE(excess, 0.0);
   ASSERT_LT(excess, batch::kDecisiveBic);
   const double gap_m = std::abs(chosen.estimate.circumference_rl_m - physical.circumference[0]);
   EXPECT_NEAR(chosen.model_spread_m[0], batch::tie_gap_share(excess) * gap_m, 1e-9);
+  EXPECT_NEAR(selection.plain_gap_share, batch::tie_gap_share(excess), 1e-12);
+  EXPECT_EQ(summary_to_json(chosen, {}).at("tyre_selection").at("plain_gap_share"),
+            selection.plain_gap_share);
   EXPECT_GT(std::abs(chosen.estimate.circumference_rl_m - truth_m), 0.004);
   EXPECT_LT(std::abs(chosen.estimate.circumference_rl_m - truth_m), 3.0 * chosen.sigma_rl_m());
   EXPECT_EQ(chosen.termination, Termination::kNotIdentifiable);
@@ -660,6 +664,8 @@ TEST(TyreModelBatch, APlainFitThatATyreModelTiesCarriesTheWeighedGap) {
   options.tyre_model = TyreModelChoice::kNone;
   const BatchSummary judged = calibrate_batch(log, options);
   EXPECT_EQ(judged.tyre_selection.plain_gap_to, "physical") << judged.full_report();
+  EXPECT_GT(judged.tyre_selection.plain_gap_share, 0.0);
+  EXPECT_LT(judged.tyre_selection.plain_gap_share, 1.0);
   EXPECT_EQ(judged.termination, Termination::kNotIdentifiable) << judged.full_report();
   EXPECT_LT(std::abs(judged.estimate.circumference_rl_m - truth_m), 3.0 * judged.sigma_rl_m());
 }

@@ -82,10 +82,11 @@ def test_the_tyre_models_compared_are_shown_with_whose_gap_the_plain_fit_carries
     assert text.endswith("carry their gap to the physical fit in their sigma")
     # A tyre fit a little worse than the plain fit with the track free: the criteria's share.
     selection["candidates"][0].update(every_coefficient_held=False, tyre=True, bic=35459.0)
+    selection["plain_gap_share"] = 0.4727
     text = dict(summary_rows(result))["tyre model"]
-    assert text.endswith("carry the share of their gap that the criteria weigh (it fits the log "
-                         "about as well) to the physical fit in their sigma")
-    selection["candidates"][0]["bic"] = 35457.0  # better than the plain fit: all of it
+    assert text.endswith("carry 0.47 of their gap, the share that the criteria weigh (it fits "
+                         "the log about as well), to the physical fit in their sigma")
+    selection["plain_gap_share"] = 1.0  # a better fit: all of it
     assert dict(summary_rows(result))["tyre model"].endswith(
         "carry their gap to the physical fit in their sigma")
     del result["tyre_selection"]

@@ -124,6 +124,10 @@ struct TyreModelSelection {
   // without being a tyre (the plain model does not explain the log, and no model here says
   // surely where the circumferences at rest lie).
   std::string plain_gap_to;
+  // The share of that gap the plain circumferences carry: 1 where the judge fits the log better
+  // (or cannot stand), the criteria's weighed share (tie_gap_share) where it fits it about as
+  // well; 0 where they carry none.
+  double plain_gap_share = 0.0;
   // Where a tyre model stands: the one whose circumferences at rest its own carry their gap to in
   // their sigma (empty: none). The regression terms carry their gap to the physical ones where
   // those were fitted; the physical terms theirs to the regression terms, which need no body,
