@@ -53,6 +53,7 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
       facts.usable = true;
       facts.bic = batch.information_criterion(solver);
       facts.free_tyre_coefficients = batch.free_tyre_coefficients();
+      facts.wandered = batch.tyre_fit_wandered();
       facts.max_tyre_effect = max_tyre_effect(batch);
       facts.circumference = {batch.params()[0], batch.params()[1]};
       if (extended) {

@@ -185,6 +185,12 @@ int BatchProblem::free_tyre_coefficients() const {
   return free;
 }
 
+bool BatchProblem::tyre_fit_wandered() const {
+  for (int j = 0; j < TyreModel::kCoefficients; ++j)
+    if (tyre_in_fit(j) && tyre_held_wandered_[static_cast<std::size_t>(j)]) return true;
+  return false;
+}
+
 double BatchProblem::information_criterion(const ceres::Solver::Summary& solver) const {
   // The folded blocks' cost is the re-weighted one: the fixes' own (robust) cost and the
   // heading samples' replace it, and their rows count as the measurements they are.

@@ -146,6 +146,8 @@ class BatchProblem {
     return tyre_held_below_zero_[static_cast<std::size_t>(j)];
   }
   int free_tyre_coefficients() const;
+  // Whether the free fit wandered, so that its coefficients were held at zero (solve_tyre_model).
+  bool tyre_fit_wandered() const;
   TyreModel tyre_model() const {
     return TyreModel::from(Eigen::Map<const TyreModel::Vector>(params_.data() + kTyreOffset));
   }

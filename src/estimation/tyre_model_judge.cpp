@@ -101,17 +101,8 @@ TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOp
                      : std::nullopt;
     BatchSummary fitted = unfitted;
     fit_model(run, judging, common, terms, fitted, {.finish = [&](const FitFacts& own) {
-                // Under a configured noise that the residuals show wrong, coefficients that
-                // wandered and were held may be the noise's doing: the fit under the noise shown
-                // speaks instead where it identified some (the realistic urban drive,
-                // rear-driven, seed 1, a 0.5 m error over 10 s configured as 0.1 m white, the
-                // track free: every coefficient wandered and was held, the circumferences at rest
-                // 1.4 mm from the iterative estimate's; under the noise shown 10.4 mm, the truth
-                // 12.7 mm away).
-                const bool noise_shown = shared && shared->usable && own.usable &&
-                                         own.free_tyre_coefficients == 0 &&
-                                         shared->free_tyre_coefficients > 0;
-                const FitFacts& facts = noise_shown ? *shared : own;
+                const FitFacts& facts =
+                    facts_to_judge_by(own, shared, unfitted.nominal, common.max_relative_change);
                 candidate.bic = shared ? shared->bic : facts.bic;
                 candidate.tyre =
                     facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);

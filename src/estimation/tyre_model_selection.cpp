@@ -92,6 +92,14 @@ bool is_tyre(const FitFacts& facts, const OdometryParams& nominal, double max_ch
          std::abs(facts.circumference[1] / nominal.circumference_rr_m - 1.0) <= max_change;
 }
 
+const FitFacts& facts_to_judge_by(const FitFacts& own, const std::optional<FitFacts>& shared,
+                                  const OdometryParams& nominal, double max_change) {
+  const auto can_stand = [&](const FitFacts& facts) {
+    return facts.usable && facts.free_tyre_coefficients > 0 && is_tyre(facts, nominal, max_change);
+  };
+  return own.usable && own.wandered && shared && can_stand(*shared) ? *shared : own;
+}
+
 std::optional<GnssNoiseModel> adapted_noise(const GnssNoiseReport& report) {
   if (!report.adapted || report.reverted || !(report.configured_sigma_m > 0.0)) return std::nullopt;
   GnssNoiseModel noise;
@@ -170,6 +178,8 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
     // Each criterion is taken once: with the track held (under the configured noise, the held
     // fit's own) and, where the track is in doubt, free.
     std::optional<double> held_criterion, free_criterion;
+    // Those fits' facts under the shared noise, and the model's own fit's, as last chosen on.
+    std::optional<FitFacts> held_shared, free_shared, own_facts;
     bool keep_track_held = false;
     // An accepted fit with the track freed, while the same model is fitted with it held.
     struct Freed {
@@ -183,8 +193,11 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
       fit_again = false;
       candidate = TyreCandidate{tyre_model_option(terms)};
       int comparison_solves = 0;
-      if (shared_noise && !held_criterion)
-        held_criterion = criterion_under_shared_noise(terms, comparison_solves);
+      if (shared_noise && !held_criterion) {
+        held_shared =
+            solved_facts(run, options, common, unfitted, terms, *shared_noise, comparison_solves);
+        held_criterion = held_shared->bic;
+      }
       // Where the track is in doubt, a tyre model is fitted with it free too, and stands the way
       // that the criterion prefers: slipping tyres on a track that vehicle.yaml gets wrong beat
       // the freed plain model, and with the track held the load terms took the track's share as
@@ -197,8 +210,10 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
                                            comparison_solves);
         }
         if (!free_criterion) {
-          free_criterion = criterion_under(run, free_track, common, unfitted, terms, shared_noise,
-                                           comparison_solves);
+          free_shared = solved_facts(run, free_track, common, unfitted, terms, shared_noise,
+                                     comparison_solves);
+          free_criterion = free_shared->bic;
+          if (!shared_noise) free_shared.reset();  // the configured noise's: no other noise
         }
         candidate.held_track_bic = *held_criterion;
         candidate.free_track_bic = *free_criterion;
@@ -209,6 +224,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
                                                : shared_noise       ? held_criterion
                                                                     : std::nullopt;
       const auto choose = [&](const FitFacts& facts) {
+        own_facts = facts;
         candidate.bic = shared_bic.value_or(facts.bic);
         if (!candidate.track_free && facts.usable) held_criterion = candidate.bic;
         if (!facts.usable) return false;
@@ -284,6 +300,19 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
       if (held_score_m) {
         candidate.held_track_score_m = *held_score_m;
         candidate.free_track_score_m = freed->score_m;
+      }
+    }
+    // Not chosen, it may still judge the plain fit (below): by its fit under the noise shown
+    // where its own cannot stand (facts_to_judge_by).
+    if (!accepted && own_facts) {
+      const FitFacts& judged = facts_to_judge_by(
+          *own_facts, candidate.track_free ? free_shared : held_shared, summary.nominal,
+          max_change);
+      if (&judged != &*own_facts) {
+        candidate.tyre = true;
+        candidate.every_coefficient_held = false;
+        candidate.circumference = judged.circumference;
+        if (terms == TyreTerms::kPhysical) physical_circumference = judged.circumference;
       }
     }
     // A tyre model that won the criterion and agrees with the plain fit confirms it: the
