@@ -22,7 +22,7 @@ struct FitFacts {
   bool usable = false;
   double bic = std::numeric_limits<double>::infinity();
   int free_tyre_coefficients = 0;
-  bool wandered = false;  // its coefficients did not settle and were held at zero
+  bool wandered = false;         // its coefficients did not settle and were held at zero
   double max_tyre_effect = 0.0;  // largest change of a circumference at the log's RMS state
   std::array<double, 2> circumference{};
   std::array<double, 2> circumference_variance{std::numeric_limits<double>::infinity(),

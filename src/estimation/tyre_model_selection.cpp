@@ -305,9 +305,9 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
     // Not chosen, it may still judge the plain fit (below): by its fit under the noise shown
     // where its own cannot stand (facts_to_judge_by).
     if (!accepted && own_facts) {
-      const FitFacts& judged = facts_to_judge_by(
-          *own_facts, candidate.track_free ? free_shared : held_shared, summary.nominal,
-          max_change);
+      const FitFacts& judged =
+          facts_to_judge_by(*own_facts, candidate.track_free ? free_shared : held_shared,
+                            summary.nominal, max_change);
       if (&judged != &*own_facts) {
         candidate.tyre = true;
         candidate.every_coefficient_held = false;
