@@ -100,9 +100,11 @@ TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOp
                                                   shared_noise, candidate.solves))
                      : std::nullopt;
     BatchSummary fitted = unfitted;
+    bool noise_shown = false;
     fit_model(run, judging, common, terms, fitted, {.finish = [&](const FitFacts& own) {
                 const FitFacts& facts =
                     facts_to_judge_by(own, shared, unfitted.nominal, common.max_relative_change);
+                noise_shown = &facts != &own;
                 candidate.bic = shared ? shared->bic : facts.bic;
                 candidate.tyre =
                     facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
@@ -114,6 +116,7 @@ TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOp
               }});
     candidate.solves += fitted.solves;
     judgement.candidates.push_back(candidate);
+    judgement.under_noise_shown.push_back(noise_shown);
     if (candidate.needed) judgement.better = judgement.candidates.size() - 1;
     // The regression terms speak only where the physical ones fit the log better but cannot
     // stand (no tyre: a body that vehicle.yaml gets wrong; or every coefficient held): they
@@ -154,14 +157,20 @@ void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& 
         1e3 * gap_m[1] / share, whose, 1e3 * gap_m[0], 1e3 * gap_m[1]);
     return;
   }
+  // Its own fit wandered under the configured noise: auto cannot choose it either.
+  const char* advice = judgement.better_under_noise_shown()
+                           ? "fitted under the GNSS noise that the residuals show (under the "
+                             "configured one its fit did not settle): state that noise (gnss.csv's "
+                             "sigma_m or gnss_sigma_m) and calibrate again"
+                           : "use the batch's tyre_model: auto";
   const std::string text =
       better->can_stand()
           ? fmt::format(
                 "tyre_model: {} fits it better (BIC {:.1f} against {:.1f}) and puts the "
                 "circumferences at rest {:.3g} / {:.3g} mm from {}, which their sigma carries; "
-                "use the batch's tyre_model: auto",
+                "{}",
                 better->model, better->bic, judgement.plain_bic, 1e3 * gap_m[0], 1e3 * gap_m[1],
-                whose)
+                whose, advice)
           : fmt::format(
                 "tyre_model: {} fits it decisively better (BIC {:.1f} against {:.1f}) and puts "
                 "the circumferences at rest {:.3g} / {:.3g} mm from {}, which their sigma "
