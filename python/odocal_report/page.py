@@ -44,7 +44,8 @@ def tyre_selection_text(selection):
             rest = f", at rest {c['circumference_rl_m']:.4f} / {c['circumference_rr_m']:.4f} m"
         bic = f"BIC {c['bic']:.1f}" if c.get("bic") is not None else "not solved"
         standing = ("" if c.get("tyre", True) else ", no tyre") + (
-            ", every coefficient held" if c.get("every_coefficient_held") else "")
+            ", every coefficient held" if c.get("every_coefficient_held") else "") + (
+            ", judged under the GNSS noise shown" if c.get("judged_under_noise_shown") else "")
         parts.append(f"{c['model']} {bic}{standing}{rest}")
     text = f"{chosen} ({'; '.join(parts)})"
     if selection.get("plain_gap_to"):

@@ -224,12 +224,7 @@ struct TyreJudgement {
   std::vector<TyreCandidate> candidates;  // in the order fitted
   double plain_bic{};                     // as compared
   std::optional<std::size_t> better;      // the candidate whose circumferences judge the plain
-  // Per candidate: judged by its fit under the noise shown (facts_to_judge_by), its own wandered.
-  std::vector<bool> under_noise_shown;
   const TyreCandidate* better_fit() const { return better ? &candidates[*better] : nullptr; }
-  bool better_under_noise_shown() const {
-    return better && *better < under_noise_shown.size() && under_noise_shown[*better];
-  }
   // The share of the gap to it that the plain circumferences carry (tie_gap_share).
   double gap_share() const;
   int solves() const;

@@ -100,11 +100,10 @@ TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOp
                                                   shared_noise, candidate.solves))
                      : std::nullopt;
     BatchSummary fitted = unfitted;
-    bool noise_shown = false;
     fit_model(run, judging, common, terms, fitted, {.finish = [&](const FitFacts& own) {
                 const FitFacts& facts =
                     facts_to_judge_by(own, shared, unfitted.nominal, common.max_relative_change);
-                noise_shown = &facts != &own;
+                candidate.judged_under_noise_shown = &facts != &own;
                 candidate.bic = shared ? shared->bic : facts.bic;
                 candidate.tyre =
                     facts.usable && is_tyre(facts, unfitted.nominal, common.max_relative_change);
@@ -116,7 +115,6 @@ TyreJudgement judge_against_tyre_models(const CalibrationRun& run, const BatchOp
               }});
     candidate.solves += fitted.solves;
     judgement.candidates.push_back(candidate);
-    judgement.under_noise_shown.push_back(noise_shown);
     if (candidate.needed) judgement.better = judgement.candidates.size() - 1;
     // The regression terms speak only where the physical ones fit the log better but cannot
     // stand (no tyre: a body that vehicle.yaml gets wrong; or every coefficient held): they
@@ -158,7 +156,7 @@ void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& 
     return;
   }
   // Its own fit wandered under the configured noise: auto cannot choose it either.
-  const char* advice = judgement.better_under_noise_shown()
+  const char* advice = better->judged_under_noise_shown
                            ? "fitted under the GNSS noise that the residuals show (under the "
                              "configured one its fit did not settle): state that noise (gnss.csv's "
                              "sigma_m or gnss_sigma_m) and calibrate again"

@@ -170,7 +170,6 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
   // with the Doppler speed: the regression terms -11.7 mm at sigma 1.6 mm, the physical ones,
   // no tyre there, +22.9 mm).
   std::optional<std::array<double, 2>> physical_circumference;
-  std::vector<bool> under_noise_shown;  // per candidate, as TyreJudgement keeps it
   for (const TyreTerms terms : kTyreCandidates) {
     if (selection.chosen != "none") break;
     TyreCandidate candidate;
@@ -181,7 +180,6 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
     std::optional<double> held_criterion, free_criterion;
     // Those fits' facts under the shared noise, and the model's own fit's, as last chosen on.
     std::optional<FitFacts> held_shared, free_shared, own_facts;
-    bool judged_under_noise_shown = false;
     bool keep_track_held = false;
     // An accepted fit with the track freed, while the same model is fitted with it held.
     struct Freed {
@@ -311,7 +309,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
           facts_to_judge_by(*own_facts, candidate.track_free ? free_shared : held_shared,
                             summary.nominal, max_change);
       if (&judged != &*own_facts) {
-        judged_under_noise_shown = true;
+        candidate.judged_under_noise_shown = true;
         candidate.tyre = true;
         candidate.every_coefficient_held = false;
         candidate.circumference = judged.circumference;
@@ -337,7 +335,6 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
       }
     }
     selection.candidates.push_back(candidate);
-    under_noise_shown.push_back(judged_under_noise_shown);
     if (confirms_plain) break;
   }
   if (selection.chosen == tyre_model_option(TyreTerms::kPhysical)) {
@@ -378,7 +375,7 @@ bool fit_auto(CalibrationRun& run, const BatchOptions& options, const Calibratio
         decisive_fit_that_cannot_stand(selection.candidates, plain_bic);
     if (!better) better = tyre_fit_not_rejected(selection.candidates, plain_bic);
     if (better) {
-      const TyreJudgement judgement{selection.candidates, plain_bic, better, under_noise_shown};
+      const TyreJudgement judgement{selection.candidates, plain_bic, better};
       BatchSummary judged = fit_plain_carrying_gap(
           run, selection.plain_track_free ? free_track : options, common, unfitted, judgement);
       all_solves += judged.solves;

@@ -45,7 +45,12 @@ std::string tyre_selection_report(const BatchSummary& summary) {
   std::string named;  // the candidate that `why` names
   for (const TyreCandidate& c : selection.candidates) {
     if (c.model == selection.chosen) break;
-    if (!c.tyre) {
+    if (c.judged_under_noise_shown) {
+      why = fmt::format(
+          "the {} fit did not settle under the configured GNSS noise; under the noise that the "
+          "residuals show it does: state that noise (gnss.csv's sigma_m or gnss_sigma_m)",
+          c.model);
+    } else if (!c.tyre) {
       why = fmt::format(
           "the {} fit was not a tyre: coefficients of percents, or a circumference "
           "out of its band",

@@ -294,6 +294,7 @@ void add_details(json& out, const BatchSummary& s) {
                             {"solves", c.solves},
                             {"tyre", c.tyre},
                             {"every_coefficient_held", c.every_coefficient_held},
+                            {"judged_under_noise_shown", c.judged_under_noise_shown},
                             {"beyond_track", c.beyond_track},
                             {"track_free", c.track_free},
                             {"held_track_bic", number_or_null(c.held_track_bic)},

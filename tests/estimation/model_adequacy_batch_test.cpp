@@ -278,5 +278,35 @@ TEST(ModelAdequacyBatch, ATyreFitThatWandersUnderAWrongNoiseIsTakenUnderTheNoise
       << judged.model_adequacy.verdict;
 }
 
+// auto as well: a physical fit that wandered under the configured noise cannot be chosen, but it
+// judges the plain fit by its fit under the noise shown, and the result says so.
+TEST(ModelAdequacyBatch, AutoJudgesByAWanderingTyreFitUnderTheNoiseShownAndSaysSo) {
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.vehicle.wear_rl_mm = 1.5;
+  scenario.vehicle.wear_rr_mm = 1.0;
+  scenario.seeds.noise = 3;
+  scenario.gnss.sigma_m = 0.05;
+  scenario.gnss.gauss_markov_sigma_m = 2.0;
+  scenario.gnss.gauss_markov_tau_s = 10.0;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  Log log = simulated_log(drive);
+  log.gnss.sigma_m.clear();
+  const BatchSummary fit = calibrate_batch(log, {}, claiming_white_gnss_noise());
+  const double error_m = fit.estimate.circumference_rl_m - drive.true_params.circumference_rl_m;
+  ASSERT_GT(std::abs(error_m), 0.008);  // the case, as measured
+  EXPECT_LT(error_in_sigmas(fit, drive.true_params.circumference_rl_m), 3.0) << fit.full_report();
+  const TyreModelSelection& selection = fit.tyre_selection;
+  ASSERT_EQ(selection.chosen, "none") << fit.full_report();
+  ASSERT_FALSE(selection.candidates.empty());
+  const TyreCandidate& physical = selection.candidates.front();
+  EXPECT_TRUE(physical.judged_under_noise_shown) << fit.full_report();
+  EXPECT_EQ(selection.plain_gap_to, physical.model);
+  EXPECT_NE(fit.full_report().find("did not settle under the configured GNSS noise"),
+            std::string::npos)
+      << fit.full_report();
+  const nlohmann::json json = summary_to_json(fit, {});
+  EXPECT_TRUE(json.at("tyre_selection").at("candidates").at(0).at("judged_under_noise_shown"));
+}
+
 }  // namespace
 }  // namespace odocal

@@ -89,6 +89,10 @@ def test_the_tyre_models_compared_are_shown_with_whose_gap_the_plain_fit_carries
     selection["plain_gap_share"] = 1.0  # a better fit: all of it
     assert dict(summary_rows(result))["tyre model"].endswith(
         "carry their gap to the physical fit in their sigma")
+    # A tyre fit that wandered under the configured noise, judging by its fit under the noise shown.
+    selection["candidates"][0]["judged_under_noise_shown"] = True
+    assert "physical BIC 35459.0, judged under the GNSS noise shown, at rest" in dict(
+        summary_rows(result))["tyre model"]
     del result["tyre_selection"]
     assert "tyre model" not in dict(summary_rows(result))
 

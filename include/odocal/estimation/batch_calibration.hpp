@@ -90,6 +90,10 @@ struct TyreCandidate {
   // zero). Such a fit cannot stand, since nothing of it is the log's; where it fits the log
   // decisively better all the same, the plain circumferences carry their gap to it.
   bool every_coefficient_held = false;
+  // true: not chosen, it judges the plain fit by its fit under the GNSS noise that the residuals
+  // show, since its own, under the configured noise, wandered (facts_to_judge_by): it cannot be
+  // chosen until that noise is stated.
+  bool judged_under_noise_shown = false;
   // Whether it may stand, or judge a plain fit, by fitting the log better.
   bool can_stand() const { return tyre && !every_coefficient_held; }
   // Whether its fit was usable: it has circumferences at rest to carry a gap to.
