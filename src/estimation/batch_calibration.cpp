@@ -119,6 +119,9 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
       }
     }
     judgement.adequacy = assess_model_adequacy(batch.odometry_errors());
+    batch.add_considered_uncertainty();
+    const auto& track = batch.track_covariance();
+    judgement.track_sigma_m = {std::sqrt(track(0, 0)), std::sqrt(track(1, 1))};
   }  // freed before the tyre models' problems
   ModelAdequacy& adequacy = judgement.adequacy;
   suggest_tyre_model(adequacy);

@@ -1,6 +1,6 @@
-// The circumferences' sigma from what the batch takes as known: the body's numbers, the held
-// tyre coefficients and the accelerometer's forward offset, each moved by a step of its
-// uncertainty (docs/tyre-model.md).
+// The circumferences' sigma from what the batch takes as known: the track width held, the body's
+// numbers, the held tyre coefficients and the accelerometer's forward offset, each moved by a step
+// of its uncertainty (docs/tyre-model.md, docs/batch-calibration.md).
 #include "batch_body_uncertainty.hpp"
 #include "batch_problem.hpp"
 
@@ -13,7 +13,14 @@ void BatchProblem::add_considered_uncertainty() {
   held_responses_.clear();
   forward_offset_covariance_.setZero();
   forward_offset_response_.reset();
-  if (!tyre_terms_) return;
+  track_covariance_.setZero();
+  track_response_.reset();
+  // The plain model's only: the tyre models carry the load transfer, the physical terms with the
+  // body's uncertainty.
+  const double track_sigma_m = batch_.estimate_track_width || tyre_terms_
+                                   ? 0.0
+                                   : batch_.track_width_uncertainty * std::abs(params_[2]);
+  if (!tyre_terms_ && !(track_sigma_m > 0.0)) return;
   preintegrate_all(0.0, false);
   const Unknowns solution = unknowns(Folds::kKeep);
   const VehicleBody stated = body_;
@@ -26,6 +33,20 @@ void BatchProblem::add_considered_uncertainty() {
     set_unknowns(solution);
     return moved;
   };
+  if (track_sigma_m > 0.0) {
+    // Held, the track is no result of the fit: only what it moves is kept.
+    params_[2] += kStep * track_sigma_m;
+    preintegrate_all(0.0, false, Folds::kKeep);
+    batch::ParamsVector moved = respond();
+    moved(2) = 0.0;
+    track_covariance_ = moved * moved.transpose();
+    track_response_ = Response{stated, kStep * moved, kStep};
+    preintegrate_all(0.0, false, Folds::kKeep);
+    if (!tyre_terms_) {
+      solve();
+      return;
+    }
+  }
   for (int j = 0; j < TyreModel::kCoefficients; ++j) {
     if (!tyre_in_fit(j) || !tyre_held(j)) continue;
     const auto index = static_cast<std::size_t>(j);

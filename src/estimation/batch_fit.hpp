@@ -270,6 +270,9 @@ struct ModelJudgement {
     std::array<double, 2> sigma_m{};
   };
   std::optional<AdaptedFit> adapted;
+  // What the held track's uncertainty moves the circumferences by (track_width_uncertainty, as
+  // the plain batch carries it): the other methods hold the track too.
+  std::array<double, 2> track_sigma_m{};
 };
 ModelJudgement judge_model_adequacy(const CalibrationRun& run, const OdometryParams& start,
                                     const CalibrationOptions& common);

@@ -6,7 +6,7 @@ namespace odocal {
 
 OptionTable<BatchOptions> BatchOptions::fields() {
   using O = BatchOptions;
-  static const std::array<OptionField<O>, 41> kFields{{
+  static const std::array<OptionField<O>, 42> kFields{{
       {"keyframe_interval_s", "s", 1e-3, 1e4, "one pose unknown per this much time",
        &O::keyframe_interval_s},
       {"slip_sigma_m_per_sqrt_m", "m/sqrt(m)", 0.0, 1.0,
@@ -47,6 +47,11 @@ OptionTable<BatchOptions> BatchOptions::fields() {
       {"use_gyro", "", 0, 0, "imu.csv yaw-rate residuals", &O::use_gyro},
       {"estimate_track_width", "", 0, 0, "also estimate the rear track width",
        &O::estimate_track_width},
+      {"track_width_uncertainty", "1", 0.0, 1.0,
+       "where the plain model holds the track width: how far the track the wheels roll on may "
+       "lie from vehicle.yaml's (load moves it), as a share of it; its spread goes into the "
+       "circumferences' sigma (0: exact)",
+       &O::track_width_uncertainty},
       {"estimate_gyro_bias", "", 0, 0, "also estimate a constant gyro bias",
        &O::estimate_gyro_bias},
       {"estimate_heading_bias", "", 0, 0, "also estimate a constant heading.csv bias",

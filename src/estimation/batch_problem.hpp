@@ -241,6 +241,8 @@ class BatchProblem {
   //   are built once, at the solution: the body reaches them only through the wheels' motion
   //   within one keyframe interval, while it moves the odometry and the Doppler speed over the
   //   whole log;
+  // - the track width, where the plain model holds it, by track_width_uncertainty (the tyre
+  //   models carry the load that moves the track the wheels roll on);
   // - the tyre coefficients held, by their spread about where they are held (a car's value, and
   //   what the log said while they were free; a regression term, at zero, by what the log said
   //   alone: held_coefficient_sigma). Holding one makes an
@@ -289,6 +291,13 @@ class BatchProblem {
   const std::optional<Response>& forward_offset_response() const {
     return forward_offset_response_;
   }
+  // Of the parameters, from the held track's uncertainty (track_width_uncertainty), for the
+  // plain model; and what its step moved them by (none where the track is estimated or exact,
+  // or a tyre model is fitted).
+  const Eigen::Matrix<double, batch::kParams, batch::kParams>& track_covariance() const {
+    return track_covariance_;
+  }
+  const std::optional<Response>& track_response() const { return track_response_; }
   const VehicleBody& body() const { return body_; }
   const Block2& lever() const { return lever_; }
   double gyro_bias() const { return gyro_bias_; }
@@ -568,6 +577,9 @@ class BatchProblem {
   Eigen::Matrix<double, batch::kParams, batch::kParams> forward_offset_covariance_ =
       Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
   std::optional<Response> forward_offset_response_;
+  Eigen::Matrix<double, batch::kParams, batch::kParams> track_covariance_ =
+      Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
+  std::optional<Response> track_response_;
   std::array<double, 2> model_spread_m_{};
   std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};     // > 0: held
   std::array<double, TyreModel::kCoefficients> tyre_held_estimate_{};  // its value while free

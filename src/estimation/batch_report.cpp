@@ -98,6 +98,14 @@ std::string BatchSummary::full_report() const {
         "imu ax", 1e3 * forward_offset_sigma_m[0], 1e3 * forward_offset_sigma_m[1],
         forward_offset_sigma_mps2);
   }
+  if (track_sigma_m[0] > 0.0 || track_sigma_m[1] > 0.0) {
+    text += fmt::format(
+        "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the track width held: "
+        "the track the wheels roll on may lie +-{:.3g} % from vehicle.yaml's (load moves it), "
+        "and a turn's wheel-speed difference over its yaw rate is the track over the "
+        "circumference\n",
+        "track", 1e3 * track_sigma_m[0], 1e3 * track_sigma_m[1], 100.0 * track_width_uncertainty);
+  }
   if (held_sigma_m[0] > 0.0 || held_sigma_m[1] > 0.0) {
     std::vector<std::string> parts;
     for (const HeldSigmaPart& part : held_sigma_parts) {

@@ -64,12 +64,28 @@ ReferenceCircumference reference_circumference(
     for (const BatchProblem::HeldResponse& held : batch.held_responses())
       add_response(held.response);
     if (const auto& offset = batch.forward_offset_response()) add_response(*offset);
+    if (const auto& track = batch.track_response()) add_response(*track);
     const double sigma = std::sqrt(std::max(variance, 0.0));
     (wheel == 0 ? r.circumference_rl_m : r.circumference_rr_m) = value;
     (wheel == 0 ? r.sigma_rl_m : r.sigma_rr_m) = sigma;
     r.identified = r.identified && std::isfinite(sigma) && sigma <= max_sigma;
   }
   return r;
+}
+
+constexpr const char* kTrackAdvice =
+    "drive more distance under open sky, or set estimate_track_width";
+
+// Why a circumference is not identified where most of its sigma is the held track's: the turns,
+// not the GNSS fixes, set its scale.
+std::string track_verdict(const BatchSummary& summary, std::size_t wheel, double sigma_m) {
+  const double track_m = summary.track_sigma_m[wheel];
+  return fmt::format(
+      "the turns, not the GNSS fixes, set its scale here, through the track width held (of its "
+      "1-sigma, {:.2g} mm from the track the wheels roll on, vehicle.yaml's track_width_m "
+      "+-{:.2g} %: load moves it; {:.2g} mm from the rest): {}",
+      1e3 * track_m, 100.0 * summary.track_width_uncertainty,
+      1e3 * std::sqrt(std::max(0.0, sigma_m * sigma_m - track_m * track_m)), kTrackAdvice);
 }
 
 // Why a circumference beside a tyre model is not identified: at rest it is an extrapolation from
@@ -106,6 +122,12 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
          fmt::format("{:.2g} mm from the accelerometer's forward offset (+-{:.2g} m/s^2)",
                      1e3 * offset_m, summary.forward_offset_sigma_mps2),
          "level the IMU and stop the car a few times in the log, so that its offset is measured"});
+  }
+  if (const double track_m = summary.track_sigma_m[wheel]; track_m > 0.0) {
+    shares.push_back({track_m,
+                      fmt::format("{:.2g} mm from the track width held (+-{:.2g} %)", 1e3 * track_m,
+                                  100.0 * summary.track_width_uncertainty),
+                      kTrackAdvice});
   }
   if (spread_m > 0.0) {
     // The physical terms carry their gap to the regression terms only where a body number is
@@ -202,7 +224,8 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   // at a reference speed adds the body's share per body number itself, and makes no
   // extrapolation to rest.
   const Eigen::Matrix<double, batch::kParams, batch::kParams> data_covariance = u.params;
-  u.params += batch.body_covariance() + batch.held_covariance() + batch.forward_offset_covariance();
+  u.params += batch.body_covariance() + batch.held_covariance() +
+              batch.forward_offset_covariance() + batch.track_covariance();
   const std::array<double, 2>& spread = batch.model_spread_m();
   for (int w = 0; w < 2; ++w)
     u.params(w, w) += spread[static_cast<std::size_t>(w)] * spread[static_cast<std::size_t>(w)];
@@ -224,6 +247,9 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                                     std::sqrt(batch.forward_offset_covariance()(1, 1))};
   summary.forward_offset_sigma_mps2 =
       batch.forward_offset_response() ? batch.forward_offset_sigma() : 0.0;
+  summary.track_sigma_m = {std::sqrt(batch.track_covariance()(0, 0)),
+                           std::sqrt(batch.track_covariance()(1, 1))};
+  summary.track_width_uncertainty = batch.track_response() ? b.track_width_uncertainty : 0.0;
   summary.held_sigma_parts.clear();
   for (const BatchProblem::HeldResponse& held : batch.held_responses()) {
     const auto j = static_cast<std::size_t>(held.coefficient);
@@ -294,7 +320,7 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
       parameter.verdict = unidentified_reason(parameter.name, coverage, block_used[i]);
       const bool considered =
           i < 2 && (summary.body_sigma_m[i] > 0.0 || summary.held_sigma_m[i] > 0.0 ||
-                    summary.forward_offset_sigma_m[i] > 0.0);
+                    summary.forward_offset_sigma_m[i] > 0.0);  // the track's is any model's
       const bool extrapolated =
           i < 2 && batch.tyre_fitted() && (!batch.tyre_model().plain() || considered);
       if (extrapolated) {
@@ -302,6 +328,9 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                                                   batch.speed_intervals() > 0);
       } else if (i < 2 && spread[i] > 0.0) {
         parameter.verdict = plain_gap_verdict(parameter.sigma, spread[i], b.tyre_model);
+      } else if (const double track_m = i < 2 ? summary.track_sigma_m[i] : 0.0;
+                 2.0 * track_m * track_m > parameter.sigma * parameter.sigma) {
+        parameter.verdict = track_verdict(summary, i, parameter.sigma);
       }
       const double misfit = summary.misfit_sigma_scale;
       if (i < 2 && misfit > 1.0) {

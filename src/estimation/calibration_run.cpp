@@ -296,6 +296,7 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
     std::array<double, 2> gap_m{};
     std::string gap_cannot_stand;
     std::optional<batch::ModelJudgement::AdaptedFit> adapted;
+    std::array<double, 2> track_sigma_m{};
     try {
       smooth_batch_heading(BatchOptions{}.heading_tick_smoothing_s);  // the batch's default
       const batch::ModelJudgement judged = batch::judge_model_adequacy(*this, e, options_);
@@ -303,6 +304,7 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
       gap_m = judged.gap_m;
       gap_cannot_stand = judged.gap_cannot_stand;
       adapted = judged.adapted;
+      track_sigma_m = judged.track_sigma_m;
     } catch (const InsufficientDataError& error) {
       summary.model_adequacy.verdict = fmt::format("not judged: {}", error.what());
     }
@@ -316,8 +318,13 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
     // rolled on, and the one at rest lies as far away as that model's (the built-in circuit,
     // realistic, rear-driven: the iterative method -29 mm at sigma 1.2 mm).
     const std::array<double, 2> own_sigma_m{summary.sigma_rl_m(), summary.sigma_rr_m()};
-    summary.covariance(0, 0) += gap_m[0] * gap_m[0];
-    summary.covariance(1, 1) += gap_m[1] * gap_m[1];
+    // Held, the track is as uncertain here as in the plain batch, whose turns set the scale
+    // through it (docs/batch-calibration.md, "The track the wheels roll on"). Not in the sigma
+    // that the gap is weighed against: a tyre model carries the load that moves the track.
+    for (int w = 0; w < 2; ++w) {
+      const auto i = static_cast<std::size_t>(w);
+      summary.covariance(w, w) += gap_m[i] * gap_m[i] + track_sigma_m[i] * track_sigma_m[i];
+    }
     refuse_a_gap_beyond_the_estimates_own_sigma(gap_m, own_sigma_m, gap_cannot_stand, summary);
   }
 }

@@ -273,6 +273,10 @@ void add_details(json& out, const BatchSummary& s) {
       parts[part.key] = {part.sigma_m[0], part.sigma_m[1]};
     out["body_sigma_parts_m"] = parts;
   }
+  if (s.track_sigma_m[0] > 0.0 || s.track_sigma_m[1] > 0.0) {
+    out["track_sigma_m"] = {s.track_sigma_m[0], s.track_sigma_m[1]};
+    out["track_width_uncertainty"] = s.track_width_uncertainty;
+  }
   if (s.forward_offset_sigma_m[0] > 0.0 || s.forward_offset_sigma_m[1] > 0.0) {
     out["forward_offset_sigma_m"] = {s.forward_offset_sigma_m[0], s.forward_offset_sigma_m[1]};
     out["forward_offset_sigma_mps2"] = s.forward_offset_sigma_mps2;

@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "../support/drifting_gnss.hpp"
+#include "../support/plain_bias_covered.hpp"
 #include "../support/test_scenarios.hpp"
 #include "../support/unjudged_options.hpp"
 #include "estimation/batch_fit.hpp"
@@ -248,8 +249,8 @@ TEST(TyreModelBatch, WhereAWrongBodyMakesThePhysicalTermsNoTyreTheRegressionTerm
   BatchOptions options;
   options.max_sigma_circumference_m = 0.01;
   options.tyre_model = TyreModelChoice::kNone;
-  const BatchSummary bare = calibrate_batch(log, options, testing::unjudged_options());
-  EXPECT_GT(std::abs(bare.estimate.circumference_rl_m - truth_m), 3.0 * bare.sigma_rl_m());
+  const BatchSummary bare =
+      testing::expect_the_track_held_covers_the_plain_bias(log, options, truth_m);
   const BatchSummary judged = calibrate_batch(log, options);
   const TyreModelSelection& selection = judged.tyre_selection;
   ASSERT_EQ(selection.candidates.size(), 2u) << judged.full_report();
@@ -400,8 +401,8 @@ TEST(TyreModelBatch, APlainFitThatANoTyreModelExplainsDecisivelyBetterCarriesIts
   BatchOptions options;
   options.max_sigma_circumference_m = 0.01;
   options.tyre_model = TyreModelChoice::kNone;
-  const BatchSummary bare = calibrate_batch(log, options, testing::unjudged_options());
-  EXPECT_GT(std::abs(bare.estimate.circumference_rl_m - truth_m), 3.0 * bare.sigma_rl_m());
+  const BatchSummary bare =
+      testing::expect_the_track_held_covers_the_plain_bias(log, options, truth_m);
   for (const TyreModelChoice choice : {TyreModelChoice::kAuto, TyreModelChoice::kNone}) {
     options.tyre_model = choice;
     const BatchSummary judged = calibrate_batch(log, options);
@@ -515,9 +516,11 @@ TEST(TyreModelBatch, AutoDoubtsTheTrackThatThePlainFitTakesForGnssError) {
   BatchOptions options;
   options.max_sigma_circumference_m = 0.01;
   options.tyre_model = TyreModelChoice::kNone;
+  options.track_width_uncertainty = 0.0;  // the track taken as exact: the plain fit's own sigma
   const BatchSummary plain = calibrate_batch(log, options, testing::unjudged_options());
   ASSERT_TRUE(plain.usable()) << plain.full_report();
   EXPECT_GT(std::abs(plain.estimate.circumference_rl_m - truth_m), 3.0 * plain.sigma_rl_m());
+  options.track_width_uncertainty = BatchOptions{}.track_width_uncertainty;
   options.tyre_model = TyreModelChoice::kAuto;
   const BatchSummary chosen = calibrate_batch(log, options);
   ASSERT_TRUE(chosen.usable()) << chosen.full_report();

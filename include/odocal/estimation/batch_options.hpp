@@ -88,6 +88,16 @@ struct BatchOptions {
   bool estimate_heading_bias = false;
   bool estimate_lever_arm = false;
   bool estimate_latency = false;
+  // How far the track that the rear wheels roll on may lie from vehicle.yaml's track_width_m, as
+  // a share of it, where the plain model holds the track: its spread goes into the
+  // circumferences' sigma (0: exact; the tyre models carry the load that moves it). A turn's
+  // wheel-speed difference over its yaw rate is the track over the circumference, so where GNSS
+  // does not pin the distance (tight turns, a correlated GNSS error), the turns set the
+  // circumferences' scale through the track, and load transfer moves the track the wheels roll on:
+  // the realistic parking drive, plain model, -6 to -10 mm at a sigma of 1.3 to 1.9 mm; 1 % of the
+  // track moves its circumferences by 9 to 17 mm (3 ideal laps of Hockenheim: 0.02 mm).
+  // docs/batch-calibration.md, "The track the wheels roll on".
+  double track_width_uncertainty = 0.01;
   // The GNSS antenna's position from the rear axle's centre (x forward, y left, m): held there,
   // or where estimate_lever_arm starts. An antenna off the centreline that the fit takes to be on
   // it runs y times the net turn shorter or longer than the wheels: 0.3 m on the 2-hour urban
