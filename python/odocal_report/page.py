@@ -196,6 +196,20 @@ def accelerometer_offset_text(result):
     return "; ".join(parts) if parts else None
 
 
+def track_share_text(result):
+    """The held track's share of the circumferences' sigma, where it is worth naming (a tenth of
+    their sigma, as the text report names it)."""
+    share = result.get("track_sigma_m")
+    sigmas = [result.get("sigma_circumference_rl_m"), result.get("sigma_circumference_rr_m")]
+    if not share or not all(isinstance(s, (int, float)) for s in sigmas):
+        return None
+    if all(part <= 0.1 * sigma for part, sigma in zip(share, sigmas)):
+        return None
+    return (f"{1000 * share[0]:.3g} / {1000 * share[1]:.3g} mm of the circumferences' sigma: the "
+            f"track the wheels roll on may lie ±{100 * result['track_width_uncertainty']:.3g} % "
+            f"from vehicle.yaml's, and the turns set the scale through it")
+
+
 def summary_rows(result):
     def mm(value):
         return f"{1000 * value:.3f} mm" if isinstance(value, (int, float)) else "–"
@@ -238,6 +252,9 @@ def summary_rows(result):
     offset = accelerometer_offset_text(result)
     if offset:
         rows.append(("accelerometer offset", offset))
+    track = track_share_text(result)
+    if track:
+        rows.append(("track width held", track))
     for parameter in result.get("parameters", []):
         if parameter.get("estimated") and not parameter["name"].startswith("circumference"):
             rows.append((parameter["name"], f"{parameter['value']:.6g} (1-sigma "

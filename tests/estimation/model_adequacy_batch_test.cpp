@@ -248,6 +248,19 @@ TEST(ModelAdequacyBatch, AnEstimateUnderAWrongGnssNoiseCarriesItsGapToTheBatch) 
       << judged.model_adequacy.verdict;
 }
 
+// The realistic urban drive (rear-driven, wear 1.5 / 1.0 mm) under a GNSS error of `sigma_m` over
+// 10 s on 5 cm of white noise.
+sim::SimulatedDrive urban_under_a_correlated_gnss_error(std::uint64_t seed, double sigma_m) {
+  sim::Scenario scenario = load_scenario("urban");
+  scenario.vehicle.wear_rl_mm = 1.5;
+  scenario.vehicle.wear_rr_mm = 1.0;
+  scenario.seeds.noise = seed;
+  scenario.gnss.sigma_m = 0.05;
+  scenario.gnss.gauss_markov_sigma_m = sigma_m;
+  scenario.gnss.gauss_markov_tau_s = 10.0;
+  return sim::simulate(scenario);
+}
+
 // The realistic urban drive (rear-driven, seed 1) under a GNSS error of 0.5 m over 10 s,
 // configured as 0.1 m white. The judge's physical fit (the track free), solved under the
 // configured noise, wandered and held every coefficient, and put the circumferences at rest
@@ -255,14 +268,7 @@ TEST(ModelAdequacyBatch, AnEstimateUnderAWrongGnssNoiseCarriesItsGapToTheBatch) 
 // the noise that the residuals show the fit identifies its coefficients and puts them 10.4 mm
 // away, which the sigma carries.
 TEST(ModelAdequacyBatch, ATyreFitThatWandersUnderAWrongNoiseIsTakenUnderTheNoiseShown) {
-  sim::Scenario scenario = load_scenario("urban");
-  scenario.vehicle.wear_rl_mm = 1.5;
-  scenario.vehicle.wear_rr_mm = 1.0;
-  scenario.seeds.noise = 1;
-  scenario.gnss.sigma_m = 0.05;
-  scenario.gnss.gauss_markov_sigma_m = 0.5;
-  scenario.gnss.gauss_markov_tau_s = 10.0;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const sim::SimulatedDrive drive = urban_under_a_correlated_gnss_error(1, 0.5);
   Log log = simulated_log(drive);
   log.gnss.sigma_m.clear();  // the configured 0.1 m applies
   const IterativeSummary judged = calibrate_iterative(log, {}, claiming_white_gnss_noise());
@@ -281,14 +287,7 @@ TEST(ModelAdequacyBatch, ATyreFitThatWandersUnderAWrongNoiseIsTakenUnderTheNoise
 // auto as well: a physical fit that wandered under the configured noise cannot be chosen, but it
 // judges the plain fit by its fit under the noise shown, and the result says so.
 TEST(ModelAdequacyBatch, AutoJudgesByAWanderingTyreFitUnderTheNoiseShownAndSaysSo) {
-  sim::Scenario scenario = load_scenario("urban");
-  scenario.vehicle.wear_rl_mm = 1.5;
-  scenario.vehicle.wear_rr_mm = 1.0;
-  scenario.seeds.noise = 3;
-  scenario.gnss.sigma_m = 0.05;
-  scenario.gnss.gauss_markov_sigma_m = 2.0;
-  scenario.gnss.gauss_markov_tau_s = 10.0;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  const sim::SimulatedDrive drive = urban_under_a_correlated_gnss_error(3, 2.0);
   Log log = simulated_log(drive);
   log.gnss.sigma_m.clear();
   const BatchSummary fit = calibrate_batch(log, {}, claiming_white_gnss_noise());

@@ -27,6 +27,20 @@ def test_the_accelerometer_walk_is_shown_where_a_tyre_model_has_one():
     assert "accelerometer noise" not in dict(summary_rows(result))
 
 
+def test_the_held_tracks_share_is_shown_where_it_is_worth_naming():
+    result = {"method": "batch", "usable": False, "termination": "not_identifiable",
+              "circumference_rl_m": 1.95, "circumference_rr_m": 1.95,
+              "sigma_circumference_rl_m": 0.0120, "sigma_circumference_rr_m": 0.0124,
+              "track_sigma_m": [0.0118, 0.0122], "track_width_uncertainty": 0.01}
+    text = dict(summary_rows(result))["track width held"]
+    assert text.startswith("11.8 / 12.2 mm of the circumferences' sigma")
+    assert "±1 % from vehicle.yaml's" in text
+    result["track_sigma_m"] = [5.6e-7, 5.0e-7]  # comma2k19's: fixes and Doppler pin the scale
+    assert "track width held" not in dict(summary_rows(result))
+    del result["track_sigma_m"]
+    assert "track width held" not in dict(summary_rows(result))
+
+
 def test_the_accelerometers_forward_offset_is_shown_as_measured_at_stops_or_over_the_drive():
     result = {"method": "batch", "usable": True, "termination": "converged",
               "circumference_rl_m": 2.299, "circumference_rr_m": 2.300,
