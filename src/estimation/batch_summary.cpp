@@ -73,9 +73,6 @@ ReferenceCircumference reference_circumference(
   return r;
 }
 
-constexpr const char* kTrackAdvice =
-    "drive more distance under open sky, or set estimate_track_width";
-
 // Why a circumference is not identified where most of its sigma is the held track's: the turns,
 // not the GNSS fixes, set its scale.
 std::string track_verdict(const BatchSummary& summary, std::size_t wheel, double sigma_m) {
@@ -83,9 +80,10 @@ std::string track_verdict(const BatchSummary& summary, std::size_t wheel, double
   return fmt::format(
       "the turns, not the GNSS fixes, set its scale here, through the track width held (of its "
       "1-sigma, {:.2g} mm from the track the wheels roll on, vehicle.yaml's track_width_m "
-      "+-{:.2g} %: load moves it; {:.2g} mm from the rest): {}",
+      "+-{:.2g} %: load moves it; {:.2g} mm from the rest): drive more distance under open sky, "
+      "or set estimate_track_width",
       1e3 * track_m, 100.0 * summary.track_width_uncertainty,
-      1e3 * std::sqrt(std::max(0.0, sigma_m * sigma_m - track_m * track_m)), kTrackAdvice);
+      1e3 * std::sqrt(std::max(0.0, sigma_m * sigma_m - track_m * track_m)));
 }
 
 // Why a circumference beside a tyre model is not identified: at rest it is an extrapolation from
@@ -122,12 +120,6 @@ std::string extrapolation_verdict(const BatchSummary& summary, std::size_t wheel
          fmt::format("{:.2g} mm from the accelerometer's forward offset (+-{:.2g} m/s^2)",
                      1e3 * offset_m, summary.forward_offset_sigma_mps2),
          "level the IMU and stop the car a few times in the log, so that its offset is measured"});
-  }
-  if (const double track_m = summary.track_sigma_m[wheel]; track_m > 0.0) {
-    shares.push_back({track_m,
-                      fmt::format("{:.2g} mm from the track width held (+-{:.2g} %)", 1e3 * track_m,
-                                  100.0 * summary.track_width_uncertainty),
-                      kTrackAdvice});
   }
   if (spread_m > 0.0) {
     // The physical terms carry their gap to the regression terms only where a body number is
@@ -320,7 +312,7 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
       parameter.verdict = unidentified_reason(parameter.name, coverage, block_used[i]);
       const bool considered =
           i < 2 && (summary.body_sigma_m[i] > 0.0 || summary.held_sigma_m[i] > 0.0 ||
-                    summary.forward_offset_sigma_m[i] > 0.0);  // the track's is any model's
+                    summary.forward_offset_sigma_m[i] > 0.0);  // the held track's: track_verdict
       const bool extrapolated =
           i < 2 && batch.tyre_fitted() && (!batch.tyre_model().plain() || considered);
       if (extrapolated) {
