@@ -33,7 +33,7 @@ void BatchProblem::add_considered_uncertainty() {
     set_unknowns(solution);
     return moved;
   };
-  if (track_sigma_m > 0.0) {
+  if (track_sigma_m > 0.0) {  // the plain model: nothing else to consider
     // Held, the track is no result of the fit: only what it moves is kept.
     params_[2] += kStep * track_sigma_m;
     preintegrate_all(0.0, false, Folds::kKeep);
@@ -42,10 +42,8 @@ void BatchProblem::add_considered_uncertainty() {
     track_covariance_ = moved * moved.transpose();
     track_response_ = Response{stated, kStep * moved, kStep};
     preintegrate_all(0.0, false, Folds::kKeep);
-    if (!tyre_terms_) {
-      solve();
-      return;
-    }
+    solve();
+    return;
   }
   for (int j = 0; j < TyreModel::kCoefficients; ++j) {
     if (!tyre_in_fit(j) || !tyre_held(j)) continue;

@@ -64,7 +64,6 @@ ReferenceCircumference reference_circumference(
     for (const BatchProblem::HeldResponse& held : batch.held_responses())
       add_response(held.response);
     if (const auto& offset = batch.forward_offset_response()) add_response(*offset);
-    if (const auto& track = batch.track_response()) add_response(*track);
     const double sigma = std::sqrt(std::max(variance, 0.0));
     (wheel == 0 ? r.circumference_rl_m : r.circumference_rr_m) = value;
     (wheel == 0 ? r.sigma_rl_m : r.sigma_rr_m) = sigma;
