@@ -197,13 +197,10 @@ def accelerometer_offset_text(result):
 
 
 def track_share_text(result):
-    """The held track's share of the circumferences' sigma, where it is worth naming (a tenth of
-    their sigma, as the text report names it)."""
+    """The held track's share of the circumferences' sigma, where the calibration found it worth
+    naming (track_share_worth_naming, the text report's rule)."""
     share = result.get("track_sigma_m")
-    sigmas = [result.get("sigma_circumference_rl_m"), result.get("sigma_circumference_rr_m")]
-    if not share or not all(isinstance(s, (int, float)) for s in sigmas):
-        return None
-    if all(part <= 0.1 * sigma for part, sigma in zip(share, sigmas)):
+    if not share or not result.get("track_share_worth_naming"):
         return None
     return (f"{1000 * share[0]:.3g} / {1000 * share[1]:.3g} mm of the circumferences' sigma: the "
             f"track the wheels roll on may lie ±{100 * result['track_width_uncertainty']:.3g} % "

@@ -122,6 +122,7 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
     batch.add_considered_uncertainty();
     const auto& track = batch.track_covariance();
     judgement.track_sigma_m = {std::sqrt(track(0, 0)), std::sqrt(track(1, 1))};
+    judgement.track_width_uncertainty = options.track_width_uncertainty;
   }  // freed before the tyre models' problems
   ModelAdequacy& adequacy = judgement.adequacy;
   suggest_tyre_model(adequacy);

@@ -14,7 +14,6 @@ void BatchProblem::add_considered_uncertainty() {
   forward_offset_covariance_.setZero();
   forward_offset_response_.reset();
   track_covariance_.setZero();
-  track_response_.reset();
   // The plain model's only: the tyre models carry the load transfer, the physical terms with the
   // body's uncertainty.
   const double track_sigma_m = batch_.estimate_track_width || tyre_terms_
@@ -40,7 +39,6 @@ void BatchProblem::add_considered_uncertainty() {
     batch::ParamsVector moved = respond();
     moved(2) = 0.0;
     track_covariance_ = moved * moved.transpose();
-    track_response_ = Response{stated, kStep * moved, kStep};
     preintegrate_all(0.0, false, Folds::kKeep);
     solve();
     return;

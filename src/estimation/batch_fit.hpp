@@ -273,6 +273,7 @@ struct ModelJudgement {
   // What the held track's uncertainty moves the circumferences by (track_width_uncertainty, as
   // the plain batch carries it): the other methods hold the track too.
   std::array<double, 2> track_sigma_m{};
+  double track_width_uncertainty{};
 };
 ModelJudgement judge_model_adequacy(const CalibrationRun& run, const OdometryParams& start,
                                     const CalibrationOptions& common);

@@ -292,12 +292,10 @@ class BatchProblem {
     return forward_offset_response_;
   }
   // Of the parameters, from the held track's uncertainty (track_width_uncertainty), for the
-  // plain model; and what its step moved them by (none where the track is estimated or exact,
-  // or a tyre model is fitted).
+  // plain model (zero where the track is estimated or exact, or a tyre model is fitted).
   const Eigen::Matrix<double, batch::kParams, batch::kParams>& track_covariance() const {
     return track_covariance_;
   }
-  const std::optional<Response>& track_response() const { return track_response_; }
   const VehicleBody& body() const { return body_; }
   const Block2& lever() const { return lever_; }
   double gyro_bias() const { return gyro_bias_; }
@@ -579,7 +577,6 @@ class BatchProblem {
   std::optional<Response> forward_offset_response_;
   Eigen::Matrix<double, batch::kParams, batch::kParams> track_covariance_ =
       Eigen::Matrix<double, batch::kParams, batch::kParams>::Zero();
-  std::optional<Response> track_response_;
   std::array<double, 2> model_spread_m_{};
   std::array<double, TyreModel::kCoefficients> tyre_held_sigma_{};     // > 0: held
   std::array<double, TyreModel::kCoefficients> tyre_held_estimate_{};  // its value while free

@@ -98,18 +98,6 @@ std::string BatchSummary::full_report() const {
         "imu ax", 1e3 * forward_offset_sigma_m[0], 1e3 * forward_offset_sigma_m[1],
         forward_offset_sigma_mps2);
   }
-  // Named where it is worth naming (comma2k19, whose fixes and Doppler pin the scale: 0.0006 mm
-  // of a 4.9 mm sigma); the JSON has it always.
-  constexpr double kShareWorthNaming = 0.1;
-  if (track_sigma_m[0] > kShareWorthNaming * sigma_rl_m() ||
-      track_sigma_m[1] > kShareWorthNaming * sigma_rr_m()) {
-    text += fmt::format(
-        "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the track width held: "
-        "the track the wheels roll on may lie +-{:.3g} % from vehicle.yaml's (load moves it), "
-        "and a turn's wheel-speed difference over its yaw rate is the track over the "
-        "circumference\n",
-        "track", 1e3 * track_sigma_m[0], 1e3 * track_sigma_m[1], 100.0 * track_width_uncertainty);
-  }
   if (held_sigma_m[0] > 0.0 || held_sigma_m[1] > 0.0) {
     std::vector<std::string> parts;
     for (const HeldSigmaPart& part : held_sigma_parts) {

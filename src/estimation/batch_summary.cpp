@@ -240,7 +240,8 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
       batch.forward_offset_response() ? batch.forward_offset_sigma() : 0.0;
   summary.track_sigma_m = {std::sqrt(batch.track_covariance()(0, 0)),
                            std::sqrt(batch.track_covariance()(1, 1))};
-  summary.track_width_uncertainty = batch.track_response() ? b.track_width_uncertainty : 0.0;
+  const bool track_considered = summary.track_sigma_m[0] > 0.0 || summary.track_sigma_m[1] > 0.0;
+  summary.track_width_uncertainty = track_considered ? b.track_width_uncertainty : 0.0;
   summary.held_sigma_parts.clear();
   for (const BatchProblem::HeldResponse& held : batch.held_responses()) {
     const auto j = static_cast<std::size_t>(held.coefficient);

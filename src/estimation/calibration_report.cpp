@@ -26,6 +26,12 @@ std::string estimate_line(const char* name, double estimate, double nominal, dou
 double CalibrationSummary::sigma_rl_m() const { return std::sqrt(std::max(0.0, covariance(0, 0))); }
 double CalibrationSummary::sigma_rr_m() const { return std::sqrt(std::max(0.0, covariance(1, 1))); }
 
+bool CalibrationSummary::track_share_worth_naming() const {
+  constexpr double kShareWorthNaming = 0.1;
+  return track_sigma_m[0] > kShareWorthNaming * sigma_rl_m() ||
+         track_sigma_m[1] > kShareWorthNaming * sigma_rr_m();
+}
+
 std::string CalibrationSummary::brief_report() const {
   return fmt::format("{}: c_RL {:.6f} m (1-sigma {:.3f} mm), c_RR {:.6f} m (1-sigma {:.3f} mm), {}",
                      method_name(method), estimate.circumference_rl_m, 1e3 * sigma_rl_m(),
@@ -55,6 +61,15 @@ std::string report_ending(const CalibrationSummary& s) {
         "{:.3g} over {} intervals): every sigma widened x{:.3g}\n",
         "misfit", s.misfit_sigma_scale, s.model_adequacy.chi2_per_dof, s.model_adequacy.intervals,
         s.misfit_sigma_scale);
+  }
+  if (s.track_share_worth_naming()) {
+    text += fmt::format(
+        "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the track width held: "
+        "the track the wheels roll on may lie +-{:.3g} % from vehicle.yaml's (load moves it), "
+        "and a turn's wheel-speed difference over its yaw rate is the track over the "
+        "circumference\n",
+        "track", 1e3 * s.track_sigma_m[0], 1e3 * s.track_sigma_m[1],
+        100.0 * s.track_width_uncertainty);
   }
   // What a constant per wheel is, so that it is not read as the tyre at rest: a residual test
   // cannot see a slip that is the same all drive long (docs/tyre-model.md).

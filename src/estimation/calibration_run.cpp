@@ -296,7 +296,6 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
     std::array<double, 2> gap_m{};
     std::string gap_cannot_stand;
     std::optional<batch::ModelJudgement::AdaptedFit> adapted;
-    std::array<double, 2> track_sigma_m{};
     try {
       smooth_batch_heading(BatchOptions{}.heading_tick_smoothing_s);  // the batch's default
       const batch::ModelJudgement judged = batch::judge_model_adequacy(*this, e, options_);
@@ -304,7 +303,8 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
       gap_m = judged.gap_m;
       gap_cannot_stand = judged.gap_cannot_stand;
       adapted = judged.adapted;
-      track_sigma_m = judged.track_sigma_m;
+      summary.track_sigma_m = judged.track_sigma_m;
+      summary.track_width_uncertainty = judged.track_width_uncertainty;
     } catch (const InsufficientDataError& error) {
       summary.model_adequacy.verdict = fmt::format("not judged: {}", error.what());
     }
@@ -323,7 +323,8 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
     // that the gap is weighed against: a tyre model carries the load that moves the track.
     for (int w = 0; w < 2; ++w) {
       const auto i = static_cast<std::size_t>(w);
-      summary.covariance(w, w) += gap_m[i] * gap_m[i] + track_sigma_m[i] * track_sigma_m[i];
+      const double track_m = summary.track_sigma_m[i];
+      summary.covariance(w, w) += gap_m[i] * gap_m[i] + track_m * track_m;
     }
     refuse_a_gap_beyond_the_estimates_own_sigma(gap_m, own_sigma_m, gap_cannot_stand, summary);
   }

@@ -117,6 +117,11 @@ json core_json(const CalibrationSummary& s, const CalibrationConfig& config) {
   if (!s.model_adequacy.verdict.empty())
     out["model_adequacy"] = model_adequacy_json(s.model_adequacy);
   out["misfit_sigma_scale"] = s.misfit_sigma_scale;
+  if (s.track_sigma_m[0] > 0.0 || s.track_sigma_m[1] > 0.0) {
+    out["track_sigma_m"] = {s.track_sigma_m[0], s.track_sigma_m[1]};
+    out["track_width_uncertainty"] = s.track_width_uncertainty;
+    out["track_share_worth_naming"] = s.track_share_worth_naming();
+  }
   return out;
 }
 
@@ -272,10 +277,6 @@ void add_details(json& out, const BatchSummary& s) {
     for (const BatchSummary::BodySigmaPart& part : s.body_sigma_parts)
       parts[part.key] = {part.sigma_m[0], part.sigma_m[1]};
     out["body_sigma_parts_m"] = parts;
-  }
-  if (s.track_sigma_m[0] > 0.0 || s.track_sigma_m[1] > 0.0) {
-    out["track_sigma_m"] = {s.track_sigma_m[0], s.track_sigma_m[1]};
-    out["track_width_uncertainty"] = s.track_width_uncertainty;
   }
   if (s.forward_offset_sigma_m[0] > 0.0 || s.forward_offset_sigma_m[1] > 0.0) {
     out["forward_offset_sigma_m"] = {s.forward_offset_sigma_m[0], s.forward_offset_sigma_m[1]};

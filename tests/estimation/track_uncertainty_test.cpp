@@ -8,6 +8,7 @@
 
 #include "../support/plain_bias_covered.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
+#include "odocal/estimation/iterative_calibration.hpp"
 #include "odocal/io/calibration_io.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
@@ -67,6 +68,8 @@ TEST(TrackUncertainty, ItsShareIsLinearInTheUncertaintyAndNoneWhereTheTrackIsFre
   const nlohmann::json json = summary_to_json(one, {});
   EXPECT_DOUBLE_EQ(json.at("track_sigma_m").at(0).get<double>(), one.track_sigma_m[0]);
   EXPECT_DOUBLE_EQ(json.at("track_width_uncertainty").get<double>(), 0.01);
+  EXPECT_TRUE(json.at("track_share_worth_naming").get<bool>());
+  EXPECT_NE(one.full_report().find("from the track width held"), std::string::npos);
 
   options.track_width_uncertainty = 0.01;
   options.estimate_track_width = true;
@@ -77,6 +80,28 @@ TEST(TrackUncertainty, ItsShareIsLinearInTheUncertaintyAndNoneWhereTheTrackIsFre
   options.tyre_model = TyreModelChoice::kPhysical;
   const BatchSummary physical = calibrate_batch(log, options, unjudged);
   EXPECT_EQ(physical.track_sigma_m[0], 0.0);
+}
+
+// The iterative method holds the track as the plain batch does: its sigma carries the share that
+// the judge's plain fit of the same log finds, and its report and JSON name it.
+TEST(TrackUncertainty, TheIterativeMethodCarriesTheJudgesShareAndNamesIt) {
+  const sim::SimulatedDrive drive = parking_drive(0.0);
+  const Log log = simulated_log(drive);
+  const IterativeSummary iterative = calibrate_iterative(log);
+  ASSERT_TRUE(iterative.usable()) << iterative.full_report();
+  ASSERT_GT(iterative.track_sigma_m[0], 1e-3) << iterative.full_report();
+  EXPECT_EQ(iterative.track_width_uncertainty, BatchOptions{}.track_width_uncertainty);
+  const BatchSummary plain = calibrate_batch(log, plain_options());
+  for (std::size_t w = 0; w < 2; ++w)
+    EXPECT_NEAR(iterative.track_sigma_m[w], plain.track_sigma_m[w], 0.2 * plain.track_sigma_m[w]);
+  EXPECT_GE(iterative.sigma_rl_m(), iterative.track_sigma_m[0]);
+  EXPECT_GE(iterative.sigma_rr_m(), iterative.track_sigma_m[1]);
+  const double error_m =
+      iterative.estimate.circumference_rl_m - drive.true_params.circumference_rl_m;
+  EXPECT_LT(std::abs(error_m), 3.0 * iterative.sigma_rl_m()) << iterative.full_report();
+  EXPECT_NE(iterative.full_report().find("from the track width held"), std::string::npos)
+      << iterative.full_report();
+  EXPECT_TRUE(summary_to_json(iterative, {}).at("track_share_worth_naming").get<bool>());
 }
 
 }  // namespace

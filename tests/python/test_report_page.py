@@ -31,11 +31,13 @@ def test_the_held_tracks_share_is_shown_where_it_is_worth_naming():
     result = {"method": "batch", "usable": False, "termination": "not_identifiable",
               "circumference_rl_m": 1.95, "circumference_rr_m": 1.95,
               "sigma_circumference_rl_m": 0.0120, "sigma_circumference_rr_m": 0.0124,
-              "track_sigma_m": [0.0118, 0.0122], "track_width_uncertainty": 0.01}
+              "track_sigma_m": [0.0118, 0.0122], "track_width_uncertainty": 0.01,
+              "track_share_worth_naming": True}
     text = dict(summary_rows(result))["track width held"]
     assert text.startswith("11.8 / 12.2 mm of the circumferences' sigma")
     assert "±1 % from vehicle.yaml's" in text
     result["track_sigma_m"] = [5.6e-7, 5.0e-7]  # comma2k19's: fixes and Doppler pin the scale
+    result["track_share_worth_naming"] = False
     assert "track width held" not in dict(summary_rows(result))
     del result["track_sigma_m"]
     assert "track width held" not in dict(summary_rows(result))

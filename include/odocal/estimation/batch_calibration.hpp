@@ -240,12 +240,6 @@ struct BatchSummary : CalibrationSummary {
   // this much (zero for any other model and without imu.csv; it is in sigma and covariance too).
   std::array<double, 2> forward_offset_sigma_m{};
   double forward_offset_sigma_mps2{};
-  // Where the plain model holds the track width: what track_width_uncertainty, the share of it
-  // that the track the wheels roll on may lie from vehicle.yaml's, moves the circumferences by
-  // (zero where the track is estimated or a tyre model is fitted; it is in sigma and covariance
-  // too).
-  std::array<double, 2> track_sigma_m{};
-  double track_width_uncertainty{};
   // The regression terms' share of the circumferences' sigma under tyre_model auto: their gap to
   // the physical terms' fit of the same log (zero otherwise; it is in sigma and covariance too).
   std::array<double, 2> model_spread_m{};

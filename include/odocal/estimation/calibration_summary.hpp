@@ -90,6 +90,17 @@ struct CalibrationSummary {
   // misfit_sigma_scale(model_adequacy) where the covariance was widened by it (above 1: the
   // residuals are wider than their noise); 1 otherwise.
   double misfit_sigma_scale = 1.0;
+  // Where the plain model holds the track width: what track_width_uncertainty, the share of it
+  // that the track the wheels roll on may lie from vehicle.yaml's, moves the circumferences by
+  // (zero where the track is estimated or a tyre model is fitted; it is in sigma and covariance
+  // too). The batch's own fit gives it; for the other methods the judge's plain fit of the log
+  // (they hold the track too), where it judges.
+  std::array<double, 2> track_sigma_m{};
+  double track_width_uncertainty{};
+  // Whether that share is worth naming in a report: a tenth of either circumference's sigma
+  // (comma2k19, whose fixes and Doppler pin the scale: 0.0006 mm of 4.9 mm is not). The JSON
+  // carries it, so that every report names it by this one rule.
+  bool track_share_worth_naming() const;
 
   bool usable() const { return termination == Termination::kConverged; }
   double sigma_rl_m() const;  // 1-sigma from the covariance
