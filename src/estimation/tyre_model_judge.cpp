@@ -155,11 +155,15 @@ void say_a_tyre_model_fits_better(ModelAdequacy& adequacy, const TyreJudgement& 
         1e3 * gap_m[1] / share, whose, 1e3 * gap_m[0], 1e3 * gap_m[1]);
     return;
   }
-  // Its own fit wandered under the configured noise: auto cannot choose it either.
+  // Its own fit wandered under the configured noise: auto cannot choose it either. Or auto did
+  // not need it: its circumferences at rest agree with the plain ones but were not identified.
   const char* advice = better->judged_under_noise_shown
                            ? "fitted under the GNSS noise that the residuals show (under the "
                              "configured one its fit did not settle): state that noise (gnss.csv's "
                              "sigma_m or gnss_sigma_m) and calibrate again"
+                       : !better->needed
+                           ? "auto keeps the plain fit, since that one's circumferences at rest "
+                             "were not identified (max_sigma_circumference_m) and agree with these"
                            : "use the batch's tyre_model: auto";
   const std::string text =
       better->can_stand()

@@ -681,7 +681,8 @@ TEST(TyreModelBatch, AutoTakesThePhysicalTermsWherePinnedAndThePlainFitIsOff) {
   // track freed): the test of that branch. Since the gyro's turn is the trapezoid of its samples
   // (docs/batch-calibration.md), the physical terms with the track freed pin the circumference
   // on every noise seed tried (1-7: sigma 0.28-0.37 mm, within 0.13 mm of the truth), and auto
-  // takes them. The branch where an agreeing plain fit stands has no test of its own now.
+  // takes them. The branch where an agreeing plain fit stands has its own test below
+  // (AutoKeepsAnIdentifiedPlainFitThatAnUnidentifiedTyreFitAgreesWith).
   sim::Scenario scenario = load_scenario("circuit");
   scenario.ideal = true;
   scenario.seeds.noise = 4;
@@ -710,6 +711,64 @@ TEST(TyreModelBatch, AutoTakesThePhysicalTermsWherePinnedAndThePlainFitIsOff) {
       << plain.full_report();
   EXPECT_LT(std::abs(chosen.estimate.circumference_rl_m - truth_m),
             std::abs(plain.estimate.circumference_rl_m - truth_m) / 2.0);
+}
+
+TEST(TyreModelBatch, AutoKeepsAnIdentifiedPlainFitThatAnUnidentifiedTyreFitAgreesWith) {
+  // The ideal circuit (1 m fixes) whose wheels roll smaller by 5e-4 s^2/m of their load change,
+  // calibrated to a strict 0.15 mm: the physical terms win the criterion, 0.05 mm from the truth,
+  // but report a sigma of 0.18 mm (the body's uncertainty in it; 0.05 mm bare), not identified.
+  // The plain fit, 0.06 mm away from them, is identified with that gap in its sigma: auto keeps
+  // it, usable, rather than refuse the log. (Until 2026-12-07 auto judged the physical fit
+  // identified by its bare sigma, stood on it and refused.)
+  sim::Scenario scenario = load_scenario("circuit");
+  scenario.ideal = true;
+  scenario.gnss.sigma_m = 1.0;
+  const sim::SimulatedDrive drive = sim::simulate(scenario);
+  Log log = simulated_log(drive);
+  TyreModel load;
+  load.k_load_s2pm = 5e-4;
+  const VehicleBody body = log.vehicle.body_geometry();
+  const auto states = driving_states(log, log.vehicle.nominal_params());
+  for (std::size_t k = 0; k < log.wheels.size(); ++k) {
+    log.wheels.rev_rl[k] /= tyre_factor(load, states[k], RearWheel::kLeft, body);
+    log.wheels.rev_rr[k] /= tyre_factor(load, states[k], RearWheel::kRight, body);
+  }
+  const double truth_m = drive.true_params.circumference_rl_m;
+  BatchOptions options;
+  options.max_sigma_circumference_m = 1.5e-4;
+  options.tyre_model = TyreModelChoice::kPhysical;
+  const BatchSummary physical = calibrate_batch(log, options, testing::unjudged_options());
+  ASSERT_GT(std::max(physical.sigma_rl_m(), physical.sigma_rr_m()),
+            options.max_sigma_circumference_m)
+      << physical.full_report();
+  EXPECT_FALSE(physical.usable());
+
+  options.tyre_model = TyreModelChoice::kAuto;
+  const BatchSummary chosen = calibrate_batch(log, options);
+  SCOPED_TRACE(chosen.full_report());
+  const TyreModelSelection& selection = chosen.tyre_selection;
+  EXPECT_EQ(selection.chosen, "none");
+  ASSERT_EQ(selection.candidates.size(), 1u);  // it confirms the plain fit: no regression terms
+  const TyreCandidate& candidate = selection.candidates.front();
+  EXPECT_EQ(candidate.model, "physical");
+  EXPECT_LT(candidate.bic, selection.compared_plain_bic());
+  EXPECT_FALSE(candidate.needed);
+  // The plain circumferences carry their whole gap to the physical ones, and stay identified.
+  EXPECT_EQ(selection.plain_gap_to, "physical");
+  EXPECT_EQ(selection.plain_gap_share, 1.0);
+  for (std::size_t w = 0; w < 2; ++w) {
+    const double estimate_m =
+        w == 0 ? chosen.estimate.circumference_rl_m : chosen.estimate.circumference_rr_m;
+    EXPECT_NEAR(chosen.model_spread_m[w], std::abs(estimate_m - candidate.circumference[w]), 1e-9);
+  }
+  EXPECT_TRUE(chosen.usable());
+  EXPECT_LE(chosen.sigma_rl_m(), options.max_sigma_circumference_m);
+  EXPECT_LT(std::abs(chosen.estimate.circumference_rl_m - truth_m), 3.0 * chosen.sigma_rl_m());
+  EXPECT_NE(chosen.full_report().find("were not identified and agree with the plain fit's"),
+            std::string::npos);
+  EXPECT_NE(chosen.model_adequacy.verdict.find("auto keeps the plain fit"), std::string::npos);
+  EXPECT_EQ(chosen.model_adequacy.verdict.find("use the batch's tyre_model: auto"),
+            std::string::npos);
 }
 
 TEST(TyreModelBatch, AutoKeepsThePlainModelWhereTheLogNeedsNoMore) {
