@@ -12,6 +12,7 @@
 
 #include "../support/hilly_urban.hpp"
 #include "../support/plain_bias_covered.hpp"
+#include "../support/recounted_wheels.hpp"
 #include "../support/test_scenarios.hpp"
 #include "../support/unjudged_options.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
@@ -61,21 +62,12 @@ TEST(PhysicalTyreBatch, RecoversKnownLoadAndSlipWhereThePlainModelIsBiased) {
   // shrinks by 2e-3 of a wheel's load change per vehicle mass and slip of 1/20 of the force over
   // load driving, 1/50 braking (the driving state from the log itself, the accelerometer's
   // included).
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.gnss.sigma_m = 1.0;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
-  Log log = simulated_log(drive);
   TyreModel truth;
   truth.k_load_s2pm = 2e-3;
   truth.k_drive_slip = 0.05;
   truth.k_brake_slip = 0.02;
+  const auto [drive, log] = testing::ideal_circuit_recounted(truth, 1.0);
   const VehicleBody body = log.vehicle.body_geometry();
-  const auto states = driving_states(log, log.vehicle.nominal_params());
-  for (std::size_t k = 0; k < log.wheels.size(); ++k) {
-    log.wheels.rev_rl[k] /= tyre_factor(truth, states[k], RearWheel::kLeft, body);
-    log.wheels.rev_rr[k] /= tyre_factor(truth, states[k], RearWheel::kRight, body);
-  }
   const double truth_m = drive.true_params.circumference_rl_m;
 
   const BatchSummary plain = calibrate(log, TyreModelChoice::kNone);

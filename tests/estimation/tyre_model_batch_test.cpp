@@ -15,6 +15,7 @@
 
 #include "../support/drifting_gnss.hpp"
 #include "../support/plain_bias_covered.hpp"
+#include "../support/recounted_wheels.hpp"
 #include "../support/test_scenarios.hpp"
 #include "../support/unjudged_options.hpp"
 #include "estimation/batch_fit.hpp"
@@ -44,15 +45,8 @@ sim::SimulatedDrive ideal_drive() {
 
 Log ideal_lap() { return simulated_log(ideal_drive()); }
 
-// A wheel that rolls c f per revolution needs 1/f times the ideal revolutions.
 Log with_condition_dependent_tyres(const Log& ideal) {
-  Log log = ideal;
-  const auto states = driving_states(ideal, ideal.vehicle.nominal_params());
-  for (std::size_t k = 0; k < log.wheels.size(); ++k) {
-    log.wheels.rev_rl[k] /= tyre_factor(kTruth, states[k], RearWheel::kLeft, kBody);
-    log.wheels.rev_rr[k] /= tyre_factor(kTruth, states[k], RearWheel::kRight, kBody);
-  }
-  return log;
+  return testing::with_wheels_recounted(ideal, kTruth, kBody);
 }
 
 const EstimatedParameter& parameter(const BatchSummary& s, const std::string& name) {
@@ -683,19 +677,9 @@ TEST(TyreModelBatch, AutoTakesThePhysicalTermsWherePinnedAndThePlainFitIsOff) {
   // on every noise seed tried (1-7: sigma 0.28-0.37 mm, within 0.13 mm of the truth), and auto
   // takes them. The branch where an agreeing plain fit stands has its own test below
   // (AutoKeepsAnIdentifiedPlainFitThatAnUnidentifiedTyreFitAgreesWith).
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.seeds.noise = 4;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
-  Log log = simulated_log(drive);
   TyreModel load;
   load.k_load_s2pm = 1e-3;
-  const VehicleBody body = log.vehicle.body_geometry();
-  const auto states = driving_states(log, log.vehicle.nominal_params());
-  for (std::size_t k = 0; k < log.wheels.size(); ++k) {
-    log.wheels.rev_rl[k] /= tyre_factor(load, states[k], RearWheel::kLeft, body);
-    log.wheels.rev_rr[k] /= tyre_factor(load, states[k], RearWheel::kRight, body);
-  }
+  const auto [drive, log] = testing::ideal_circuit_recounted(load, 0.0, 4);
   BatchOptions options;
   options.heading_tick_smoothing_s = 0.0;
   options.tyre_model = TyreModelChoice::kNone;
@@ -720,19 +704,9 @@ TEST(TyreModelBatch, AutoKeepsAnIdentifiedPlainFitThatAnUnidentifiedTyreFitAgree
   // The plain fit, 0.06 mm away from them, is identified with that gap in its sigma: auto keeps
   // it, usable, rather than refuse the log. (Until 2026-12-07 auto judged the physical fit
   // identified by its bare sigma, stood on it and refused.)
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.gnss.sigma_m = 1.0;
-  const sim::SimulatedDrive drive = sim::simulate(scenario);
-  Log log = simulated_log(drive);
   TyreModel load;
   load.k_load_s2pm = 5e-4;
-  const VehicleBody body = log.vehicle.body_geometry();
-  const auto states = driving_states(log, log.vehicle.nominal_params());
-  for (std::size_t k = 0; k < log.wheels.size(); ++k) {
-    log.wheels.rev_rl[k] /= tyre_factor(load, states[k], RearWheel::kLeft, body);
-    log.wheels.rev_rr[k] /= tyre_factor(load, states[k], RearWheel::kRight, body);
-  }
+  const auto [drive, log] = testing::ideal_circuit_recounted(load, 1.0);
   const double truth_m = drive.true_params.circumference_rl_m;
   BatchOptions options;
   options.max_sigma_circumference_m = 1.5e-4;
