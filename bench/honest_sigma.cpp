@@ -5,7 +5,8 @@
 // calibrated by the batch estimator with and without adapt_gnss_noise (and by the iterative
 // method, for comparison); the share of errors inside 3 reported sigma is printed per method.
 // Then clean runs (the paper's 3 m white GNSS, correctly configured) give the batch's reported
-// sigma against the Cramér–Rao sigma, which must stay within 1.5x.
+// sigma against the Cramér–Rao sigma, which must stay within 1.5x on every clean run (exit 1
+// where it does not).
 //
 //   build/bench/odocal_honest_sigma [--runs 40] [--clean-runs 10] [--laps 3]
 
@@ -142,5 +143,11 @@ int main(int argc, char** argv) {
       "clean runs ({}, the paper's 3 m white GNSS as configured): reported sigma / Cramér–Rao "
       "sigma mean {:.2f}, worst {:.2f}; noise adapted in {} runs\n",
       clean_runs, ratio_sum / clean_runs, worst, adapted_clean);
-  return 0;
+  // The target is said, not only the figure: a σ far above the bound on a clean log is no
+  // failure of coverage, so nothing else here would show it (2026-12-07: 6.35x, unseen a day).
+  constexpr double kTargetRatio = 1.5;
+  const bool met = worst <= kTargetRatio;
+  fmt::print("target: every clean run within {}x of the Cramér–Rao sigma: {}\n", kTargetRatio,
+             met ? "met" : "NOT met");
+  return met ? 0 : 1;
 }
