@@ -9,6 +9,7 @@
 // where it does not).
 //
 //   build/bench/odocal_honest_sigma [--runs 40] [--clean-runs 10] [--laps 3]
+//                                   [--track-width-uncertainty 0.01]
 
 #include <fmt/format.h>
 
@@ -66,12 +67,16 @@ sim::Scenario circuit(int laps, std::uint64_t seed) {
 int main(int argc, char** argv) {
   CLI::App app{"Coverage of the reported sigma under a wrongly configured GNSS noise"};
   int runs = 40, clean_runs = 10, laps = 3, only = 0;
+  double track_width_uncertainty = BatchOptions{}.track_width_uncertainty;
   bool report = false;
   app.add_option("--runs", runs)->check(CLI::PositiveNumber);
   app.add_option("--clean-runs", clean_runs)->check(CLI::NonNegativeNumber);
   app.add_option("--laps", laps)->check(CLI::PositiveNumber);
   app.add_option("--only", only, "Run only this run number (1-based)");
   app.add_flag("--report", report, "Print each adapted batch's full report");
+  app.add_option("--track-width-uncertainty", track_width_uncertainty,
+                 "The batch's track_width_uncertainty (what the held track's share scales with)")
+      ->check(CLI::Range(0.0, 1.0));
   CLI11_PARSE(app, argc, argv);
 
   constexpr std::array<double, 3> kGmSigmas{0.5, 1.0, 2.0};
@@ -79,6 +84,7 @@ int main(int argc, char** argv) {
   CalibrationOptions claimed;
   claimed.reference.gnss_sigma_m = 0.1;
   BatchOptions adapted, fixed;
+  adapted.track_width_uncertainty = fixed.track_width_uncertainty = track_width_uncertainty;
   fixed.adapt_gnss_noise = false;
   Coverage batch_adapted, batch_fixed, iterative;
   for (int run = 0; run < runs; ++run) {
@@ -130,6 +136,7 @@ int main(int argc, char** argv) {
     const sim::SimulatedDrive drive = sim::simulate(scenario);
     const Log log = simulated_log(drive, true);
     BatchOptions ideal;  // the experiments' ideal-mode wheel noise: the truth has no slip
+    ideal.track_width_uncertainty = track_width_uncertainty;
     ideal.slip_sigma_m_per_sqrt_m = ideal.lateral_sigma_m_per_sqrt_m = 1e-6;
     const BatchSummary s = calibrate_batch(log, ideal);
     const double bound = experiments::scenario_cramer_rao_bound(scenario, log, drive.true_params)
