@@ -198,9 +198,17 @@ def accelerometer_offset_text(result):
 
 def track_share_text(result):
     """The held track's share of the circumferences' sigma, where the calibration found it worth
-    naming (track_share_worth_naming, the text report's rule)."""
+    naming (track_share_worth_naming, the text report's rule); or, where the track was fitted
+    under its prior (track_under_prior), what it shares of the sigma."""
     share = result.get("track_sigma_m")
-    if not share or not result.get("track_share_worth_naming"):
+    if not share:
+        return None
+    if result.get("track_under_prior"):
+        return (f"fitted under its prior (vehicle.yaml's ±"
+                f"{100 * result['track_width_uncertainty']:.3g} %; the two-wheel model explains "
+                f"the log), sharing {1000 * share[0]:.3g} / {1000 * share[1]:.3g} mm of the "
+                f"circumferences' sigma")
+    if not result.get("track_share_worth_naming"):
         return None
     return (f"{1000 * share[0]:.3g} / {1000 * share[1]:.3g} mm of the circumferences' sigma: the "
             f"track the wheels roll on may lie ±{100 * result['track_width_uncertainty']:.3g} % "
@@ -251,7 +259,8 @@ def summary_rows(result):
         rows.append(("accelerometer offset", offset))
     track = track_share_text(result)
     if track:
-        rows.append(("track width held", track))
+        rows.append(("track width under its prior" if result.get("track_under_prior")
+                     else "track width held", track))
     for parameter in result.get("parameters", []):
         if parameter.get("estimated") and not parameter["name"].startswith("circumference"):
             rows.append((parameter["name"], f"{parameter['value']:.6g} (1-sigma "

@@ -35,6 +35,7 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
     batch.set_gnss_noise(noise->white_scale, noise->gauss_markov_sigma_m,
                          noise->gauss_markov_tau_s);
   }
+  batch.set_track_prior(controls.track_prior);
   const bool extended = terms.has_value();
   ceres::Solver::Summary solver = extended ? solve_tyre_model(batch, options, summary, *terms)
                                            : solve_relinearised(batch, options, summary);
@@ -178,6 +179,7 @@ BatchSummary calibrate_as_configured(const Log& log, CalibrationRun& run,
     }
   }
   if (!finished) run.finish(summary);
+  batch::fit_track_under_prior(run, options, common, unfitted, summary);
   batch::check_parts_consistency(log, options, common, summary);
   return summary;
 }

@@ -230,7 +230,18 @@ void BatchProblem::build() {
   if (batch_.use_gyro && log_.imu) add_gyro();
   if (use_speed()) add_speed();
   if (gauss_markov()) add_gauss_markov();
+  if (const double sigma_m = track_prior_sigma_m(); sigma_m > 0.0) {
+    problem_->AddResidualBlock(
+        new ceres::AutoDiffCostFunction<batch::TrackWidthPrior, 1, batch::kParams>(
+            new batch::TrackWidthPrior{nominal_.track_width_m, sigma_m}),
+        nullptr, params_.data());
+  }
   hold_unrequested();
+}
+
+double BatchProblem::track_prior_sigma_m() const {
+  if (!track_prior_ || batch_.estimate_track_width || tyre_terms_) return 0.0;
+  return batch_.track_width_uncertainty * std::abs(nominal_.track_width_m);
 }
 
 ceres::Solver::Summary BatchProblem::solve(int max_iterations) {

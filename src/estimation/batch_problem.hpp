@@ -296,6 +296,13 @@ class BatchProblem {
   const Eigen::Matrix<double, batch::kParams, batch::kParams>& track_covariance() const {
     return track_covariance_;
   }
+  // Fits the plain model's track width under a prior of track_width_uncertainty about
+  // vehicle.yaml's, in place of the held track's share (docs/batch-calibration.md, "The track
+  // under its prior"). Off by default: the share is what covers load transfer.
+  void set_track_prior(bool on) { track_prior_ = on; }
+  // That prior's sigma, metres; 0 where it is off, the track is estimated outright, a tyre model
+  // is fitted or the track is taken as exact.
+  double track_prior_sigma_m() const;
   const VehicleBody& body() const { return body_; }
   const Block2& lever() const { return lever_; }
   double gyro_bias() const { return gyro_bias_; }
@@ -562,6 +569,7 @@ class BatchProblem {
   std::vector<DrivingState> states_;  // per wheel sample; empty without tyre model and limits
   std::vector<std::uint8_t> rough_segment_;  // per interval: outside the gentle limits
   TyreModel::Vector regressor_rms_ = TyreModel::Vector::Zero();
+  bool track_prior_ = false;
   std::optional<TyreTerms> tyre_terms_;  // the family of tyre coefficients fitted (none: plain)
   // Of the parameters, from the body's uncertainty and the held coefficients' spread
   // (add_considered_uncertainty).

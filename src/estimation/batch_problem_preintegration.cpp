@@ -295,7 +295,7 @@ void BatchProblem::fold_interval(std::size_t i, const PreintegratedSegment& seg,
 
 bool BatchProblem::param_free(int p) const {
   if (p < 2) return true;
-  if (p == 2) return batch_.estimate_track_width;
+  if (p == 2) return batch_.estimate_track_width || track_prior_sigma_m() > 0.0;
   return tyre_in_fit(p - kTyreOffset) && !tyre_held(p - kTyreOffset);
 }
 

@@ -173,4 +173,17 @@ struct GaussMarkovPrior {
   }
 };
 
+// The plain model's track width under its prior: vehicle.yaml's, uncertain by
+// track_width_uncertainty (BatchProblem::set_track_prior).
+struct TrackWidthPrior {
+  double track_m{};
+  double sigma_m{};
+
+  template <typename T>
+  bool operator()(const T* params, T* residual) const {
+    residual[0] = (params[2] - track_m) / sigma_m;
+    return true;
+  }
+};
+
 }  // namespace odocal::batch

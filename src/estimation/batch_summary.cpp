@@ -77,11 +77,12 @@ ReferenceCircumference reference_circumference(
 std::string track_verdict(const BatchSummary& summary, std::size_t wheel, double sigma_m) {
   const double track_m = summary.track_sigma_m[wheel];
   return fmt::format(
-      "the turns, not the GNSS fixes, set its scale here, through the track width held (of its "
+      "the turns, not the GNSS fixes, set its scale here, through the track width {} (of its "
       "1-sigma, {:.2g} mm from the track the wheels roll on, vehicle.yaml's track_width_m "
       "+-{:.2g} %: load moves it; {:.2g} mm from the rest): drive more distance under open sky, "
       "or set estimate_track_width",
-      1e3 * track_m, 100.0 * summary.track_width_uncertainty,
+      summary.track_under_prior ? "under its prior" : "held", 1e3 * track_m,
+      100.0 * summary.track_width_uncertainty,
       1e3 * std::sqrt(std::max(0.0, sigma_m * sigma_m - track_m * track_m)));
 }
 
@@ -238,8 +239,16 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
                                     std::sqrt(batch.forward_offset_covariance()(1, 1))};
   summary.forward_offset_sigma_mps2 =
       batch.forward_offset_response() ? batch.forward_offset_sigma() : 0.0;
-  summary.track_sigma_m = {std::sqrt(batch.track_covariance()(0, 0)),
-                           std::sqrt(batch.track_covariance()(1, 1))};
+  summary.track_under_prior = batch.track_prior_sigma_m() > 0.0;
+  if (summary.track_under_prior) {
+    const auto shared = [&](Eigen::Index w) {
+      return u.params(2, 2) > 0.0 ? std::abs(u.params(w, 2)) / std::sqrt(u.params(2, 2)) : 0.0;
+    };
+    summary.track_sigma_m = {shared(0), shared(1)};
+  } else {
+    summary.track_sigma_m = {std::sqrt(batch.track_covariance()(0, 0)),
+                             std::sqrt(batch.track_covariance()(1, 1))};
+  }
   const bool track_considered = summary.track_sigma_m[0] > 0.0 || summary.track_sigma_m[1] > 0.0;
   summary.track_width_uncertainty = track_considered ? b.track_width_uncertainty : 0.0;
   summary.held_sigma_parts.clear();
@@ -252,7 +261,8 @@ void summarise(const Log& log, const BatchOptions& b, BatchProblem& batch,
   summary.parameters = {
       {"circumference_rl_m", p[0], sigma(u.params(0, 0)), true, true, ""},
       {"circumference_rr_m", p[1], sigma(u.params(1, 1)), true, true, ""},
-      {"track_width_m", p[2], sigma(u.params(2, 2)), b.estimate_track_width, true, ""},
+      {"track_width_m", p[2], sigma(u.params(2, 2)),
+       b.estimate_track_width || summary.track_under_prior, true, ""},
       {"gyro_bias_radps", batch.gyro_bias(), sigma(u.gyro_bias), b.estimate_gyro_bias, true, ""},
       {"heading_bias_rad", batch.heading_bias(), sigma(u.heading_bias), b.estimate_heading_bias,
        true, ""},

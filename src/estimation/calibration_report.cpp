@@ -62,7 +62,14 @@ std::string report_ending(const CalibrationSummary& s) {
         "misfit", s.misfit_sigma_scale, s.model_adequacy.chi2_per_dof, s.model_adequacy.intervals,
         s.misfit_sigma_scale);
   }
-  if (s.track_share_worth_naming()) {
+  if (s.track_under_prior) {
+    text += fmt::format(
+        "{:<13}fitted under its prior, vehicle.yaml's track_width_m +-{:.3g} % (the two-wheel "
+        "model explains this log: no load transfer seen to move it), to {:.4f} m; it shares "
+        "{:.3g} / {:.3g} mm of the circumferences' sigma\n",
+        "track", 100.0 * s.track_width_uncertainty, s.estimate.track_width_m,
+        1e3 * s.track_sigma_m[0], 1e3 * s.track_sigma_m[1]);
+  } else if (s.track_share_worth_naming()) {
     text += fmt::format(
         "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the track width held: "
         "the track the wheels roll on may lie +-{:.3g} % from vehicle.yaml's (load moves it), "

@@ -121,6 +121,7 @@ json core_json(const CalibrationSummary& s, const CalibrationConfig& config) {
     out["track_sigma_m"] = {s.track_sigma_m[0], s.track_sigma_m[1]};
     out["track_width_uncertainty"] = s.track_width_uncertainty;
     out["track_share_worth_naming"] = s.track_share_worth_naming();
+    out["track_under_prior"] = s.track_under_prior;
   }
   return out;
 }

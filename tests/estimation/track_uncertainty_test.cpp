@@ -49,6 +49,11 @@ TEST(TrackUncertainty, CoversThePlainFitOfTightTurnsThatGnssDoesNotPin) {
   options.gnss_gauss_markov_tau_s = 30.0;
   testing::expect_the_track_held_covers_the_plain_bias(log, options,
                                                        drive.true_params.circumference_rl_m);
+  // Judged, the model does not explain the log (the load transfer): the track is not put under
+  // its prior, which would let it take the turns' misfit (track_prior_test.cpp).
+  const BatchSummary judged = calibrate_batch(log, options);
+  EXPECT_FALSE(judged.model_adequacy.explains) << judged.full_report();
+  EXPECT_FALSE(judged.track_under_prior) << judged.full_report();
 }
 
 TEST(TrackUncertainty, ItsShareIsLinearInTheUncertaintyAndNoneWhereTheTrackIsFreeOrATyreFitted) {

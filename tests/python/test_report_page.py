@@ -43,6 +43,19 @@ def test_the_held_tracks_share_is_shown_where_it_is_worth_naming():
     assert "track width held" not in dict(summary_rows(result))
 
 
+def test_a_track_under_its_prior_is_named_as_fitted_not_held():
+    result = {"method": "batch", "usable": True, "termination": "converged",
+              "circumference_rl_m": 1.95, "circumference_rr_m": 1.95,
+              "sigma_circumference_rl_m": 0.000086, "sigma_circumference_rr_m": 0.000086,
+              "track_sigma_m": [0.0000103, 0.0000106], "track_width_uncertainty": 0.01,
+              "track_share_worth_naming": True, "track_under_prior": True}
+    rows = dict(summary_rows(result))
+    assert "track width held" not in rows
+    text = rows["track width under its prior"]
+    assert "vehicle.yaml's ±1 %" in text
+    assert "sharing 0.0103 / 0.0106 mm" in text
+
+
 def test_the_accelerometers_forward_offset_is_shown_as_measured_at_stops_or_over_the_drive():
     result = {"method": "batch", "usable": True, "termination": "converged",
               "circumference_rl_m": 2.299, "circumference_rr_m": 2.300,

@@ -97,6 +97,11 @@ struct CalibrationSummary {
   // (they hold the track too), where it judges.
   std::array<double, 2> track_sigma_m{};
   double track_width_uncertainty{};
+  // The batch's plain fit only: the track was fitted under a prior of track_width_uncertainty
+  // about vehicle.yaml's, not held (the tyre models judged the fit and its model explains the
+  // log: docs/batch-calibration.md, "The track under its prior"). track_sigma_m is then the
+  // track's part of the posterior sigma, the variance that the circumference shares with it.
+  bool track_under_prior{};
   // Whether that share is worth naming in a report: a tenth of either circumference's sigma
   // (comma2k19, whose fixes and Doppler pin the scale: 0.0006 mm of 4.9 mm is not). The JSON
   // carries it, so that every report names it by this one rule.
