@@ -219,15 +219,16 @@ void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, BatchSummary& summary);
 
 // Where the plain fit stands judged by the tyre models (under auto, or tyre_model none with
-// judge_model_adequacy), none fits the log better, its model explains the log and the held
-// track's share is most of its sigma: the plain model fitted again with the track under a prior
-// of track_width_uncertainty about vehicle.yaml's (track_prior_fit.cpp). Held, the track is
-// moved by its whole uncertainty while the turns and fixes together pin it (the built-in circuit,
-// clean: sigma 6.35x the Cramér-Rao bound held, 1.08x under the prior). Where the model does not
-// explain the log, load transfer moves the track the wheels roll on, and a fitted track takes the
-// turns' misfit: the share stays. Replaces `summary` (scored: run.finish) where its model still
-// explains the log and the refit is usable, or neither is identified; returns whether it did.
-// `summary` is already scored.
+// judge_model_adequacy), none fits the log better or about as well (no gap carried), auto did not
+// doubt the track, its model explains the log, its GNSS noise was checked (adapt_gnss_noise, not
+// reverted) and the held track's share is more than half of either circumference's sigma: the
+// plain model fitted again with the track under a prior of track_width_uncertainty about
+// vehicle.yaml's (track_prior_fit.cpp). Held, the track is moved by its whole uncertainty while
+// the turns and fixes together pin it (the built-in circuit, clean: sigma 6.35x the Cramér-Rao
+// bound held, 1.08x under the prior). Where the model does not explain the log, load transfer
+// moves the track the wheels roll on, and a fitted track takes the turns' misfit: the share
+// stays. Replaces `summary` (scored: run.finish) where its model still explains the log and the
+// refit is usable, or neither is identified; returns whether it did. `summary` is already scored.
 bool fit_track_under_prior(CalibrationRun& run, const BatchOptions& options,
                            const CalibrationOptions& common, const BatchSummary& unfitted,
                            BatchSummary& summary);

@@ -43,8 +43,8 @@ bool fit_track_under_prior(CalibrationRun& run, const BatchOptions& options,
   run.finish(refit);
   // The same log and model: its model must still explain the log for the prior to stand. Where
   // the held fit was not identified either, the refit's is the sigma to report, identified or
-  // not (the held track's share alone left it unidentified: bench/honest_sigma.cpp, run 2,
-  // 7.47 mm held, 1.62 mm under the prior).
+  // not (the held track's share alone left it unidentified: bench/honest_sigma.cpp, run 3,
+  // 11.86 mm held, 2.24 mm under the prior).
   const bool neither_identified = summary.termination == Termination::kNotIdentifiable &&
                                   refit.termination == Termination::kNotIdentifiable;
   if (!(refit.usable() || neither_identified) || !refit.model_adequacy.explains) {
