@@ -16,11 +16,10 @@ void BatchProblem::add_considered_uncertainty() {
   track_covariance_.setZero();
   // The plain model's only: the tyre models carry the load transfer, the physical terms with the
   // body's uncertainty.
-  // Under its prior the track is fitted, and its uncertainty is in the data's covariance.
+  // A fitted track (estimated outright, or under its prior) has its uncertainty in the data's
+  // covariance.
   const double track_sigma_m =
-      batch_.estimate_track_width || tyre_terms_ || track_prior_sigma_m() > 0.0
-          ? 0.0
-          : batch_.track_width_uncertainty * std::abs(params_[2]);
+      param_free(2) || tyre_terms_ ? 0.0 : batch_.track_width_uncertainty * std::abs(params_[2]);
   if (!tyre_terms_ && !(track_sigma_m > 0.0)) return;
   preintegrate_all(0.0, false);
   const Unknowns solution = unknowns(Folds::kKeep);
