@@ -40,6 +40,7 @@ bool batch::fit_model(const CalibrationRun& run, const BatchOptions& options,
   ceres::Solver::Summary solver = extended ? solve_tyre_model(batch, options, summary, *terms)
                                            : solve_relinearised(batch, options, summary);
   const auto spread = [&] {
+    if (controls.carried_spread_m) return *controls.carried_spread_m;
     std::array<double, 2> gap{};
     if (const auto& rival = controls.rival_circumference) {
       for (std::size_t w = 0; w < 2; ++w)

@@ -75,6 +75,9 @@ struct FitControls {
   // The share of that gap carried: all of it, or less where the rival fits the log only about as
   // well (tie_gap_share).
   double rival_share = 1.0;
+  // A gap found before between two fits of one track, carried as found in place of the rival's
+  // (a tie's, where the plain model's track is put under its prior: track_prior_fit.cpp).
+  std::optional<std::array<double, 2>> carried_spread_m{};
   // A GNSS noise model to solve under from the start.
   std::optional<GnssNoiseModel> noise{};
   // Declines the adapted fit: then the summary is not filled.
