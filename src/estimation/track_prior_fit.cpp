@@ -33,8 +33,8 @@ bool track_prior_helps(const BatchOptions& options, const BatchSummary& fitted) 
   // fits, 5-8 sigma off).
   const bool judged_plain = selection.compared && selection.chosen == "none" &&
                             fitted.tyre_model.plain() && !std::isfinite(selection.free_track_bic);
-  const bool no_gap = (fitted.model_spread_m[0] == 0.0 && fitted.model_spread_m[1] == 0.0) ||
-                      tie(selection).has_value();
+  const bool at_most_a_tie = (fitted.model_spread_m[0] == 0.0 && fitted.model_spread_m[1] == 0.0) ||
+                             tie(selection).has_value();
   const bool material = fitted.track_sigma_m[0] > kMaterialShare * fitted.sigma_rl_m() ||
                         fitted.track_sigma_m[1] > kMaterialShare * fitted.sigma_rr_m();
   // The fixes' noise checked against their residuals (adapt_gnss_noise, not reverted): under a
@@ -42,8 +42,8 @@ bool track_prior_helps(const BatchOptions& options, const BatchSummary& fitted) 
   // fitted track follows them (bench/honest_sigma.cpp, configured noise).
   const GnssNoiseReport& gnss = fitted.gnss_noise;
   const bool noise_checked = options.adapt_gnss_noise && !gnss.reverted;
-  return judged_plain && no_gap && fitted.model_adequacy.explains && material && noise_checked &&
-         !options.estimate_track_width && options.track_width_uncertainty > 0.0;
+  return judged_plain && at_most_a_tie && fitted.model_adequacy.explains && material &&
+         noise_checked && !options.estimate_track_width && options.track_width_uncertainty > 0.0;
 }
 
 }  // namespace
