@@ -509,6 +509,19 @@ def tyre_models(report):
         report.write(f"| {t['target']} | {t['measured']:.3g} | {t['limit']:g} | "
                      f"{'yes' if t['met'] else '**no**'} |")
     report.write()
+    ideal = summary.get("ideal_auto_against_none")
+    if ideal:
+        report.write(f"On the ideal runs, seed by seed, `auto`'s mean |error| less `none`'s is "
+                     f"{ideal['mean_abs_error_difference_mm']:+.3f} mm on average (standard "
+                     f"error {ideal['difference_standard_error_mm']:.3f} mm): the change the "
+                     f"target names is measured to no better than that. `none` (unjudged) holds "
+                     f"the track, which is vehicle.yaml's to the digit in the simulator, with its "
+                     f"1 % in the σ (mean reported σ "
+                     f"{ideal['none_mean_reported_sigma_mm']:.2f} mm); `auto`, having judged "
+                     f"the plain fit, fits it under its prior (mean reported σ "
+                     f"{ideal['auto_mean_reported_sigma_mm']:.3f} mm; docs/batch-calibration.md, "
+                     f"\"The track under its prior\").")
+        report.write()
     report.write("docs/tyre-model.md says what the slip of the wheels under braking and drive "
                  "does on this circuit, effect by effect, and where the dead reckoning's error "
                  "comes from (\"The slip curve and the state of one sample\": the slip curve's "

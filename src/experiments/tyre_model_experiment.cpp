@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "experiments/truth_comparison.hpp"
 #include "odocal/error.hpp"
@@ -89,6 +91,46 @@ double mean(const std::vector<double>& values) {
   double sum = 0.0;
   for (const double v : values) sum += v;
   return values.empty() ? NAN : sum / static_cast<double>(values.size());
+}
+
+// Paired differences over the seeds: their mean and its standard error.
+std::pair<double, double> mean_and_standard_error(const std::vector<double>& differences) {
+  const double average = mean(differences);
+  double squares = 0.0;
+  for (const double d : differences) squares += (d - average) * (d - average);
+  const double count = static_cast<double>(differences.size());
+  const double spread = count > 1.0 ? std::sqrt(squares / (count - 1.0)) : 0.0;
+  return {average, spread / std::sqrt(count)};
+}
+
+// A run's mean |error| and mean reported sigma over the two wheels (an infinite sigma: NaN).
+std::pair<double, double> run_error_and_sigma(const nlohmann::json& run) {
+  double error = 0.0, sigma = 0.0;
+  for (const char* wheel : {"rl", "rr"}) {
+    error += 0.5 * std::abs(run.at(std::string("error_") + wheel + "_mm").get<double>());
+    const nlohmann::json& reported = run.at(std::string("reported_sigma_") + wheel + "_mm");
+    sigma += reported.is_null() ? NAN : 0.5 * reported.get<double>();
+  }
+  return {error, sigma};
+}
+
+// The ideal runs, auto against none seed by seed: whether the targets' change of the mean error
+// is more than 10 seeds resolve, and the sigma each reports beside it.
+nlohmann::json ideal_auto_against_none(const std::vector<nlohmann::json>& none,
+                                       const std::vector<nlohmann::json>& automatic) {
+  std::vector<double> differences, none_sigma, auto_sigma;
+  for (std::size_t i = 0; i < none.size() && i < automatic.size(); ++i) {
+    const auto [none_error, none_s] = run_error_and_sigma(none[i]);
+    const auto [auto_error, auto_s] = run_error_and_sigma(automatic[i]);
+    differences.push_back(auto_error - none_error);
+    none_sigma.push_back(none_s);
+    auto_sigma.push_back(auto_s);
+  }
+  const auto [difference, standard_error] = mean_and_standard_error(differences);
+  return {{"mean_abs_error_difference_mm", difference},
+          {"difference_standard_error_mm", standard_error},
+          {"none_mean_reported_sigma_mm", mean(none_sigma)},
+          {"auto_mean_reported_sigma_mm", mean(auto_sigma)}};
 }
 
 // One configuration's runs over the seeds.
@@ -383,11 +425,7 @@ nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
   std::vector<double> differences;
   for (std::size_t i = 0; i < calibrated_drift.size(); ++i)
     differences.push_back(calibrated_drift[i] - exact_drift[i]);
-  const double mean_difference = mean(differences);
-  double squares = 0.0;
-  for (const double d : differences) squares += (d - mean_difference) * (d - mean_difference);
-  const double count = static_cast<double>(differences.size());
-  const double difference_spread = count > 1.0 ? std::sqrt(squares / (count - 1.0)) : 0.0;
+  const auto [mean_difference, difference_standard_error] = mean_and_standard_error(differences);
   const double urban_drift = median(calibrated_drift);
   targets.push_back(target("urban, auto: held-out median drift [%]", urban_drift,
                            kTargetUrbanDriftPercent, urban_drift <= kTargetUrbanDriftPercent));
@@ -401,12 +439,13 @@ nlohmann::json summarise_tyre_models(const std::vector<nlohmann::json>& seeds,
             {"exact_wheels_median_drift_percent", median(exact_drift)},
             {"reference_only_median_drift_percent", median(reference_drift)},
             {"calibrated_minus_exact_wheels_mean_percent", mean_difference},
-            {"calibrated_minus_exact_wheels_standard_error_percent",
-             difference_spread / std::sqrt(count)},
+            {"calibrated_minus_exact_wheels_standard_error_percent", difference_standard_error},
             {"ideal_true_median_drift_percent", median(floor_drift)},
             {"calibrated_raw_ticks_median_drift_percent", median(raw_drift)},
             {"ideal_true_raw_ticks_median_drift_percent", median(raw_floor_drift)},
             {"runs", urban}}},
+          {"ideal_auto_against_none", ideal_auto_against_none(runs("/ideal/none"_json_pointer),
+                                                              runs("/ideal/auto"_json_pointer))},
           {"targets", targets}};
 }
 

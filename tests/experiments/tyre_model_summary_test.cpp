@@ -164,5 +164,19 @@ TEST(TyreModelSummary, AnInfiniteSigmaWrittenAsNullCoversItsError) {
   EXPECT_DOUBLE_EQ(rear_none["within_3_reported_sigma"].get<double>(), 0.5);
 }
 
+TEST(TyreModelSummary, TheIdealRunsAreComparedSeedBySeed) {
+  // auto 0.3 and 0.2 mm off where none is 0.2 mm off on both: differences +0.1 and 0.
+  nlohmann::json first = seed(1, 10.0), second = seed(2, 10.0);
+  first["ideal"]["auto"] = run(0.3, 0.05, 4.0, false);
+  second["ideal"]["auto"] = run(0.2, 0.05, 4.0, false);
+  const nlohmann::json summary = summarise_tyre_models({first, second}, {urban(1, 0.2)});
+  const nlohmann::json& ideal = summary.at("ideal_auto_against_none");
+  EXPECT_NEAR(ideal.at("mean_abs_error_difference_mm").get<double>(), 0.05, 1e-12);
+  // Sample sigma of (0.1, 0) is 0.1 / sqrt(2); over sqrt(2) seeds, 0.05.
+  EXPECT_NEAR(ideal.at("difference_standard_error_mm").get<double>(), 0.05, 1e-12);
+  EXPECT_DOUBLE_EQ(ideal.at("none_mean_reported_sigma_mm").get<double>(), 0.1);
+  EXPECT_DOUBLE_EQ(ideal.at("auto_mean_reported_sigma_mm").get<double>(), 0.05);
+}
+
 }  // namespace
 }  // namespace odocal::experiments
