@@ -222,7 +222,8 @@ void fit_plain_judged(const CalibrationRun& run, const BatchOptions& options,
                       const CalibrationOptions& common, BatchSummary& summary);
 
 // Where the plain fit stands judged by the tyre models (under auto, or tyre_model none with
-// judge_model_adequacy), none fits the log better or about as well (no gap carried), auto did not
+// judge_model_adequacy), none fits the log better (one that fits it about as well, a tie, has its
+// share of the gap carried as the held fits found it: FitControls::carried_spread_m), auto did not
 // doubt the track, its model explains the log, its GNSS noise was checked (adapt_gnss_noise, not
 // reverted) and the held track's share is more than half of either circumference's sigma: the
 // plain model fitted again with the track under a prior of track_width_uncertainty about
