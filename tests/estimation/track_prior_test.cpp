@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 
 #include "../support/drifting_gnss.hpp"
@@ -18,16 +19,23 @@
 namespace odocal {
 namespace {
 
-// The built-in circuit, ideal, under the paper's 3 m white GNSS as configured: the two-wheel
-// model explains it. Held, the track's 1 % made the sigma 6.35x the Cramér–Rao sigma (which takes
-// the track as exact): the turns and the fixes together pin the track far better than 1 %.
-TEST(TrackPrior, AnExplainedLogIsNearTheCramerRaoBoundWithTheTrackUnderItsPrior) {
+// The built-in circuit, ideal, 3 laps, the rear tyres worn 1.5 / 1.0 mm (as in
+// bench/honest_sigma.cpp).
+sim::Scenario worn_ideal_circuit(std::uint64_t noise_seed) {
   sim::Scenario scenario = load_scenario("circuit");
   scenario.ideal = true;
   scenario.route.laps = 3;
   scenario.vehicle.wear_rl_mm = 1.5;
   scenario.vehicle.wear_rr_mm = 1.0;
-  scenario.seeds.noise = 101;
+  scenario.seeds.noise = noise_seed;
+  return scenario;
+}
+
+// The built-in circuit, ideal, under the paper's 3 m white GNSS as configured: the two-wheel
+// model explains it. Held, the track's 1 % made the sigma 6.35x the Cramér–Rao sigma (which takes
+// the track as exact): the turns and the fixes together pin the track far better than 1 %.
+TEST(TrackPrior, AnExplainedLogIsNearTheCramerRaoBoundWithTheTrackUnderItsPrior) {
+  const sim::Scenario scenario = worn_ideal_circuit(101);
   const sim::SimulatedDrive drive = sim::simulate(scenario);
   const Log log = simulated_log(drive, true);
   BatchOptions ideal;  // the experiments' ideal-mode wheel noise: the truth has no slip
@@ -75,13 +83,9 @@ TEST(TrackPrior, AnExplainedLogIsNearTheCramerRaoBoundWithTheTrackUnderItsPrior)
 // gap to them, and its track still goes under its prior: held, the track's share was 4.3 mm of
 // a 4.35 mm sigma.
 TEST(TrackPrior, ATyreModelThatFitsAboutAsWellKeepsItsGapUnderThePrior) {
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.route.laps = 3;
-  scenario.vehicle.wear_rl_mm = 1.5;
-  scenario.vehicle.wear_rr_mm = 1.0;
-  scenario.seeds.noise = 5;
-  const auto [drive, log, claimed] = testing::drifting_gnss_drive(scenario, 1.0, 30.0);
+  constexpr double kDriftSigmaM = 1.0, kDriftTauS = 30.0;
+  const auto [drive, log, claimed] =
+      testing::drifting_gnss_drive(worn_ideal_circuit(5), kDriftSigmaM, kDriftTauS);
 
   const BatchSummary fitted = calibrate_batch(log, {}, claimed);
   ASSERT_TRUE(fitted.usable()) << fitted.full_report();
@@ -106,10 +110,8 @@ TEST(TrackPrior, ATyreModelThatFitsAboutAsWellKeepsItsGapUnderThePrior) {
   EXPECT_LT(std::abs(fitted.estimate.track_width_m - truth.track_width_m),
             3.0 * fitted.parameters.at(2).sigma);
   // Within 2.5x the Cramér–Rao sigma of the same drive with its noise known (held: 8.5x).
-  sim::Scenario drifting = scenario;  // as drifting_gnss_drive simulated it
-  drifting.gnss.sigma_m = 0.05;
-  drifting.gnss.gauss_markov_sigma_m = 1.0;
-  drifting.gnss.gauss_markov_tau_s = 30.0;
+  const sim::Scenario drifting =
+      testing::with_drifting_gnss(worn_ideal_circuit(5), kDriftSigmaM, kDriftTauS);
   const double bound =
       experiments::scenario_cramer_rao_bound(drifting, simulated_log(drive, true), truth)
           .rms_sigma_circumference_m();

@@ -4,11 +4,17 @@
 
 namespace odocal::testing {
 
-DriftingGnssDrive drifting_gnss_drive(sim::Scenario scenario, double gauss_markov_sigma_m,
-                                      double gauss_markov_tau_s) {
+sim::Scenario with_drifting_gnss(sim::Scenario scenario, double gauss_markov_sigma_m,
+                                 double gauss_markov_tau_s) {
   scenario.gnss.sigma_m = 0.05;
   scenario.gnss.gauss_markov_sigma_m = gauss_markov_sigma_m;
   scenario.gnss.gauss_markov_tau_s = gauss_markov_tau_s;
+  return scenario;
+}
+
+DriftingGnssDrive drifting_gnss_drive(sim::Scenario scenario, double gauss_markov_sigma_m,
+                                      double gauss_markov_tau_s) {
+  scenario = with_drifting_gnss(scenario, gauss_markov_sigma_m, gauss_markov_tau_s);
   DriftingGnssDrive result{sim::simulate(scenario), {}, {}};
   result.log = simulated_log(result.drive);
   result.log.gnss.sigma_m.clear();  // the claimed noise applies
