@@ -73,7 +73,8 @@ int main(int argc, char** argv) {
   app.add_option("--clean-runs", clean_runs)->check(CLI::NonNegativeNumber);
   app.add_option("--laps", laps)->check(CLI::PositiveNumber);
   app.add_option("--only", only, "Run only this run number (1-based)");
-  app.add_flag("--report", report, "Print each adapted batch's full report");
+  app.add_flag("--report", report,
+               "Print each adapted batch's and the iterative method's full report");
   app.add_option("--track-width-uncertainty", track_width_uncertainty,
                  "The batch's track_width_uncertainty (what the held track's share scales with)")
       ->check(CLI::Range(0.0, 1.0));
@@ -103,8 +104,9 @@ int main(int argc, char** argv) {
     batch_adapted.add(a, drive.true_params, bound);
     if (report) fmt::print(stderr, "{}Cramér–Rao sigma {:.3f} mm\n", a.full_report(), 1e3 * bound);
     batch_fixed.add(calibrate_batch(log, fixed, claimed), drive.true_params, bound);
-    const CalibrationSummary i = calibrate_iterative(log, {}, claimed);
+    const IterativeSummary i = calibrate_iterative(log, {}, claimed);
     iterative.add(i, drive.true_params, bound);
+    if (report) fmt::print(stderr, "{}", i.full_report());
     fmt::print(
         stderr,
         "run {:>2}: GM {:.1f} m, tau {:>3.0f} s -> error {:+.3f} / {:+.3f} mm, sigma "

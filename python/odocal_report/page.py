@@ -199,10 +199,18 @@ def accelerometer_offset_text(result):
 def track_share_text(result):
     """The held track's share of the circumferences' sigma, where the calibration found it worth
     naming (track_share_worth_naming, the text report's rule); or, where the track was fitted
-    under its prior (track_under_prior), what it shares of the sigma."""
+    under its prior (track_under_prior), what it shares of the sigma; or, where another method held
+    it and its judge fitted it under its prior (judged_track_m), what the held one's distance from
+    that track adds."""
     share = result.get("track_sigma_m")
     if not share:
         return None
+    if "judged_track_m" in result:
+        return (f"{1000 * share[0]:.3g} / {1000 * share[1]:.3g} mm of the circumferences' sigma: "
+                f"the judge's plain fit, the track under its prior (vehicle.yaml's ±"
+                f"{100 * result['track_width_uncertainty']:.3g} %), puts it at "
+                f"{result['judged_track_m']:.4f} m (1-sigma {result['judged_track_sigma_m']:.2g} m),"
+                f" and the held one carries its distance from it")
     if result.get("track_under_prior"):
         return (f"fitted under its prior (vehicle.yaml's ±"
                 f"{100 * result['track_width_uncertainty']:.3g} %; the two-wheel model explains "

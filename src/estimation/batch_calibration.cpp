@@ -101,6 +101,7 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
   const BatchSummary unfitted = scratch;
   ModelJudgement judgement;
   double plain_bic = 0.0;
+  std::array<double, 2> held_sigma_m{};
   {
     BatchProblem batch(run.log(), run.batch_wheels(), run.reference(), options, common, start);
     ceres::Solver::Summary solver = solve_relinearised(batch, options, scratch);
@@ -113,18 +114,20 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
       return judgement;
     }
     const double scale = scratch.gnss_noise.covariance_scale;
-    if (scratch.gnss_noise.adapted && std::isfinite(scale)) {
-      if (const auto u = batch.uncertainty()) {
-        judgement.adapted = ModelJudgement::AdaptedFit{
-            {batch.params()[0], batch.params()[1]},
-            {std::sqrt(scale * u->params(0, 0)), std::sqrt(scale * u->params(1, 1))}};
-      }
+    const auto u = std::isfinite(scale) ? batch.uncertainty() : std::nullopt;
+    if (u && scratch.gnss_noise.adapted) {
+      judgement.adapted = ModelJudgement::AdaptedFit{
+          {batch.params()[0], batch.params()[1]},
+          {std::sqrt(scale * u->params(0, 0)), std::sqrt(scale * u->params(1, 1))}};
     }
     judgement.adequacy = assess_model_adequacy(batch.odometry_errors());
     batch.add_considered_uncertainty();
     const auto& track = batch.track_covariance();
     judgement.track_sigma_m = {std::sqrt(track(0, 0)), std::sqrt(track(1, 1))};
     judgement.track_width_uncertainty = options.track_width_uncertainty;
+    constexpr double kInfinite = std::numeric_limits<double>::infinity();
+    held_sigma_m = {u ? std::sqrt(scale * u->params(0, 0) + track(0, 0)) : kInfinite,
+                    u ? std::sqrt(scale * u->params(1, 1) + track(1, 1)) : kInfinite};
   }  // freed before the tyre models' problems
   ModelAdequacy& adequacy = judgement.adequacy;
   suggest_tyre_model(adequacy);
@@ -137,6 +140,18 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
     judgement.gap_cannot_stand = why_it_cannot_stand(*better);
     say_a_tyre_model_fits_better(adequacy, tyre, judgement.gap_m, "this estimate's");
   }
+  // Where the batch's own plain fit would put its track under its prior, so does the judge: the
+  // held estimate's share is then what the track found leaves of the held one's uncertainty
+  // (bench/honest_sigma.cpp: the iterative method held, 4.5 mm mean sigma, 8x the Cramér-Rao
+  // sigma).
+  BatchSummary held_at_start = unfitted;
+  held_at_start.nominal = start;
+  int prior_solves = 0;
+  const HeldPlainFit held{!tyre.better_fit() || tyre.gap_share() < 1.0, adequacy.explains,
+                          scratch.gnss_noise, judgement.track_sigma_m, held_sigma_m};
+  judgement.track_under_prior =
+      judge_track_under_prior(run, options, common, held_at_start, held, prior_solves);
+  if (judgement.track_under_prior) judgement.track_sigma_m = judgement.track_under_prior->share_m;
   // Said, so that the residuals are not taken for the other method's.
   adequacy.verdict += " [judged on a batch fit of this log]";
   return judgement;

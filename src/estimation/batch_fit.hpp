@@ -237,6 +237,38 @@ bool fit_track_under_prior(CalibrationRun& run, const BatchOptions& options,
                            const CalibrationOptions& common, const BatchSummary& unfitted,
                            BatchSummary& summary);
 
+// The judge's held plain fit of another method's log (judge_model_adequacy), as
+// fit_track_under_prior's gate reads it: whether no tyre model fits the log better than it (at
+// most a tie), whether its model explains the log, its GNSS noise, the held track's share and
+// the circumferences' sigma with it.
+struct HeldPlainFit {
+  bool at_most_a_tie{};
+  bool explains{};
+  GnssNoiseReport noise;
+  std::array<double, 2> track_share_m{};
+  std::array<double, 2> sigma_m{};
+};
+// What the track under its prior says of a method's held track (vehicle.yaml's, t_0): the track
+// the plain fit finds (t +- sigma_t) and the share the held estimate carries. The circumferences'
+// slope on the track, g (their covariance with it over its variance: the conditional slope, the
+// same held or under the prior), puts a held estimate g (t_0 - t_true) off, hence
+// |g| sqrt((t_0 - t)^2 + sigma_t^2) in place of |g| times the whole track_width_uncertainty.
+struct JudgedTrack {
+  double track_m{};
+  double sigma_m{};
+  std::array<double, 2> share_m{};
+};
+// Where `held` passes fit_track_under_prior's gate: the plain model fitted again from `unfitted`
+// (its nominal is the held track) with the track under its prior and the held fit's adapted
+// noise. None where the gate fails, or the refit is not usable, its circumferences' sigma is not
+// known or its track not identified, its noise adaptation reverted or its model no longer
+// explains the log; its solves are added to `solves`.
+std::optional<JudgedTrack> judge_track_under_prior(const CalibrationRun& run,
+                                                   const BatchOptions& options,
+                                                   const CalibrationOptions& common,
+                                                   const BatchSummary& unfitted,
+                                                   const HeldPlainFit& held, int& solves);
+
 // The tyre models fitted as the plain model's judges, as auto fits its candidates: the physical
 // terms, then the regression terms only where the physical ones fit the log better but are no
 // tyre. Their criteria against the plain fit's `plain_bic` (all under the noise the plain fit
@@ -296,6 +328,9 @@ struct ModelJudgement {
   // the plain batch carries it): the other methods hold the track too.
   std::array<double, 2> track_sigma_m{};
   double track_width_uncertainty{};
+  // Where the plain fit could put the track under its prior (judge_track_under_prior): what it
+  // found, track_sigma_m being its share.
+  std::optional<JudgedTrack> track_under_prior;
 };
 ModelJudgement judge_model_adequacy(const CalibrationRun& run, const OdometryParams& start,
                                     const CalibrationOptions& common);

@@ -69,6 +69,14 @@ std::string report_ending(const CalibrationSummary& s) {
         "{:.3g} / {:.3g} mm of the circumferences' sigma\n",
         "track", 100.0 * s.track_width_uncertainty, s.estimate.track_width_m,
         1e3 * s.track_sigma_m[0], 1e3 * s.track_sigma_m[1]);
+  } else if (std::isfinite(s.judged_track_m)) {
+    text += fmt::format(
+        "{:<13}held at vehicle.yaml's {:.4f} m; the judge's plain fit, the track under its prior "
+        "(+-{:.3g} %: the two-wheel model explains this log), puts it at {:.4f} m (1-sigma "
+        "{:.2g} m): the circumferences' sigma includes {:.3g} / {:.3g} mm for the held track's "
+        "distance from it\n",
+        "track", s.estimate.track_width_m, 100.0 * s.track_width_uncertainty, s.judged_track_m,
+        s.judged_track_sigma_m, 1e3 * s.track_sigma_m[0], 1e3 * s.track_sigma_m[1]);
   } else if (s.track_share_worth_naming()) {
     text += fmt::format(
         "{:<13}the circumferences' sigma includes {:.3g} / {:.3g} mm from the track width held: "

@@ -304,6 +304,10 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
       gap_cannot_stand = judged.gap_cannot_stand;
       adapted = judged.adapted;
       summary.track_sigma_m = judged.track_sigma_m;
+      if (const auto& track = judged.track_under_prior) {
+        summary.judged_track_m = track->track_m;
+        summary.judged_track_sigma_m = track->sigma_m;
+      }
       summary.track_width_uncertainty = judged.track_width_uncertainty;
     } catch (const InsufficientDataError& error) {
       summary.model_adequacy.verdict = fmt::format("not judged: {}", error.what());
@@ -319,7 +323,8 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
     // realistic, rear-driven: the iterative method -29 mm at sigma 1.2 mm).
     const std::array<double, 2> own_sigma_m{summary.sigma_rl_m(), summary.sigma_rr_m()};
     // Held, the track is as uncertain here as in the plain batch, whose turns set the scale
-    // through it (docs/batch-calibration.md, "The track the wheels roll on"). Not in the sigma
+    // through it (docs/batch-calibration.md, "The track the wheels roll on"), or as far as the
+    // judge's track under its prior leaves it ("The track under its prior"). Not in the sigma
     // that the gap is weighed against: a tyre model carries the load that moves the track.
     for (int w = 0; w < 2; ++w) {
       const auto i = static_cast<std::size_t>(w);

@@ -25,25 +25,33 @@ std::optional<TyreJudgement> tie(const TyreModelSelection& selection) {
   return std::nullopt;
 }
 
+// fit_track_under_prior's gate, for any held plain fit that the tyre models judged: none fits the
+// log better (no gap carried, or a tie's share of it) and its model explains it (load transfer
+// moves the track the wheels roll on, and a fitted track then takes the turns' misfit: three
+// load-transfer plain fits, 5-8 sigma off), the fixes' noise was checked against their residuals
+// (adapt_gnss_noise, not reverted: under a noise taken as given the fixes may pull the scale far
+// more firmly than they can, and a fitted track follows them; bench/honest_sigma.cpp, configured
+// noise), and the held track's share is material.
+bool prior_may_stand(const BatchOptions& options, const HeldPlainFit& held) {
+  const bool material = held.track_share_m[0] > kMaterialShare * held.sigma_m[0] ||
+                        held.track_share_m[1] > kMaterialShare * held.sigma_m[1];
+  const bool noise_checked = options.adapt_gnss_noise && !held.noise.reverted;
+  return held.at_most_a_tie && held.explains && material && noise_checked &&
+         !options.estimate_track_width && options.track_width_uncertainty > 0.0;
+}
+
 bool track_prior_helps(const BatchOptions& options, const BatchSummary& fitted) {
   const TyreModelSelection& selection = fitted.tyre_selection;
-  // Only where the tyre models judged the plain fit, none fits the log better (no gap carried,
-  // or a tie's share of it) and the track was not in doubt: load transfer moves the track the
-  // wheels roll on, and a fitted track then takes the turns' misfit (three load-transfer plain
-  // fits, 5-8 sigma off).
+  // Only where the tyre models judged the plain fit and auto did not doubt the track.
   const bool judged_plain = selection.compared && selection.chosen == "none" &&
                             fitted.tyre_model.plain() && !std::isfinite(selection.free_track_bic);
   const bool at_most_a_tie = (fitted.model_spread_m[0] == 0.0 && fitted.model_spread_m[1] == 0.0) ||
                              tie(selection).has_value();
-  const bool material = fitted.track_sigma_m[0] > kMaterialShare * fitted.sigma_rl_m() ||
-                        fitted.track_sigma_m[1] > kMaterialShare * fitted.sigma_rr_m();
-  // The fixes' noise checked against their residuals (adapt_gnss_noise, not reverted): under a
-  // noise taken as given the fixes may pull the scale far more firmly than they can, and a
-  // fitted track follows them (bench/honest_sigma.cpp, configured noise).
-  const GnssNoiseReport& gnss = fitted.gnss_noise;
-  const bool noise_checked = options.adapt_gnss_noise && !gnss.reverted;
-  return judged_plain && at_most_a_tie && fitted.model_adequacy.explains && material &&
-         noise_checked && !options.estimate_track_width && options.track_width_uncertainty > 0.0;
+  return judged_plain && prior_may_stand(options, {at_most_a_tie,
+                                                   fitted.model_adequacy.explains,
+                                                   fitted.gnss_noise,
+                                                   fitted.track_sigma_m,
+                                                   {fitted.sigma_rl_m(), fitted.sigma_rr_m()}});
 }
 
 }  // namespace
@@ -78,6 +86,38 @@ bool fit_track_under_prior(CalibrationRun& run, const BatchOptions& options,
   refit.tyre_selection.other_solves += summary.solves;
   summary = std::move(refit);
   return true;
+}
+
+std::optional<JudgedTrack> judge_track_under_prior(const CalibrationRun& run,
+                                                   const BatchOptions& options,
+                                                   const CalibrationOptions& common,
+                                                   const BatchSummary& unfitted,
+                                                   const HeldPlainFit& held, int& solves) {
+  if (!prior_may_stand(options, held)) return std::nullopt;
+  BatchSummary refit = unfitted;
+  bool usable = false;
+  fit_model(run, options, common, std::nullopt, refit,
+            {.finish =
+                 [&](const FitFacts& facts) {
+                   usable = facts.usable;
+                   return usable;
+                 },
+             .noise = adapted_noise(held.noise),
+             .track_prior = true});
+  solves += refit.solves;
+  const EstimatedParameter& track = refit.parameters.at(2);
+  // The circumferences' own sigma need not pass the batch's refusal threshold (the held fit's
+  // share may be what kept it above: bench/honest_sigma.cpp, run 2), but it must be known.
+  const bool known = std::isfinite(refit.parameters.at(0).sigma) &&
+                     std::isfinite(refit.parameters.at(1).sigma) && track.identified &&
+                     track.sigma > 0.0;
+  if (!usable || !known || refit.gnss_noise.reverted || !refit.model_adequacy.explains)
+    return std::nullopt;
+  // track_sigma_m is |g| sigma_t (summarise), so the factor scales it to the held track's share.
+  const double held_offset_m = unfitted.nominal.track_width_m - track.value;
+  const double factor = std::hypot(held_offset_m, track.sigma) / track.sigma;
+  return JudgedTrack{
+      track.value, track.sigma, {factor * refit.track_sigma_m[0], factor * refit.track_sigma_m[1]}};
 }
 
 }  // namespace odocal::batch

@@ -1,5 +1,6 @@
 #include "odocal/io/calibration_io.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -122,6 +123,10 @@ json core_json(const CalibrationSummary& s, const CalibrationConfig& config) {
     out["track_width_uncertainty"] = s.track_width_uncertainty;
     out["track_share_worth_naming"] = s.track_share_worth_naming();
     out["track_under_prior"] = s.track_under_prior;
+    if (std::isfinite(s.judged_track_m)) {
+      out["judged_track_m"] = s.judged_track_m;
+      out["judged_track_sigma_m"] = s.judged_track_sigma_m;
+    }
   }
   return out;
 }

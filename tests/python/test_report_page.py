@@ -56,6 +56,18 @@ def test_a_track_under_its_prior_is_named_as_fitted_not_held():
     assert "sharing 0.0103 / 0.0106 mm" in text
 
 
+def test_a_held_track_that_the_judge_fitted_under_its_prior_names_the_track_found():
+    result = {"method": "iterative", "usable": True, "termination": "converged",
+              "circumference_rl_m": 1.95, "circumference_rr_m": 1.95,
+              "sigma_circumference_rl_m": 0.00086, "sigma_circumference_rr_m": 0.00086,
+              "track_sigma_m": [0.000405, 0.000409], "track_width_uncertainty": 0.01,
+              "track_share_worth_naming": True, "track_under_prior": False,
+              "judged_track_m": 1.59991, "judged_track_sigma_m": 0.00144}
+    text = dict(summary_rows(result))["track width held"]
+    assert text.startswith("0.405 / 0.409 mm of the circumferences' sigma")
+    assert "puts it at 1.5999 m (1-sigma 0.0014 m)" in text
+
+
 def test_the_accelerometers_forward_offset_is_shown_as_measured_at_stops_or_over_the_drive():
     result = {"method": "batch", "usable": True, "termination": "converged",
               "circumference_rl_m": 2.299, "circumference_rr_m": 2.300,

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -102,6 +103,12 @@ struct CalibrationSummary {
   // log: docs/batch-calibration.md, "The track under its prior"). track_sigma_m is then the
   // track's part of the posterior sigma, the variance that the circumference shares with it.
   bool track_under_prior{};
+  // The other methods only, which hold vehicle.yaml's track: where the judge's plain fit put the
+  // track under its prior (as the batch's own would), the track it found and its sigma (NaN
+  // otherwise). track_sigma_m is then the held track's share at that distance from it
+  // (batch_fit.hpp, JudgedTrack).
+  double judged_track_m = std::numeric_limits<double>::quiet_NaN();
+  double judged_track_sigma_m = std::numeric_limits<double>::quiet_NaN();
   // Whether that share is worth naming in a report: a tenth of either circumference's sigma
   // (comma2k19, whose fixes and Doppler pin the scale: 0.0006 mm of 4.9 mm is not). The JSON
   // carries it, so that every report names it by this one rule.
