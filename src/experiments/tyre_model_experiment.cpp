@@ -103,13 +103,25 @@ std::pair<double, double> mean_and_standard_error(const std::vector<double>& dif
   return {average, spread / std::sqrt(count)};
 }
 
-// A run's mean |error| and mean reported sigma over the two wheels (an infinite sigma: NaN).
+// One wheel's error and reported sigma in a run. JSON writes an infinite sigma (no covariance: a
+// rank-deficient fit) as null; read back as infinite, it covers any error, as it says nothing.
+struct WheelResult {
+  double error_mm{};
+  double sigma_mm{};
+};
+WheelResult wheel_result(const nlohmann::json& run, const std::string& wheel) {
+  const nlohmann::json& reported = run.at("reported_sigma_" + wheel + "_mm");
+  return {run.at("error_" + wheel + "_mm").get<double>(),
+          reported.is_null() ? std::numeric_limits<double>::infinity() : reported.get<double>()};
+}
+
+// A run's mean |error| and mean reported sigma over the two wheels.
 std::pair<double, double> run_error_and_sigma(const nlohmann::json& run) {
   double error = 0.0, sigma = 0.0;
   for (const char* wheel : {"rl", "rr"}) {
-    error += 0.5 * std::abs(run.at(std::string("error_") + wheel + "_mm").get<double>());
-    const nlohmann::json& reported = run.at(std::string("reported_sigma_") + wheel + "_mm");
-    sigma += reported.is_null() ? NAN : 0.5 * reported.get<double>();
+    const WheelResult result = wheel_result(run, wheel);
+    error += 0.5 * std::abs(result.error_mm);
+    sigma += 0.5 * result.sigma_mm;
   }
   return {error, sigma};
 }
@@ -139,14 +151,9 @@ nlohmann::json row_summary(const std::vector<nlohmann::json>& runs) {
   int inside = 0, with_model = 0;
   for (const nlohmann::json& run : runs) {
     for (const char* wheel : {"rl", "rr"}) {
-      const double error = run.at(std::string("error_") + wheel + "_mm").get<double>();
-      // JSON writes an infinite sigma (no covariance: a rank-deficient fit) as null; it covers
-      // any error, as it says nothing.
-      const nlohmann::json& reported = run.at(std::string("reported_sigma_") + wheel + "_mm");
-      const double sigma =
-          reported.is_null() ? std::numeric_limits<double>::infinity() : reported.get<double>();
-      absolute.push_back(std::abs(error));
-      inside += std::abs(error) <= 3.0 * sigma;
+      const WheelResult result = wheel_result(run, wheel);
+      absolute.push_back(std::abs(result.error_mm));
+      inside += std::abs(result.error_mm) <= 3.0 * result.sigma_mm;
     }
     position.push_back(run.at("dr_mean_position_m").get<double>());
     heading.push_back(run.at("dr_mean_heading_deg").get<double>());

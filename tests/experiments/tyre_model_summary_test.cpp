@@ -176,6 +176,13 @@ TEST(TyreModelSummary, TheIdealRunsAreComparedSeedBySeed) {
   EXPECT_NEAR(ideal.at("difference_standard_error_mm").get<double>(), 0.05, 1e-12);
   EXPECT_DOUBLE_EQ(ideal.at("none_mean_reported_sigma_mm").get<double>(), 0.1);
   EXPECT_DOUBLE_EQ(ideal.at("auto_mean_reported_sigma_mm").get<double>(), 0.05);
+  // A run without a sigma (written as null) leaves the mean without one, as in the coverage.
+  first["ideal"]["auto"]["reported_sigma_rl_mm"] = nullptr;
+  const nlohmann::json unsure = summarise_tyre_models({first, second}, {urban(1, 0.2)});
+  EXPECT_TRUE(std::isinf(
+      unsure.at("ideal_auto_against_none").at("auto_mean_reported_sigma_mm").get<double>()));
+  EXPECT_NEAR(unsure.at("ideal_auto_against_none").at("mean_abs_error_difference_mm").get<double>(),
+              0.05, 1e-12);
 }
 
 }  // namespace
