@@ -146,11 +146,9 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
   // sigma).
   BatchSummary held_at_start = unfitted;
   held_at_start.nominal = start;
-  int prior_solves = 0;
   const HeldPlainFit held{!tyre.better_fit() || tyre.gap_share() < 1.0, adequacy.explains,
                           scratch.gnss_noise, judgement.track_sigma_m, held_sigma_m};
-  judgement.track_under_prior =
-      judge_track_under_prior(run, options, common, held_at_start, held, prior_solves);
+  judgement.track_under_prior = judge_track_under_prior(run, options, common, held_at_start, held);
   if (judgement.track_under_prior) judgement.track_sigma_m = judgement.track_under_prior->share_m;
   // Said, so that the residuals are not taken for the other method's.
   adequacy.verdict += " [judged on a batch fit of this log]";

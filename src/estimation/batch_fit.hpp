@@ -262,12 +262,12 @@ struct JudgedTrack {
 // (its nominal is the held track) with the track under its prior and the held fit's adapted
 // noise. None where the gate fails, or the refit is not usable, its circumferences' sigma is not
 // known or its track not identified, its noise adaptation reverted or its model no longer
-// explains the log; its solves are added to `solves`.
+// explains the log.
 std::optional<JudgedTrack> judge_track_under_prior(const CalibrationRun& run,
                                                    const BatchOptions& options,
                                                    const CalibrationOptions& common,
                                                    const BatchSummary& unfitted,
-                                                   const HeldPlainFit& held, int& solves);
+                                                   const HeldPlainFit& held);
 
 // The tyre models fitted as the plain model's judges, as auto fits its candidates: the physical
 // terms, then the regression terms only where the physical ones fit the log better but are no

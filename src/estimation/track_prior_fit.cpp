@@ -92,7 +92,7 @@ std::optional<JudgedTrack> judge_track_under_prior(const CalibrationRun& run,
                                                    const BatchOptions& options,
                                                    const CalibrationOptions& common,
                                                    const BatchSummary& unfitted,
-                                                   const HeldPlainFit& held, int& solves) {
+                                                   const HeldPlainFit& held) {
   if (!prior_may_stand(options, held)) return std::nullopt;
   BatchSummary refit = unfitted;
   bool usable = false;
@@ -104,7 +104,6 @@ std::optional<JudgedTrack> judge_track_under_prior(const CalibrationRun& run,
                  },
              .noise = adapted_noise(held.noise),
              .track_prior = true});
-  solves += refit.solves;
   const EstimatedParameter& track = refit.parameters.at(2);
   // The circumferences' own sigma need not pass the batch's refusal threshold (the held fit's
   // share may be what kept it above: bench/honest_sigma.cpp, run 2), but it must be known.
