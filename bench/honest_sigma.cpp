@@ -18,9 +18,9 @@
 #include <cmath>
 #include <vector>
 
+#include "experiments/drifting_gnss.hpp"
 #include "experiments/truth_comparison.hpp"
 #include "odocal/estimation/calibration.hpp"
-#include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
 
@@ -52,16 +52,6 @@ struct Coverage {
   }
 };
 
-sim::Scenario circuit(int laps, std::uint64_t seed) {
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.route.laps = laps;
-  scenario.vehicle.wear_rl_mm = 1.5;
-  scenario.vehicle.wear_rr_mm = 1.0;
-  scenario.seeds.noise = seed;
-  return scenario;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -82,21 +72,19 @@ int main(int argc, char** argv) {
 
   constexpr std::array<double, 3> kGmSigmas{0.5, 1.0, 2.0};
   constexpr std::array<double, 4> kGmTaus{10.0, 30.0, 60.0, 120.0};
-  CalibrationOptions claimed;
-  claimed.reference.gnss_sigma_m = 0.1;
   BatchOptions adapted, fixed;
   adapted.track_width_uncertainty = fixed.track_width_uncertainty = track_width_uncertainty;
   fixed.adapt_gnss_noise = false;
   Coverage batch_adapted, batch_fixed, iterative;
   for (int run = 0; run < runs; ++run) {
     if (only > 0 && run + 1 != only) continue;
-    sim::Scenario scenario = circuit(laps, static_cast<std::uint64_t>(run + 1));
-    scenario.gnss.sigma_m = 0.05;
-    scenario.gnss.gauss_markov_sigma_m = kGmSigmas[static_cast<std::size_t>(run) % 3];
-    scenario.gnss.gauss_markov_tau_s = kGmTaus[static_cast<std::size_t>(run / 3) % 4];
-    const sim::SimulatedDrive drive = sim::simulate(scenario);
-    Log log = simulated_log(drive);
-    log.gnss.sigma_m.clear();  // the configuration's 0.1 m applies
+    const double gm_sigma_m = kGmSigmas[static_cast<std::size_t>(run) % 3];
+    const double gm_tau_s = kGmTaus[static_cast<std::size_t>(run / 3) % 4];
+    const sim::Scenario circuit =
+        experiments::worn_ideal_circuit(laps, static_cast<std::uint64_t>(run + 1));
+    const sim::Scenario scenario = experiments::with_drifting_gnss(circuit, gm_sigma_m, gm_tau_s);
+    const auto [drive, log, claimed] =
+        experiments::drifting_gnss_drive(circuit, gm_sigma_m, gm_tau_s);
     const double bound = experiments::scenario_cramer_rao_bound(
                              scenario, simulated_log(drive, true), drive.true_params)
                              .rms_sigma_circumference_m();
@@ -134,7 +122,8 @@ int main(int argc, char** argv) {
   double ratio_sum = 0.0, worst = 0.0;
   int adapted_clean = 0;
   for (int run = 0; run < clean_runs; ++run) {
-    const sim::Scenario scenario = circuit(laps, static_cast<std::uint64_t>(run + 101));
+    const sim::Scenario scenario =
+        experiments::worn_ideal_circuit(laps, static_cast<std::uint64_t>(run + 101));
     const sim::SimulatedDrive drive = sim::simulate(scenario);
     const Log log = simulated_log(drive, true);
     BatchOptions ideal;  // the experiments' ideal-mode wheel noise: the truth has no slip

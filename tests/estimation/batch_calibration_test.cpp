@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "../support/drifting_gnss.hpp"
+#include "experiments/drifting_gnss.hpp"
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/estimation/cramer_rao.hpp"
 #include "odocal/io/scenario_io.hpp"
@@ -174,7 +174,7 @@ TEST(BatchCalibrationOutcome, CircumferencesLooserThanRequiredAreNotIdentifiedAn
 
 TEST(BatchCalibrationNoise, AWronglyConfiguredGnssNoiseIsEstimatedAndTheSigmaCoversTheError) {
   // The GNSS drifts (Gauss-Markov, 1.5 m over 30 s) while the configuration claims 0.1 m white.
-  const auto [drive, log, claimed] = testing::drifting_gnss_drive(ideal_lap(), 1.5, 30.0);
+  const auto [drive, log, claimed] = experiments::drifting_gnss_drive(ideal_lap(), 1.5, 30.0);
   const BatchSummary adapted = calibrate_batch(log, {}, claimed);
   BatchOptions fixed;
   fixed.adapt_gnss_noise = false;
@@ -221,7 +221,7 @@ TEST(BatchCalibrationNoise, ADriftTheFirstFitHidesInItsTrajectoryIsModelledAtIts
   sim::Scenario scenario = ideal_lap();
   scenario.route.laps = 3;
   scenario.seeds.noise = 33;
-  const auto [drive, log, claimed] = testing::drifting_gnss_drive(scenario, 2.0, 60.0);
+  const auto [drive, log, claimed] = experiments::drifting_gnss_drive(scenario, 2.0, 60.0);
   BatchOptions track_exact;
   track_exact.track_width_uncertainty = 0.0;
   const BatchSummary adapted = calibrate_batch(log, track_exact, claimed);

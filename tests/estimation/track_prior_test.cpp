@@ -8,41 +8,46 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "../support/drifting_gnss.hpp"
 #include "../support/unjudged_options.hpp"
+#include "experiments/drifting_gnss.hpp"
 #include "experiments/truth_comparison.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/iterative_calibration.hpp"
 #include "odocal/io/calibration_io.hpp"
-#include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
 
 namespace odocal {
 namespace {
 
-// The built-in circuit, ideal, 3 laps, the rear tyres worn 1.5 / 1.0 mm (as in
-// bench/honest_sigma.cpp).
+// bench/honest_sigma.cpp's drive: the built-in circuit, ideal, 3 laps, the rear tyres worn
+// 1.5 / 1.0 mm.
 sim::Scenario worn_ideal_circuit(std::uint64_t noise_seed) {
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.route.laps = 3;
-  scenario.vehicle.wear_rl_mm = 1.5;
-  scenario.vehicle.wear_rr_mm = 1.0;
-  scenario.seeds.noise = noise_seed;
-  return scenario;
+  return experiments::worn_ideal_circuit(3, noise_seed);
 }
 
-// bench/honest_sigma.cpp's run 5: that circuit under a GNSS that drifts 1 m over 30 s.
-constexpr double kRun5DriftSigmaM = 1.0, kRun5DriftTauS = 30.0;
+// bench/honest_sigma.cpp's run 5: that circuit under a GNSS that drifts 1 m over 30 s, and the
+// Cramér–Rao sigma of its drive with its noise known.
+constexpr double kDriftSigmaM = 1.0, kDriftTauS = 30.0;
 
-// The Cramér–Rao sigma of run 5's drive, its noise known.
-double run_5_bound(const sim::SimulatedDrive& drive) {
-  const sim::Scenario drifting =
-      testing::with_drifting_gnss(worn_ideal_circuit(5), kRun5DriftSigmaM, kRun5DriftTauS);
-  return experiments::scenario_cramer_rao_bound(drifting, simulated_log(drive, true),
-                                                drive.true_params)
-      .rms_sigma_circumference_m();
+struct Run5 {
+  experiments::DriftingGnssDrive drifting;
+  double bound_m = 0.0;
+};
+
+// Simulated once per test process, for the tests that share it.
+const Run5& run_5() {
+  static const Run5 run = [] {
+    const sim::Scenario scenario = worn_ideal_circuit(5);
+    Run5 simulated{experiments::drifting_gnss_drive(scenario, kDriftSigmaM, kDriftTauS)};
+    const sim::SimulatedDrive& drive = simulated.drifting.drive;
+    simulated.bound_m = experiments::scenario_cramer_rao_bound(
+                            experiments::with_drifting_gnss(scenario, kDriftSigmaM, kDriftTauS),
+                            simulated_log(drive, true), drive.true_params)
+                            .rms_sigma_circumference_m();
+    return simulated;
+  }();
+  return run;
 }
 
 // The built-in circuit, ideal, under the paper's 3 m white GNSS as configured: the two-wheel
@@ -97,8 +102,7 @@ TEST(TrackPrior, AnExplainedLogIsNearTheCramerRaoBoundWithTheTrackUnderItsPrior)
 // gap to them, and its track still goes under its prior: held, the track's share was 4.3 mm of
 // a 4.35 mm sigma.
 TEST(TrackPrior, ATyreModelThatFitsAboutAsWellKeepsItsGapUnderThePrior) {
-  const auto [drive, log, claimed] =
-      testing::drifting_gnss_drive(worn_ideal_circuit(5), kRun5DriftSigmaM, kRun5DriftTauS);
+  const auto& [drive, log, claimed] = run_5().drifting;
 
   const BatchSummary fitted = calibrate_batch(log, {}, claimed);
   ASSERT_TRUE(fitted.usable()) << fitted.full_report();
@@ -124,7 +128,7 @@ TEST(TrackPrior, ATyreModelThatFitsAboutAsWellKeepsItsGapUnderThePrior) {
             3.0 * fitted.parameters.at(2).sigma);
   // Within 2.5x the Cramér–Rao sigma of the same drive with its noise known (held: 8.5x).
   const double reported = std::hypot(fitted.sigma_rl_m(), fitted.sigma_rr_m()) / std::sqrt(2.0);
-  EXPECT_LT(reported, 2.5 * run_5_bound(drive)) << fitted.full_report();
+  EXPECT_LT(reported, 2.5 * run_5().bound_m) << fitted.full_report();
 }
 
 // The iterative method holds vehicle.yaml's track. On the same drive its judge's plain fit puts
@@ -132,8 +136,7 @@ TEST(TrackPrior, ATyreModelThatFitsAboutAsWellKeepsItsGapUnderThePrior) {
 // the track found leaves of the held one's uncertainty: held, the track's 1 % made its sigma
 // 4.3 mm, 8.5x the Cramér–Rao sigma (bench/honest_sigma.cpp, run 5).
 TEST(TrackPrior, TheIterativeMethodsHeldTrackCarriesWhatTheJudgesPriorLeavesOfIt) {
-  const auto [drive, log, claimed] =
-      testing::drifting_gnss_drive(worn_ideal_circuit(5), kRun5DriftSigmaM, kRun5DriftTauS);
+  const auto& [drive, log, claimed] = run_5().drifting;
   const IterativeSummary iterative = calibrate_iterative(log, {}, claimed);
   ASSERT_TRUE(iterative.usable()) << iterative.full_report();
   EXPECT_EQ(iterative.estimate.track_width_m, log.vehicle.nominal_params().track_width_m);
@@ -151,7 +154,7 @@ TEST(TrackPrior, TheIterativeMethodsHeldTrackCarriesWhatTheJudgesPriorLeavesOfIt
   for (std::size_t w = 0; w < 2; ++w) EXPECT_GT(iterative.track_sigma_m[w], 0.0);
   const double reported =
       std::hypot(iterative.sigma_rl_m(), iterative.sigma_rr_m()) / std::sqrt(2.0);
-  EXPECT_LT(reported, 2.5 * run_5_bound(drive)) << iterative.full_report();
+  EXPECT_LT(reported, 2.5 * run_5().bound_m) << iterative.full_report();
 
   EXPECT_NE(iterative.full_report().find("the judge's plain fit, the track under its prior"),
             std::string::npos)

@@ -13,12 +13,12 @@
 #include <optional>
 #include <tuple>
 
-#include "../support/drifting_gnss.hpp"
 #include "../support/plain_bias_covered.hpp"
 #include "../support/recounted_wheels.hpp"
 #include "../support/test_scenarios.hpp"
 #include "../support/unjudged_options.hpp"
 #include "estimation/batch_fit.hpp"
+#include "experiments/drifting_gnss.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/drift_validation.hpp"
 #include "odocal/estimation/driving_state.hpp"
@@ -784,7 +784,7 @@ TEST(TyreModelBatch, AutoComparesUnderTheGnssNoiseTheResidualsShow) {
   scenario.vehicle.wear_rl_mm = 1.5;
   scenario.vehicle.wear_rr_mm = 1.0;
   scenario.seeds.noise = 28;
-  const auto [drive, log, claimed] = testing::drifting_gnss_drive(scenario, 0.5, 30.0);
+  const auto [drive, log, claimed] = experiments::drifting_gnss_drive(scenario, 0.5, 30.0);
   BatchOptions options;
   options.tyre_model = TyreModelChoice::kAuto;
   const BatchSummary chosen = calibrate_batch(log, options, claimed);
