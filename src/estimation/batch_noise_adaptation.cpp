@@ -17,7 +17,9 @@ void adapt_gnss_noise(BatchProblem& batch, const BatchOptions& options,
                       const CalibrationOptions& common, BatchSummary& summary,
                       ceres::Solver::Summary& solver, SigmaInflation inflation) {
   GnssNoiseReport& report = summary.gnss_noise;
-  report.configured_sigma_m = batch.gnss_sigma_rms_m();
+  // The configured noise, also where the fit was solved under another from the start: the
+  // adapted white sigma scales the configured one (set_gnss_noise).
+  report.configured_sigma_m = batch.configured_gnss_sigma_rms_m();
   GnssNoiseEstimate noise = estimate_gnss_noise(batch.gnss_errors());
   report.residual_sigma_m = noise.total_sigma_m;
   report.white_sigma_m = noise.white_sigma_m;

@@ -172,9 +172,10 @@ class BatchProblem {
     return rms_over_given_sigmas([this](double given) { return white_gnss_sigma_unshared(given); });
   }
 
-  // RMS of the white sigma the fixes were given (gnss.csv's sigma_m, else the configured one).
-  double gnss_sigma_rms_m() const {
-    return white_scale_ * rms_over_given_sigmas([](double given) { return given; });
+  // RMS of the white sigma the fixes were given (gnss.csv's sigma_m, else the configured one),
+  // whatever noise they are solved under now.
+  double configured_gnss_sigma_rms_m() const {
+    return rms_over_given_sigmas([](double given) { return given; });
   }
 
   // Every fix in the problem: measured minus fitted position (metres), robust loss not applied;

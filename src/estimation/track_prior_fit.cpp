@@ -65,9 +65,13 @@ bool fit_track_under_prior(CalibrationRun& run, const BatchOptions& options,
   // it, since under the prior the rival's circumferences would move with the track as the plain
   // ones do.
   const std::optional<TyreJudgement> tied = tie(summary.tyre_selection);
-  FitControls controls{.track_prior = true};
+  // Solved from the start under the noise the held fit's residuals showed (the same log and
+  // model: adapting it again from the configured one found the same noise in more solves).
+  FitControls controls{.noise = adapted_noise(summary.gnss_noise), .track_prior = true};
   if (tied) controls.carried_spread_m = summary.model_spread_m;
   fit_model(run, options, common, std::nullopt, refit, controls);
+  // Where the refit's residuals showed no other noise, how the noise was found is the held fit's.
+  if (controls.noise && !refit.gnss_noise.adapted) refit.gnss_noise = summary.gnss_noise;
   if (tied)
     say_a_tyre_model_fits_better(refit.model_adequacy, *tied, refit.model_spread_m,
                                  "the plain ones");
@@ -78,7 +82,8 @@ bool fit_track_under_prior(CalibrationRun& run, const BatchOptions& options,
   // 11.86 mm held, 2.24 mm under the prior).
   const bool neither_identified = summary.termination == Termination::kNotIdentifiable &&
                                   refit.termination == Termination::kNotIdentifiable;
-  if (!(refit.usable() || neither_identified) || !refit.model_adequacy.explains) {
+  if (!(refit.usable() || neither_identified) || !refit.model_adequacy.explains ||
+      refit.gnss_noise.reverted) {
     summary.tyre_selection.other_solves += refit.solves;
     return false;
   }

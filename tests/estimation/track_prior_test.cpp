@@ -112,6 +112,12 @@ TEST(TrackPrior, ATyreModelThatFitsAboutAsWellKeepsItsGapUnderThePrior) {
   ASSERT_GT(selection.plain_gap_share, 0.0);
   ASSERT_LT(selection.plain_gap_share, 1.0);
   EXPECT_TRUE(fitted.track_under_prior) << fitted.full_report();
+  // Solved under the noise the held fit's residuals showed, which the report still says was
+  // adapted from the configured 0.1 m (adapted again from it, the refit took 29 solves).
+  EXPECT_TRUE(fitted.gnss_noise.adapted) << fitted.full_report();
+  EXPECT_NEAR(fitted.gnss_noise.configured_sigma_m, 0.1, 1e-9);
+  EXPECT_GT(fitted.gnss_noise.model_gauss_markov_sigma_m, kDriftSigmaM / 2.0);
+  EXPECT_LE(fitted.solves, 5) << fitted.full_report();
   // The tie is still said, and its gap is still in the sigma.
   EXPECT_TRUE(fitted.model_adequacy.explains) << fitted.model_adequacy.verdict;
   EXPECT_NE(fitted.model_adequacy.verdict.find("fits it about as well"), std::string::npos)
