@@ -20,6 +20,7 @@
 
 #include "experiments/drifting_gnss.hpp"
 #include "experiments/truth_comparison.hpp"
+#include "experiments/worn_circuit.hpp"
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"

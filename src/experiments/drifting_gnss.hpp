@@ -3,15 +3,10 @@
 // Gauss-Markov error, the log without a sigma_m column, and options that claim 0.1 m of white
 // noise (the mistake the batch's GNSS noise adaptation is for; bench/honest_sigma.cpp).
 
-#include <cstdint>
-
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/sim/simulator.hpp"
 
 namespace odocal::experiments {
-
-// The built-in circuit, ideal, the rear tyres worn 1.5 / 1.0 mm: the honest-sigma bench's drive.
-sim::Scenario worn_ideal_circuit(int laps, std::uint64_t noise_seed);
 
 struct DriftingGnssDrive {
   sim::SimulatedDrive drive;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "../support/unjudged_options.hpp"
+#include "experiments/worn_circuit.hpp"
 #include "odocal/error.hpp"
 #include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
@@ -28,14 +29,7 @@ Simulated simulated_log(sim::Scenario scenario) {
   return {odocal::simulated_log(drive), drive.true_params};
 }
 
-sim::Scenario worn_circuit(int laps) {
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.route.laps = laps;
-  scenario.vehicle.wear_rl_mm = 1.5;
-  scenario.vehicle.wear_rr_mm = 1.0;
-  return scenario;
-}
+sim::Scenario worn_circuit(int laps) { return experiments::worn_ideal_circuit(laps, 1); }
 
 template <typename Summary>
 constexpr bool kHasIterations = requires(const Summary& s) {

@@ -8,8 +8,8 @@
 
 #include <cmath>
 
+#include "experiments/worn_circuit.hpp"
 #include "odocal/estimation/calibration.hpp"
-#include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
 
@@ -17,12 +17,8 @@ namespace odocal {
 namespace {
 
 sim::Scenario circuit(double max_grade, int laps) {
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.route.laps = laps;
+  sim::Scenario scenario = experiments::worn_ideal_circuit(laps, 1);
   scenario.route.terrain.max_grade = max_grade;
-  scenario.vehicle.wear_rl_mm = 1.5;
-  scenario.vehicle.wear_rr_mm = 1.0;
   return scenario;
 }
 

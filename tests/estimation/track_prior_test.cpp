@@ -11,6 +11,7 @@
 #include "../support/unjudged_options.hpp"
 #include "experiments/drifting_gnss.hpp"
 #include "experiments/truth_comparison.hpp"
+#include "experiments/worn_circuit.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/iterative_calibration.hpp"
 #include "odocal/io/calibration_io.hpp"
