@@ -8,6 +8,7 @@
 #include <random>
 
 #include "experiments/drifting_gnss.hpp"
+#include "experiments/worn_circuit.hpp"
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/estimation/cramer_rao.hpp"
 #include "odocal/io/scenario_io.hpp"
@@ -16,14 +17,7 @@
 
 namespace odocal {
 namespace {
-sim::Scenario ideal_lap() {
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.route.laps = 1;
-  scenario.vehicle.wear_rl_mm = 1.5;
-  scenario.vehicle.wear_rr_mm = 1.0;
-  return scenario;
-}
+sim::Scenario ideal_lap() { return experiments::worn_ideal_circuit(1, 1); }
 
 void expect_within_3_sigma(const BatchSummary& result, const OdometryParams& truth) {
   const double error_rl = result.estimate.circumference_rl_m - truth.circumference_rl_m;

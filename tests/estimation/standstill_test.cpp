@@ -9,10 +9,10 @@
 #include <numbers>
 
 #include "../support/unjudged_options.hpp"
+#include "experiments/worn_circuit.hpp"
 #include "odocal/error.hpp"
 #include "odocal/estimation/calibration.hpp"
 #include "odocal/estimation/log_window.hpp"
-#include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
 
@@ -22,11 +22,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 Log rate_sensor_lap(double bias_rl_deg_s, double bias_rr_deg_s, double dwell_s) {
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.route.laps = 1;
-  scenario.vehicle.wear_rl_mm = 1.5;
-  scenario.vehicle.wear_rr_mm = 1.0;
+  sim::Scenario scenario = experiments::worn_ideal_circuit(1, 1);
   scenario.driver.start_dwell_s = dwell_s;  // standing at the start and at the end
   scenario.wheels.output = WheelUnit::kRadiansPerSecond;
   scenario.wheels.rate_bias_rl_radps = bias_rl_deg_s * kDeg;

@@ -19,6 +19,7 @@
 #include "../support/unjudged_options.hpp"
 #include "estimation/batch_fit.hpp"
 #include "experiments/drifting_gnss.hpp"
+#include "experiments/worn_circuit.hpp"
 #include "odocal/estimation/batch_calibration.hpp"
 #include "odocal/estimation/drift_validation.hpp"
 #include "odocal/estimation/driving_state.hpp"
@@ -779,12 +780,8 @@ TEST(TyreModelBatch, AutoComparesUnderTheGnssNoiseTheResidualsShow) {
   // physical terms won the criterion by following part of that error, and the circumferences
   // moved 2 mm at a sigma of 0.43 mm; compared under the noise the plain fit found, the plain
   // model is kept and its error is inside 3 sigma.
-  sim::Scenario scenario = load_scenario("circuit");
-  scenario.ideal = true;
-  scenario.vehicle.wear_rl_mm = 1.5;
-  scenario.vehicle.wear_rr_mm = 1.0;
-  scenario.seeds.noise = 28;
-  const auto [drive, log, claimed] = experiments::drifting_gnss_drive(scenario, 0.5, 30.0);
+  const auto [drive, log, claimed] =
+      experiments::drifting_gnss_drive(experiments::worn_ideal_circuit(3, 28), 0.5, 30.0);
   BatchOptions options;
   options.tyre_model = TyreModelChoice::kAuto;
   const BatchSummary chosen = calibrate_batch(log, options, claimed);

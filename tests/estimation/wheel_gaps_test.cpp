@@ -8,8 +8,8 @@
 
 #include <cmath>
 
+#include "experiments/worn_circuit.hpp"
 #include "odocal/estimation/calibration.hpp"
-#include "odocal/io/scenario_io.hpp"
 #include "odocal/io/simulation_writer.hpp"
 #include "odocal/sim/simulator.hpp"
 
@@ -68,12 +68,7 @@ Log with_gap_mid_turn(Log log, double seconds, GapKind kind) {
 class WheelGapCalibration : public ::testing::TestWithParam<GapKind> {
  protected:
   static void SetUpTestSuite() {
-    sim::Scenario scenario = load_scenario("circuit");
-    scenario.ideal = true;
-    scenario.route.laps = 2;
-    scenario.vehicle.wear_rl_mm = 1.5;
-    scenario.vehicle.wear_rr_mm = 1.0;
-    clean_ = new Log(simulated_log(sim::simulate(scenario)));
+    clean_ = new Log(simulated_log(sim::simulate(experiments::worn_ideal_circuit(2, 1))));
   }
   static void TearDownTestSuite() { delete clean_; }
   static Log* clean_;
