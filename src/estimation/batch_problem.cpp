@@ -7,11 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <utility>
 #include <vector>
 
 #include "batch_covariance.hpp"
 #include "odocal/error.hpp"
+#include "odocal/model/angle.hpp"
 
 namespace odocal::batch {
 namespace {
@@ -260,7 +262,25 @@ ceres::Solver::Summary BatchProblem::solve(int max_iterations) {
   solver.initial_trust_region_radius = 1e8;
   ceres::Solver::Summary summary;
   ceres::Solve(solver, problem_.get(), &summary);
+  make_yaws_continuous();
   return summary;
+}
+
+void BatchProblem::make_yaws_continuous() {
+  for (std::size_t i = 0; i + 1 < poses_.size() && i < odometry_.size(); ++i) {
+    double turn = 0.0;
+    if (!gap_segment(i) && rough_segment_[i] == 0) {
+      turn = odometry_[i].residual.motion.delta(2);
+    } else if (i < gyro_turns_.size() && gyro_turns_[i]) {
+      turn = gyro_turns_[i]->integrated_rad;
+    } else {
+      continue;
+    }
+    const double change = poses_[i + 1][2] - poses_[i][2];
+    // Only a whole turn moves a yaw: every other pose keeps its value to the bit.
+    if (std::abs(change - turn) > std::numbers::pi)
+      poses_[i + 1][2] = poses_[i][2] + turn + wrap_angle(change - turn);
+  }
 }
 
 double BatchProblem::change_from(const Eigen::Ref<const batch::ParamsVector>& earlier) const {

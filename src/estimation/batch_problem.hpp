@@ -536,6 +536,11 @@ class BatchProblem {
 
   // Zero-order hold of the yaw rate over each keyframe interval the IMU covers.
   void add_gyro();
+  // After a solve: each pose's yaw within half a turn of its predecessor's plus the interval's
+  // measured turn (the wheels', else the gyro's). The residuals measure turns modulo 2 pi, so a
+  // solution may leave two poses a whole turn apart where the reference that started them swept
+  // one; whatever reads a turn from two poses (model adequacy, mounting) takes them continuous.
+  void make_yaws_continuous();
 
   void add_gauss_markov();
 

@@ -120,8 +120,9 @@ struct HeadingResidual {
   }
 };
 
-// The gyro's yaw change over a keyframe interval (integrated yaw rate) against the poses. Pose
-// yaws are continuous (not wrapped), so a change beyond +-pi in a long interval stays itself.
+// The gyro's yaw change over a keyframe interval (integrated yaw rate) against the poses' change,
+// their difference wrapped: the gyro's own turn may exceed +-pi in a long interval, their error
+// may not.
 struct GyroResidual {
   double integrated_rad{};
   double duration_s{};
@@ -129,8 +130,10 @@ struct GyroResidual {
 
   template <typename T>
   bool operator()(const T* pose_a, const T* pose_b, const T* gyro_bias, T* residual) const {
-    const T change = pose_b[2] - pose_a[2];
-    residual[0] = (change - (integrated_rad - gyro_bias[0] * duration_s)) / sigma_rad;
+    // As the odometry's: poses a whole turn apart are the same heading, and the layer-1
+    // reference that starts the poses may settle a turn away from its first yaw.
+    const T error = pose_b[2] - pose_a[2] - (integrated_rad - gyro_bias[0] * duration_s);
+    residual[0] = wrapped(error) / sigma_rad;
     return true;
   }
 };

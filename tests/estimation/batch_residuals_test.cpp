@@ -120,6 +120,21 @@ TEST(BatchResiduals, VanishAtTheirClosedFormSolutions) {
   EXPECT_NEAR(std::hypot(residual[0], residual[1]), 0.0, 1e-12);
 }
 
+// Poses a whole turn apart are the same heading: the batch's start poses come from the layer-1
+// reference, whose yaw may settle a turn away from where it started (a course taken while the car
+// barely moves). The gyro's turn is measured against the poses' turn modulo 2 pi, as the
+// odometry's is; unwrapped, 2 pi over 0.003 rad was a residual the solver bent the turns to undo.
+TEST(BatchResiduals, TheGyroTurnIsTheSameAWholeTurnAway) {
+  const double pose_a[3] = {0.0, 0.0, 0.0}, bias[1] = {0.001};
+  const batch::GyroResidual gyro{0.35 + 0.001 * 2.0, 2.0, 0.003};  // 0.35 rad turned in 2 s
+  for (const double turns : {-2.0, -1.0, 0.0, 1.0}) {
+    const double pose_b[3] = {5.0, 1.0, 0.35 + 0.01 + turns * 2.0 * M_PI};
+    double residual[1];
+    gyro(pose_a, pose_b, bias, residual);
+    EXPECT_NEAR(residual[0], 0.01 / 0.003, 1e-9) << turns << " turns apart";
+  }
+}
+
 TEST(BatchCalibration, SaysWhatAStraightDriveCannotIdentify) {
   sim::Scenario scenario =
       parse_scenario("route:\n  segments:\n    - straight: 3000\n", "straight.yaml");

@@ -75,3 +75,18 @@ def test_odocal_finds_the_static_circumferences_of_a_kinematic_drive(tmp_path):
     # The wear (1.5 and 1.0 mm of radius) is what it found, well beyond that sigma.
     assert summary["circumference_rl_m"] < summary["circumference_rr_m"] - 2 * math.pi * 4e-4
 
+
+def test_a_long_wait_before_the_first_turn_leaves_the_plain_fit_explaining_the_drive(tmp_path):
+    # Seed 9's car stands 23 s before it drives. The layer-1 reference's yaw, taken from a course
+    # while the car barely moves, settles a whole turn from where it started; the batch's gyro
+    # residual once measured that turn unwrapped and bent the fit's turns to undo it (the heading
+    # residual followed curvature at rho -0.97, chi2/dof 233, their difference 0.6 mm off).
+    log = tmp_path / "log"
+    subprocess.run(["/usr/bin/python3", GENERATOR, str(log), "--seed", "9"], check=True)
+    result = tmp_path / "result.json"
+    done = subprocess.run([os.environ["ODOCAL_CLI"], "calibrate", str(log), "--method", "batch",
+                           "--to", "1150", "--json", str(result)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr
+    adequacy = json.load(open(result))["model_adequacy"]
+    assert adequacy["explains"], adequacy["verdict"]
+    assert adequacy["chi2_per_dof"] < 1.0
