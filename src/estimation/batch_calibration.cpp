@@ -115,10 +115,11 @@ batch::ModelJudgement batch::judge_model_adequacy(const CalibrationRun& run,
     }
     const double scale = scratch.gnss_noise.covariance_scale;
     const auto u = std::isfinite(scale) ? batch.uncertainty() : std::nullopt;
-    if (u && scratch.gnss_noise.adapted) {
-      judgement.adapted = ModelJudgement::AdaptedFit{
+    if (u) {
+      judgement.plain = ModelJudgement::PlainFit{
           {batch.params()[0], batch.params()[1]},
-          {std::sqrt(scale * u->params(0, 0)), std::sqrt(scale * u->params(1, 1))}};
+          {std::sqrt(scale * u->params(0, 0)), std::sqrt(scale * u->params(1, 1))},
+          scratch.gnss_noise.adapted};
     }
     judgement.adequacy = assess_model_adequacy(batch.odometry_errors());
     batch.add_considered_uncertainty();

@@ -316,14 +316,15 @@ struct ModelJudgement {
   std::array<double, 2> gap_m{};  // zero where no tyre model fits the log better
   // Where the gap is to a model that cannot stand (decisive_fit_that_cannot_stand): why not.
   std::string gap_cannot_stand;
-  // Where the plain fit's residuals showed a GNSS noise other than the configured one: that
-  // fit's circumferences and their sigma under the noise they showed (none otherwise). The batch
-  // is at the Cramér-Rao bound, and no estimate from the same log is surer than it.
-  struct AdaptedFit {
+  // The plain fit's circumferences and their sigma under the GNSS noise its residuals showed
+  // (none where it has no sigma), and whether that noise is other than the configured one. The
+  // batch is at the Cramér-Rao bound, and no estimate from the same log is surer than it.
+  struct PlainFit {
     std::array<double, 2> circumference_m{};
     std::array<double, 2> sigma_m{};
+    bool noise_adapted = false;
   };
-  std::optional<AdaptedFit> adapted;
+  std::optional<PlainFit> plain;
   // What the held track's uncertainty moves the circumferences by (track_width_uncertainty, as
   // the plain batch carries it): the other methods hold the track too.
   std::array<double, 2> track_sigma_m{};

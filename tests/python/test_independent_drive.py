@@ -12,9 +12,9 @@ SOURCE = os.environ["ODOCAL_SOURCE_DIR"]
 GENERATOR = os.path.join(SOURCE, "tools", "independent_drive.py")
 
 
-def drive(out, *options):
-    subprocess.run(["/usr/bin/python3", GENERATOR, str(out), "--distance-km", "3", *options],
-                   check=True)
+def drive(out, *options, distance_km=3):
+    subprocess.run(["/usr/bin/python3", GENERATOR, str(out), "--distance-km", str(distance_km),
+                    *options], check=True)
     truth = {}
     for line in open(out / "truth.yaml"):
         key, _, value = line.partition(":")
@@ -90,3 +90,26 @@ def test_a_long_wait_before_the_first_turn_leaves_the_plain_fit_explaining_the_d
     adequacy = json.load(open(result))["model_adequacy"]
     assert adequacy["explains"], adequacy["verdict"]
     assert adequacy["chi2_per_dof"] < 1.0
+
+
+def test_an_iterative_estimate_far_from_the_batch_fit_of_its_log_is_refused(tmp_path):
+    # 3 m fixes and no heading.csv: the filter's reference, its heading the course alone, lags
+    # through the turns and put the iterative method 17.7 mm short at a sigma of 3.4 mm; the
+    # batch's fit of the same log is 0.0 mm off, and the smoother's reference 0.1 mm.
+    log = tmp_path / "log"
+    truth = drive(log, "--seed", "4", "--gnss-sigma", "3", distance_km=10)
+    result = tmp_path / "result.json"
+    command = [os.environ["ODOCAL_CLI"], "calibrate", str(log), "--method", "iterative",
+               "--json", str(result)]
+    refused = subprocess.run(command, capture_output=True, text=True)
+    assert refused.returncode == 3, refused.stdout + refused.stderr
+    assert "layer-1 reference is off" in refused.stderr
+    assert "--reference smoother" in refused.stderr
+    summary = json.load(open(result))
+    for wheel in ("circumference_rl_m", "circumference_rr_m"):  # the sigma covers it all the same
+        assert abs(summary[wheel] - truth[wheel]) < 1.5 * summary[f"sigma_{wheel}"]
+    smoothed = subprocess.run(command + ["--reference", "smoother"], capture_output=True, text=True)
+    assert smoothed.returncode == 0, smoothed.stdout + smoothed.stderr
+    summary = json.load(open(result))
+    for wheel in ("circumference_rl_m", "circumference_rr_m"):
+        assert abs(summary[wheel] - truth[wheel]) < 3 * summary[f"sigma_{wheel}"]
