@@ -41,14 +41,14 @@ BODY = {"mass_kg": 1500.0, "cg_height_m": 0.55, "rear_axle_load_share": 0.46,
 WHEELBASE_M, TRACK_M = 2.7, 1.6
 
 
-def road_curvature(rng, length_m):
+def road_curvature(rng, length_m, stop_share):
     """Curvature (1/m) every ROUTE_STEP_M along a random road, and the indices of its stops."""
     pieces, stops, total = [(60.0, 0.0, 0.0)], [], 60.0  # (length, curvature from, to)
     while total < length_m:
         straight = rng.uniform(100.0, 600.0)
         pieces.append((straight, 0.0, 0.0))
         total += straight
-        if rng.random() < 0.25:
+        if rng.random() < stop_share:
             stops.append(total)
         radius = math.exp(rng.uniform(math.log(20.0), math.log(400.0)))
         angle = math.radians(rng.uniform(20.0, 120.0))
@@ -113,6 +113,8 @@ def main():
     parser.add_argument("--max-lateral", type=float, default=2.5, help="m/s^2")
     parser.add_argument("--max-accel", type=float, default=1.5, help="m/s^2")
     parser.add_argument("--max-brake", type=float, default=2.0, help="m/s^2")
+    parser.add_argument("--stop-share", type=float, default=0.25,
+                        help="share of straights that end in a stop (5-30 s)")
     parser.add_argument("--drivetrain", choices=["front", "rear"], default="front")
     parser.add_argument("--load-mm-per-kn", type=float, default=0.0)
     parser.add_argument("--slip-stiffness", type=float, default=0.0, help="0: no slip")
@@ -129,7 +131,7 @@ def main():
     route_rng = np.random.default_rng(args.seed)
     noise_rng = np.random.default_rng(10_000 + args.seed)
 
-    curvature, stops = road_curvature(route_rng, 1e3 * args.distance_km)
+    curvature, stops = road_curvature(route_rng, 1e3 * args.distance_km, args.stop_share)
     road_s = ROUTE_STEP_M * np.arange(len(curvature))
     t, v = drive_in_time(route_rng, speed_profile(curvature, stops, args), stops)
     dt = 1.0 / FINE_HZ
