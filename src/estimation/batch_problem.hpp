@@ -534,7 +534,7 @@ class BatchProblem {
 
   void add_folds();
 
-  // Zero-order hold of the yaw rate over each keyframe interval the IMU covers.
+  // The gyro's turn over each keyframe interval the IMU covers (the trapezoid of its samples).
   void add_gyro();
   // After a solve: each pose's yaw within half a turn of its predecessor's plus the interval's
   // measured turn (the wheels', else the gyro's). The residuals measure turns modulo 2 pi, so a
