@@ -261,6 +261,7 @@ sim::Scenario parse_scenario(const std::string& yaml_text, const std::string& fi
       dynamics->read("drive_front_share_all", d.drive_front_share_all, 0.0, 1.0);
       dynamics->read("radius_load_sensitivity_m_per_n", d.radius_load_sensitivity_m_per_n, 0.0,
                      1e-4);
+      dynamics->read("radius_speed_growth_s2pm2", d.radius_speed_growth_s2pm2, 0.0, 1e-4);
       dynamics->read("max_steer_rad", d.max_steer_rad, 0.05, 1.2);
       dynamics->read("preview_distance_m", d.preview_distance_m, 0.5, 100.0);
       dynamics->read("speed_gain_1ps", d.speed_gain_1ps, 0.0, 100.0);
@@ -387,6 +388,7 @@ std::string scenario_to_yaml(const sim::Scenario& s) {
   key("drivetrain", enum_name(d.drivetrain));
   key("drive_front_share_all", d.drive_front_share_all);
   key("radius_load_sensitivity_m_per_n", d.radius_load_sensitivity_m_per_n);
+  key("radius_speed_growth_s2pm2", d.radius_speed_growth_s2pm2);
   key("max_steer_rad", d.max_steer_rad);
   key("preview_distance_m", d.preview_distance_m);
   key("speed_gain_1ps", d.speed_gain_1ps);

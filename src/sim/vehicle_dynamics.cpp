@@ -171,8 +171,9 @@ class Vehicle {
   double wheel_rate(double contact_speed, double force_n, double load_n, double static_load_n,
                     double static_radius_m, double pressure) const {
     const double slip = longitudinal_slip(force_n, load_n);
+    const double growth = 1.0 + c_.radius_speed_growth_s2pm2 * contact_speed * contact_speed;
     return contact_speed * (1.0 + slip) /
-           wheel_radius(load_n, static_load_n, static_radius_m, pressure);
+           (wheel_radius(load_n, static_load_n, static_radius_m, pressure) * growth);
   }
 
   const VehicleDynamicsConfig& c_;

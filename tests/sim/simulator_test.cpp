@@ -376,6 +376,22 @@ TEST(RealisticSimulator, TheForceFollowsTheCommandThroughTheActuatorsLag) {
   EXPECT_LT(largest_step_over_range(0.1), 1.0 - std::exp(-0.02 / 0.1));
 }
 
+// Centrifugal growth: the rolling radius grows by k v^2 at the wheel's speed (free-rolling rear
+// wheels, so that no slip enters), and not at all with the growth off.
+TEST(RealisticSimulator, SteadyRollingRadiusGrowsWithTheSquareOfTheSpeed) {
+  VehicleDynamicsConfig c;
+  c.drivetrain = Drivetrain::kFront;
+  const StaticRearRadii radii{0.31, 0.312};
+  for (const double speed : {5.0, 25.0}) {
+    EXPECT_NEAR(steady_rolling_radii_m(c, 2.7, 1.6, radii, speed)[0], radii.rl_m, 1e-12);
+    c.radius_speed_growth_s2pm2 = 2e-6;
+    const auto grown = steady_rolling_radii_m(c, 2.7, 1.6, radii, speed);
+    EXPECT_NEAR(grown[0], radii.rl_m * (1.0 + 2e-6 * speed * speed), 1e-12);
+    EXPECT_NEAR(grown[1], radii.rr_m * (1.0 + 2e-6 * speed * speed), 1e-12);
+    c.radius_speed_growth_s2pm2 = 0.0;
+  }
+}
+
 TEST(RealisticSimulator, SteadyRollingCircumferenceHasTheDriveSlipOfTheResistance) {
   // Straight at a steady speed a rear-driven car's rear wheels push the drag and rolling
   // resistance: each slips by the inverse magic formula of half that force on its static load,
