@@ -31,7 +31,7 @@ GENERATOR = os.path.join(SOURCE, "tools", "independent_drive.py")
 
 # Each case: tools/independent_drive.py's options. A slip stiffness of 20 per unit load and 0.4 mm
 # of radius per kN are a passenger tyre's, 12 and 0.8 a soft one's; 2e-6 per (m/s)^2 of speed
-# growth is the Magic Formula 6.1 example tyre's centrifugal growth (q_V1 7.2e-4 at 16.7 m/s).
+# growth is 0.125 % at 25 m/s (the Magic Formula grows the free radius by q_V1 (R0 W / V0)^2).
 CASES = {
     "ideal": [],
     "load": ["--load-mm-per-kn", "0.4"],

@@ -47,8 +47,8 @@ struct VehicleDynamicsConfig {
   // Effective rolling radius change per N of load: radial tyres keep it nearly load-independent
   // (stiff belt), ~0.4 mm per kN; a third of the deflection (1.3e-6) would be a bias-ply tyre.
   double radius_load_sensitivity_m_per_n = 4e-7;
-  // Centrifugal growth of the rolling radius per (m/s)^2 of the wheel's speed: a radial tyre's is
-  // about 1e-6 to 3e-6 (the Magic Formula 6.1 example tyre's q_V1 of 7.2e-4 at 16.7 m/s: 2.6e-6).
+  // Centrifugal growth of the rolling radius per (m/s)^2 of the wheel's speed (the Magic
+  // Formula's q_V1 term on the free radius); 2e-6 is 0.125 % at 25 m/s.
   // Off by default: the physical terms have no such term yet (docs/tyre-model.md, "On drives
   // odocal did not simulate").
   double radius_speed_growth_s2pm2 = 0.0;
