@@ -106,7 +106,7 @@ void refuse_a_gap_beyond_the_estimates_own_sigma(const std::array<double, 2>& ga
 // iterative method on the filter's reference: -1.9 to -17.7 mm at sigma 2.5-3.4 mm (seeds 1-6;
 // the smoother's reference -0.1 mm, the batch's 0.0 mm at seed 4).
 void claim_no_less_than_the_plain_batch(const batch::ModelJudgement::PlainFit& batch,
-                                        CalibrationSummary& summary) {
+                                        bool smoothed_reference, CalibrationSummary& summary) {
   const std::array<double, 2> estimate{summary.estimate.circumference_rl_m,
                                        summary.estimate.circumference_rr_m};
   const std::array<double, 2> own_sigma_m{summary.sigma_rl_m(), summary.sigma_rr_m()};
@@ -144,11 +144,13 @@ void claim_no_less_than_the_plain_batch(const batch::ModelJudgement::PlainFit& b
   summary.termination = Termination::kNotIdentifiable;
   summary.message = fmt::format(
       "this estimate is {:+.3g} / {:+.3g} mm from the batch's fit of the same model to the same "
-      "log, {:.1f} / {:.1f} times its own 1-sigma: its layer-1 reference is off (a filter lags "
-      "through the turns where the log has no heading.csv and coarse fixes); calibrate with "
-      "--reference smoother, or with --method batch",
+      "log, {:.1f} / {:.1f} times its own 1-sigma: its layer-1 reference is off{}",
       1e3 * gap_m[0], 1e3 * gap_m[1], std::abs(gap_m[0]) / own_sigma_m[0],
-      std::abs(gap_m[1]) / own_sigma_m[1]);
+      std::abs(gap_m[1]) / own_sigma_m[1],
+      smoothed_reference ? "; calibrate with --method batch"
+                         : " (a filter lags through the turns where the log has no heading.csv "
+                           "and coarse fixes); calibrate with --reference smoother, or with "
+                           "--method batch");
 }
 
 // Whether the circumferences and track are numbers (not a diverged fit's).
@@ -338,7 +340,10 @@ void CalibrationRun::finish(CalibrationSummary& summary) {
     // rear-driven: the iterative method -40.8 mm at sigma 1.5 mm, the judge's chi2/dof 592).
     summary.misfit_sigma_scale = misfit_sigma_scale(summary.model_adequacy);
     summary.covariance *= summary.misfit_sigma_scale * summary.misfit_sigma_scale;
-    if (plain) claim_no_less_than_the_plain_batch(*plain, summary);
+    if (plain) {
+      const bool smoothed = options_.reference.mode == ReferenceMode::kSmoother;
+      claim_no_less_than_the_plain_batch(*plain, smoothed, summary);
+    }
     // Where a tyre model fits the log better, this estimate is the circumference the drive
     // rolled on, and the one at rest lies as far away as that model's (the built-in circuit,
     // realistic, rear-driven: the iterative method -29 mm at sigma 1.2 mm).
