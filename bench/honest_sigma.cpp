@@ -81,11 +81,9 @@ int main(int argc, char** argv) {
     if (only > 0 && run + 1 != only) continue;
     const double gm_sigma_m = kGmSigmas[static_cast<std::size_t>(run) % 3];
     const double gm_tau_s = kGmTaus[static_cast<std::size_t>(run / 3) % 4];
-    const sim::Scenario circuit =
-        experiments::worn_ideal_circuit(laps, static_cast<std::uint64_t>(run + 1));
-    const sim::Scenario scenario = experiments::with_drifting_gnss(circuit, gm_sigma_m, gm_tau_s);
-    const auto [drive, log, claimed] =
-        experiments::drifting_gnss_drive(circuit, gm_sigma_m, gm_tau_s);
+    const auto [scenario, drive, log, claimed] = experiments::drifting_gnss_drive(
+        experiments::worn_ideal_circuit(laps, static_cast<std::uint64_t>(run + 1)), gm_sigma_m,
+        gm_tau_s);
     const double bound = experiments::scenario_cramer_rao_bound(
                              scenario, simulated_log(drive, true), drive.true_params)
                              .rms_sigma_circumference_m();

@@ -9,14 +9,11 @@
 namespace odocal::experiments {
 
 struct DriftingGnssDrive {
+  sim::Scenario scenario;  // the given one with its GNSS made to drift: what was simulated
   sim::SimulatedDrive drive;
   Log log;
   CalibrationOptions claimed;  // 0.1 m of white GNSS noise
 };
-
-// The scenario's GNSS made to drift so (what drifting_gnss_drive simulates).
-sim::Scenario with_drifting_gnss(sim::Scenario scenario, double gauss_markov_sigma_m,
-                                 double gauss_markov_tau_s);
 
 DriftingGnssDrive drifting_gnss_drive(sim::Scenario scenario, double gauss_markov_sigma_m,
                                       double gauss_markov_tau_s);

@@ -168,7 +168,8 @@ TEST(BatchCalibrationOutcome, CircumferencesLooserThanRequiredAreNotIdentifiedAn
 
 TEST(BatchCalibrationNoise, AWronglyConfiguredGnssNoiseIsEstimatedAndTheSigmaCoversTheError) {
   // The GNSS drifts (Gauss-Markov, 1.5 m over 30 s) while the configuration claims 0.1 m white.
-  const auto [drive, log, claimed] = experiments::drifting_gnss_drive(ideal_lap(), 1.5, 30.0);
+  const auto [scenario, drive, log, claimed] =
+      experiments::drifting_gnss_drive(ideal_lap(), 1.5, 30.0);
   const BatchSummary adapted = calibrate_batch(log, {}, claimed);
   BatchOptions fixed;
   fixed.adapt_gnss_noise = false;
@@ -215,7 +216,8 @@ TEST(BatchCalibrationNoise, ADriftTheFirstFitHidesInItsTrajectoryIsModelledAtIts
   sim::Scenario scenario = ideal_lap();
   scenario.route.laps = 3;
   scenario.seeds.noise = 33;
-  const auto [drive, log, claimed] = experiments::drifting_gnss_drive(scenario, 2.0, 60.0);
+  const auto [drifting, drive, log, claimed] =
+      experiments::drifting_gnss_drive(scenario, 2.0, 60.0);
   BatchOptions track_exact;
   track_exact.track_width_uncertainty = 0.0;
   const BatchSummary adapted = calibrate_batch(log, track_exact, claimed);

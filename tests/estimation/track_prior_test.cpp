@@ -39,13 +39,13 @@ struct Run5 {
 // Simulated once per test process, for the tests that share it.
 const Run5& run_5() {
   static const Run5 run = [] {
-    const sim::Scenario scenario = worn_ideal_circuit(5);
-    Run5 simulated{experiments::drifting_gnss_drive(scenario, kDriftSigmaM, kDriftTauS)};
+    Run5 simulated{
+        experiments::drifting_gnss_drive(worn_ideal_circuit(5), kDriftSigmaM, kDriftTauS)};
     const sim::SimulatedDrive& drive = simulated.drifting.drive;
-    simulated.bound_m = experiments::scenario_cramer_rao_bound(
-                            experiments::with_drifting_gnss(scenario, kDriftSigmaM, kDriftTauS),
-                            simulated_log(drive, true), drive.true_params)
-                            .rms_sigma_circumference_m();
+    simulated.bound_m =
+        experiments::scenario_cramer_rao_bound(simulated.drifting.scenario,
+                                               simulated_log(drive, true), drive.true_params)
+            .rms_sigma_circumference_m();
     return simulated;
   }();
   return run;
@@ -103,7 +103,7 @@ TEST(TrackPrior, AnExplainedLogIsNearTheCramerRaoBoundWithTheTrackUnderItsPrior)
 // gap to them, and its track still goes under its prior: held, the track's share was 4.3 mm of
 // a 4.35 mm sigma.
 TEST(TrackPrior, ATyreModelThatFitsAboutAsWellKeepsItsGapUnderThePrior) {
-  const auto& [drive, log, claimed] = run_5().drifting;
+  const auto& [scenario, drive, log, claimed] = run_5().drifting;
 
   const BatchSummary fitted = calibrate_batch(log, {}, claimed);
   ASSERT_TRUE(fitted.usable()) << fitted.full_report();
@@ -143,7 +143,7 @@ TEST(TrackPrior, ATyreModelThatFitsAboutAsWellKeepsItsGapUnderThePrior) {
 // the track found leaves of the held one's uncertainty: held, the track's 1 % made its sigma
 // 4.3 mm, 8.5x the Cramér–Rao sigma (bench/honest_sigma.cpp, run 5).
 TEST(TrackPrior, TheIterativeMethodsHeldTrackCarriesWhatTheJudgesPriorLeavesOfIt) {
-  const auto& [drive, log, claimed] = run_5().drifting;
+  const auto& [scenario, drive, log, claimed] = run_5().drifting;
   const IterativeSummary iterative = calibrate_iterative(log, {}, claimed);
   ASSERT_TRUE(iterative.usable()) << iterative.full_report();
   EXPECT_EQ(iterative.estimate.track_width_m, log.vehicle.nominal_params().track_width_m);

@@ -780,7 +780,7 @@ TEST(TyreModelBatch, AutoComparesUnderTheGnssNoiseTheResidualsShow) {
   // physical terms won the criterion by following part of that error, and the circumferences
   // moved 2 mm at a sigma of 0.43 mm; compared under the noise the plain fit found, the plain
   // model is kept and its error is inside 3 sigma.
-  const auto [drive, log, claimed] =
+  const auto [scenario, drive, log, claimed] =
       experiments::drifting_gnss_drive(experiments::worn_ideal_circuit(3, 28), 0.5, 30.0);
   BatchOptions options;
   options.tyre_model = TyreModelChoice::kAuto;
