@@ -25,6 +25,9 @@ import re
 import shutil
 import subprocess
 
+# The tyre model bench's tallies (this script's directory is on the path when it runs).
+from tyre_model_bench import fits_chosen, mean
+
 CLI = os.environ.get("ODOCAL_CLI", "build/apps/odocal/odocal")
 SOURCE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 GENERATOR = os.path.join(SOURCE, "tools", "independent_drive.py")
@@ -102,10 +105,6 @@ def calibrate(log):
     return row
 
 
-def mean(values):
-    return sum(values) / len(values) if values else float("nan")
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--seeds", type=int, default=10)
@@ -134,9 +133,6 @@ def main():
             claims = [(e, s) for r in rows for e, s in zip(r["claim_errors"], r["sigmas"])]
             wrong = [r for r in rows if r["usable"] and
                      any(abs(e) > 3 * s for e, s in zip(r["claim_errors"], r["sigmas"]))]
-            chosen = {}
-            for r in rows:
-                chosen[r["chosen"]] = chosen.get(r["chosen"], 0) + 1
             figures = {"case": case, "gnss_sigma_m": gnss_sigma,
                        "usable": sum(r["usable"] for r in rows), "runs": rows,
                        "mean_abs_error_mm": 1e3 * mean([abs(e) for e, _ in pairs]),
@@ -152,7 +148,7 @@ def main():
                   f"{figures['mean_abs_error_mm']:.2f} | "
                   f"{figures['inside_3_sigma']}/{figures['scored']} | "
                   f"{figures['usable_outside_3_sigma']} | {figures['mean_sigma_mm']:.2f} | "
-                  f"{', '.join(f'{k} {v}' for k, v in sorted(chosen.items()))} | "
+                  f"{fits_chosen(rows)} | "
                   f"{figures['dr_calibrated_m']:.1f} | {figures['dr_static_m']:.1f} |",
                   flush=True)
     if args.json:
