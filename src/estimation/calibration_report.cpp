@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "odocal/model/angle.hpp"
+#include "odocal/model/tyre_car_prior.hpp"
 
 namespace odocal {
 namespace {
@@ -19,6 +20,12 @@ std::string errors_line(const char* label, const DeadReckoningSummary& s) {
 std::string estimate_line(const char* name, double estimate, double nominal, double sigma) {
   return fmt::format("{}         {:.6f} m ({:+.3f} mm from nominal, 1-sigma {:.3f} mm)\n", name,
                      estimate, 1e3 * (estimate - nominal), 1e3 * sigma);
+}
+
+bool physical_terms_fitted(const TyreModel& model) {
+  return std::any_of(kTyreCoefficients.begin(), kTyreCoefficients.end(), [&](const auto& c) {
+    return c.terms == TyreTerms::kPhysical && model.*(c.member) != 0.0;
+  });
 }
 
 }  // namespace
@@ -94,6 +101,24 @@ std::string report_ending(const CalibrationSummary& s) {
         "rest a driven axle's are larger by its slip at cruise (about 1.6 per mille at 10 m/s); "
         "the batch's tyre_model: physical separates the two\n",
         "rolling");
+  }
+  if (s.usable() && physical_terms_fitted(s.tyre_model)) {
+    // The circumference at rest is extrapolated from the drive's states with a radius that does
+    // not grow: a tyre that grows puts it this far below (independent drives with growth, slip
+    // and load: 2.2 mm off at a sigma of 0.31 mm; docs/tyre-model.md).
+    const double v2 = s.coverage.mean_square_speed_m2ps2();
+    const double below_m = kCarGrowthPerSpeedSquaredS2pm2 * v2 * 0.5 *
+                           (s.estimate.circumference_rl_m + s.estimate.circumference_rr_m);
+    const double sigma_m = std::max(s.sigma_rl_m(), s.sigma_rr_m());
+    if (below_m > 0.5 * sigma_m) {
+      text += fmt::format(
+          "{:<13}not in the tyre terms: a passenger tyre's radius grows with speed (centrifugal, "
+          "about {:.2g} per (m/s)^2), which at this drive's distance-weighted mean v^2 of {:.0f} "
+          "(m/s)^2 would put the circumferences at rest {:.2g} mm below these ({:.2g} times their "
+          "sigma, which leaves it out); for a garage's speeds, calibrate on a slow drive or check "
+          "with `validate` on one\n",
+          "growth", kCarGrowthPerSpeedSquaredS2pm2, v2, 1e3 * below_m, below_m / sigma_m);
+    }
   }
   if (const std::string prepared = s.preparation.describe(); !prepared.empty())
     text += fmt::format("{:<13}{}\n", "log", prepared);

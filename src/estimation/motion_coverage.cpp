@@ -45,11 +45,14 @@ MotionCoverage motion_coverage(const Log& log, const OdometryParams& nominal, do
   const bool gyro = log.imu && log.imu->size() > 1;
   coverage.turning_source = gyro ? "gyro" : "wheels";
   // Windows of consecutive wheel samples: distance, moving time and heading change of each.
-  double window_start = -1.0, window_yaw = 0.0, last_t = 0.0;
+  double window_start = -1.0, window_yaw = 0.0, window_distance = 0.0, last_t = 0.0;
   bool window_moving = false;
   const auto close_window = [&](double window_end) {
     const double duration = window_end - window_start;
     if (!window_moving || duration <= 0.0) return;
+    // Over a window, not a sample: a sample's few ticks would add their quantisation to v^2.
+    const double speed = window_distance / duration;
+    coverage.distance_speed_squared_m3ps2 += window_distance * speed * speed;
     const double yaw = gyro ? gyro_heading_change(*log.imu, window_start, window_end) : window_yaw;
     if (std::abs(yaw) / duration < options.turn_rate_radps) return;
     (yaw > 0.0 ? coverage.left_turning_rad : coverage.right_turning_rad) += std::abs(yaw);
@@ -67,9 +70,11 @@ MotionCoverage motion_coverage(const Log& log, const OdometryParams& nominal, do
       if (window_start >= 0.0) close_window(wheels.t_s[k - 1]);
       window_start = wheels.t_s[k - 1];
       window_yaw = 0.0;
+      window_distance = 0.0;
       window_moving = false;
     }
     window_yaw += step.yaw_rad;
+    window_distance += std::abs(step.distance_m);
     window_moving = window_moving || moving;
     last_t = wheels.t_s[k];
   }

@@ -48,6 +48,19 @@ TEST(MotionCoverage, CountsDistanceAndTurnsWhileMovingOnly) {
   EXPECT_EQ(c.turning_source, "wheels");
 }
 
+TEST(MotionCoverage, MeanSquareSpeedIsWeightedByDistance) {
+  // 1000 m at 10 m/s and 1000 m at 20 m/s: (1000 * 100 + 1000 * 400) / 2000 = 250 (m/s)^2,
+  // where a mean over time would give 200; standing and the encoders' jitter add nothing.
+  Log log;
+  drive(log, 10.0, 0.0, 0.0, 1e-4);
+  drive(log, 100.0, 10.0, 0.05, 1e-3);
+  drive(log, 50.0, 20.0, 0.0, 1e-3);
+  drive(log, 10.0, 0.0, 0.0, 1e-4);
+  const MotionCoverage c = motion_coverage(log, kParams, 0.0, 1e9);
+  EXPECT_NEAR(c.mean_square_speed_m2ps2(), 250.0, 2.0);
+  EXPECT_EQ(MotionCoverage{}.mean_square_speed_m2ps2(), 0.0);
+}
+
 TEST(MotionCoverage, AGyroWithNoiseAndBiasSeesNoTurningOnAStraight) {
   Log log;
   drive(log, 120.0, 15.0, 0.0);

@@ -28,8 +28,15 @@ struct MotionCoverage {
   double left_turning_rad{};  // sum of counter-clockwise turns (positive)
   double right_turning_rad{};
   std::string turning_source;  // "gyro" (imu.csv) or "wheels"
+  // The sum of distance times speed squared over the moving windows: a rolling radius that grows
+  // with v^2 rolls the drive on its distance-weighted mean.
+  double distance_speed_squared_m3ps2{};
 
   double turning_rad() const { return left_turning_rad + right_turning_rad; }
+  // The distance-weighted mean of v^2 while moving, (m/s)^2; 0 for a log that did not move.
+  double mean_square_speed_m2ps2() const {
+    return distance_m > 0.0 ? distance_speed_squared_m3ps2 / distance_m : 0.0;
+  }
 };
 
 // Over the wheel samples with begin_s <= t <= end_s.

@@ -18,6 +18,12 @@ namespace odocal {
 inline constexpr double kCarRadiusPerNewtonM = 0.4e-6;
 inline constexpr double kCarSlipStiffnessPerLoad = 20.0;
 inline constexpr double kCarCorneringStiffnessPerLoad = 19.0;
+// The rolling radius's centrifugal growth per (m/s)^2, which the physical terms do not model
+// (docs/tyre-model.md, "Centrifugal growth"): the magic formula 6.1's example 205/60R15 tyre has
+// q_V1 = 7.742e-4 at its reference speed of 16.7 m/s, and its effective rolling radius grows with
+// the free radius one for one: 7.742e-4 / 16.7^2 of the free radius, times (R_0 / R_e)^3 = 1.09
+// (0.3135 m free, 0.305 m rolling) for the wheel's own radius and speed. 0.19 % at 25 m/s.
+inline constexpr double kCarGrowthPerSpeedSquaredS2pm2 = 3.0e-6;
 // The rear axle's side slip per lateral acceleration (s^2/m) that this cornering stiffness gives:
 // the axle slides outwards, so it is negative.
 inline constexpr double kCarSideSlipPerLateralS2pm =
