@@ -111,7 +111,8 @@ json core_json(const CalibrationSummary& s, const CalibrationConfig& config) {
                 {"moving_s", s.coverage.moving_s},
                 {"left_turning_deg", deg_from_rad(s.coverage.left_turning_rad)},
                 {"right_turning_deg", deg_from_rad(s.coverage.right_turning_rad)},
-                {"turning_source", s.coverage.turning_source}}},
+                {"turning_source", s.coverage.turning_source},
+                {"mean_square_speed_m2ps2", s.coverage.mean_square_speed_m2ps2()}}},
               {"reference_samples", s.reference_samples},
               {"reference_heading_source", s.reference_heading_source},
               {"configuration", config_to_json(config)}};

@@ -1,5 +1,6 @@
 // The calibration JSON's model-adequacy entry: a model that was not judged is neither explained
-// nor not (explains: null), so that a reader filtering on it is not told "explained".
+// nor not (explains: null), so that a reader filtering on it is not told "explained". Its
+// coverage carries the drive's distance-weighted mean v^2, which a tyre's growth goes with.
 
 #include <gtest/gtest.h>
 
@@ -31,6 +32,14 @@ TEST(CalibrationJson, AnUnjudgedModelIsNeitherExplainedNorNot) {
   EXPECT_TRUE(adequacy_json(explained).at("model_adequacy").at("explains").get<bool>());
   // Not asked for (judge_model_adequacy off): no entry at all.
   EXPECT_FALSE(adequacy_json(ModelAdequacy{}).contains("model_adequacy"));
+}
+
+TEST(CalibrationJson, CoverageCarriesTheDistanceWeightedMeanSquareSpeed) {
+  IterativeSummary summary;
+  summary.coverage.distance_m = 2000.0;
+  summary.coverage.distance_speed_squared_m3ps2 = 1000.0 * 100.0 + 1000.0 * 400.0;
+  const nlohmann::json json = summary_to_json(AnyCalibrationSummary(summary), CalibrationConfig{});
+  EXPECT_DOUBLE_EQ(json.at("coverage").at("mean_square_speed_m2ps2").get<double>(), 250.0);
 }
 
 }  // namespace
