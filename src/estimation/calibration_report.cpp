@@ -93,32 +93,41 @@ std::string report_ending(const CalibrationSummary& s) {
         "track", 1e3 * s.track_sigma_m[0], 1e3 * s.track_sigma_m[1],
         100.0 * s.track_width_uncertainty);
   }
+  // A passenger tyre's centrifugal growth at the drive's distance-weighted mean v^2: in the plain
+  // model's circumferences (they are the ones the drive rolled on), and left out of the physical
+  // terms' at rest, which extrapolate with a radius that does not grow (independent drives with
+  // growth, slip and load: 2.2 mm off at a sigma of 0.31 mm; docs/tyre-model.md). Named where it
+  // is more than half the circumferences' sigma.
+  const double v2 = s.coverage.mean_square_speed_m2ps2();
+  const double growth_m = kCarGrowthPerSpeedSquaredS2pm2 * v2 * 0.5 *
+                          (s.estimate.circumference_rl_m + s.estimate.circumference_rr_m);
+  const double sigma_m = std::max(s.sigma_rl_m(), s.sigma_rr_m());
+  const bool growth_matters = s.usable() && growth_m > 0.5 * sigma_m;
   // What a constant per wheel is, so that it is not read as the tyre at rest: a residual test
   // cannot see a slip that is the same all drive long (docs/tyre-model.md).
   if (s.usable() && s.tyre_model.plain()) {
+    const std::string growth =
+        growth_matters
+            ? fmt::format(
+                  "; a passenger tyre's centrifugal growth (about {:.2g} per (m/s)^2) at this "
+                  "drive's distance-weighted mean v^2 of {:.0f} (m/s)^2 is in them too, some "
+                  "{:.2g} mm above the circumferences at a garage's speeds",
+                  kCarGrowthPerSpeedSquaredS2pm2, v2, 1e3 * growth_m)
+            : "";
     text += fmt::format(
         "{:<13}the circumferences this drive rolled on, its average slip and load in them: at "
         "rest a driven axle's are larger by its slip at cruise (about 1.6 per mille at 10 m/s); "
-        "the batch's tyre_model: physical separates the two\n",
-        "rolling");
+        "the batch's tyre_model: physical separates the two{}\n",
+        "rolling", growth);
   }
-  if (s.usable() && physical_terms_fitted(s.tyre_model)) {
-    // The circumference at rest is extrapolated from the drive's states with a radius that does
-    // not grow: a tyre that grows puts it this far below (independent drives with growth, slip
-    // and load: 2.2 mm off at a sigma of 0.31 mm; docs/tyre-model.md).
-    const double v2 = s.coverage.mean_square_speed_m2ps2();
-    const double below_m = kCarGrowthPerSpeedSquaredS2pm2 * v2 * 0.5 *
-                           (s.estimate.circumference_rl_m + s.estimate.circumference_rr_m);
-    const double sigma_m = std::max(s.sigma_rl_m(), s.sigma_rr_m());
-    if (below_m > 0.5 * sigma_m) {
-      text += fmt::format(
-          "{:<13}not in the tyre terms: a passenger tyre's radius grows with speed (centrifugal, "
-          "about {:.2g} per (m/s)^2), which at this drive's distance-weighted mean v^2 of {:.0f} "
-          "(m/s)^2 would put the circumferences at rest {:.2g} mm below these ({:.2g} times their "
-          "sigma, which leaves it out); for a garage's speeds, calibrate on a slow drive or check "
-          "with `validate` on one\n",
-          "growth", kCarGrowthPerSpeedSquaredS2pm2, v2, 1e3 * below_m, below_m / sigma_m);
-    }
+  if (growth_matters && physical_terms_fitted(s.tyre_model)) {
+    text += fmt::format(
+        "{:<13}not in the tyre terms: a passenger tyre's radius grows with speed (centrifugal, "
+        "about {:.2g} per (m/s)^2), which at this drive's distance-weighted mean v^2 of {:.0f} "
+        "(m/s)^2 would put the circumferences at rest {:.2g} mm below these ({:.2g} times their "
+        "sigma, which leaves it out); for a garage's speeds, calibrate on a slow drive or check "
+        "with `validate` on one\n",
+        "growth", kCarGrowthPerSpeedSquaredS2pm2, v2, 1e3 * growth_m, growth_m / sigma_m);
   }
   if (const std::string prepared = s.preparation.describe(); !prepared.empty())
     text += fmt::format("{:<13}{}\n", "log", prepared);

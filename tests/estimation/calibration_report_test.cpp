@@ -1,5 +1,6 @@
-// The report's caution about what the physical tyre terms leave out: a tyre's centrifugal
-// growth, sized at the drive's distance-weighted mean v^2 against the circumferences' sigma.
+// The report's caution about a tyre's centrifugal growth, sized at the drive's distance-weighted
+// mean v^2 against the circumferences' sigma: left out of the physical terms' circumferences at
+// rest, and in the plain model's, which the drive rolled on.
 
 #include <gtest/gtest.h>
 
@@ -41,6 +42,11 @@ TEST(CalibrationReport, APhysicalFitNamesTheGrowthItLeavesOutWhereItMatters) {
   BatchSummary plain = physical_fit(0.5);
   plain.tyre_model = TyreModel{};
   EXPECT_EQ(growth_line(plain), "");
+  // The plain model's circumferences are the ones the drive rolled on: its `rolling` line says
+  // that the growth is in them, above a garage's.
+  EXPECT_NE(plain.full_report().find("mean v^2 of 400 (m/s)^2 is in them too, some 2.4 mm above"),
+            std::string::npos)
+      << plain.full_report();
   BatchSummary refused = physical_fit(0.5);
   refused.termination = Termination::kNotIdentifiable;
   EXPECT_EQ(growth_line(refused), "");
